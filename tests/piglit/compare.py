@@ -1,0 +1,83 @@
+#!/usr/bin/python3
+"""Checks a piglit run against tests/piglit/baseline.txt.
+
+A test of Debian's piglit fails the check when its result is worse than the
+baseline's (Debian's unpatched Mesa of the same version on the same test).
+occu's own tests (group 'occu@') have no baseline: they must pass or skip.
+Prints one line per failed check and ends with 'piglit: N passed, N failed'.
+
+  compare.py RESULTS_DIR BASELINE
+"""
+import bz2
+import json
+import os
+import sys
+
+# Worse is larger. A skip is worse than a pass (a feature went missing).
+RANK = {'pass': 0, 'warn': 1, 'skip': 2, 'notrun': 2, 'fail': 3,
+        'crash': 4, 'timeout': 4, 'incomplete': 4, 'dmesg-warn': 1, 'dmesg-fail': 3}
+
+
+def load_results(path):
+    for name, opener in (('results.json.bz2', bz2.open), ('results.json', open)):
+        full = os.path.join(path, name)
+        if os.path.exists(full):
+            with opener(full, 'rt') as f:
+                return {k: v['result'] for k, v in json.load(f)['tests'].items()}
+    sys.exit(f'compare.py: no results.json(.bz2) in {path}')
+
+
+def load_baseline(path):
+    """Lines: RESULT NAME [# reason]. Every non-pass needs a reason."""
+    base, problems = {}, []
+    with open(path) as f:
+        for number, raw in enumerate(f, 1):
+            line = raw.strip()
+            if not line or line.startswith('#'):
+                continue
+            body, _, reason = line.partition('#')
+            result, _, name = body.strip().partition(' ')
+            name = name.strip()
+            if result not in RANK or not name:
+                problems.append(f'{path}:{number}: expected "RESULT NAME [# reason]", got "{line}"')
+                continue
+            if result != 'pass' and not reason.strip():
+                problems.append(f'{path}:{number}: expected {result} of "{name}" has no reason')
+            base[name] = result
+    return base, problems
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    results = load_results(sys.argv[1])
+    baseline, problems = load_baseline(sys.argv[2])
+    passed, failed = 0, len(problems)
+    for p in problems:
+        print(f'FAIL baseline: {p}')
+    for name in sorted(results):
+        got = results[name]
+        own = '@occu@' in name
+        if own:
+            ok, why = got in ('pass', 'skip'), 'occu tests must pass or skip'
+        elif name in baseline:
+            want = baseline[name]
+            ok, why = RANK[got] <= RANK[want], f'baseline is {want}'
+            if RANK[got] < RANK[want]:
+                print(f'note: {name}: {got}, better than the baseline ({want}); re-record the baseline')
+        else:
+            ok, why = False, 'not in the baseline (re-record it: tests/piglit/record-baseline.sh)'
+        if ok:
+            passed += 1
+        else:
+            failed += 1
+            print(f'FAIL {name}: {got} ({why})')
+    for name in sorted(set(baseline) - set(results)):
+        failed += 1
+        print(f'FAIL {name}: in the baseline but not run (regression.list and baseline.txt disagree)')
+    print(f'piglit: {passed} passed, {failed} failed')
+    return 1 if failed else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

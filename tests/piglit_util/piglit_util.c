@@ -1,0 +1,130 @@
+#include "piglit_util.h"
+
+#include <GL/osmesa.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int piglit_width, piglit_height;
+static OSMesaContext context;
+static unsigned char *color_buffer;
+
+static const char *result_name(enum piglit_result r)
+{
+    switch (r) {
+    case PIGLIT_PASS: return "pass";
+    case PIGLIT_FAIL: return "fail";
+    default: return "skip";
+    }
+}
+
+void piglit_report_result(enum piglit_result result)
+{
+    printf("PIGLIT: {\"result\": \"%s\" }\n", result_name(result));
+    fflush(stdout);
+    if (context)
+        OSMesaDestroyContext(context);
+    free(color_buffer);
+    exit(result == PIGLIT_PASS ? 0 : result == PIGLIT_SKIP ? 77 : 1);
+}
+
+void piglit_report_subtest_result(enum piglit_result result, const char *format, ...)
+{
+    char name[512];
+    va_list ap;
+    va_start(ap, format);
+    vsnprintf(name, sizeof(name), format, ap);
+    va_end(ap);
+    printf("PIGLIT: {\"subtest\": {\"%s\" : \"%s\"}}\n", name, result_name(result));
+    fflush(stdout);
+}
+
+enum piglit_result piglit_merge_result(enum piglit_result a, enum piglit_result b)
+{
+    if (a == PIGLIT_FAIL || b == PIGLIT_FAIL)
+        return PIGLIT_FAIL;
+    if (a == PIGLIT_PASS || b == PIGLIT_PASS)
+        return PIGLIT_PASS;
+    return PIGLIT_SKIP;
+}
+
+void piglit_osmesa_init(int argc, char **argv, int width, int height)
+{
+    for (int i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "-auto") && strcmp(argv[i], "-fbo")) {
+            fprintf(stderr, "%s: unknown argument '%s' (accepted: -auto -fbo)\n", argv[0], argv[i]);
+            piglit_report_result(PIGLIT_FAIL);
+        }
+    }
+    static const int attribs[] = {
+        OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
+        OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0,
+    };
+    context = OSMesaCreateContextAttribs(attribs, NULL);
+    color_buffer = calloc((size_t)width * (size_t)height, 4);
+    if (!context || !color_buffer ||
+        !OSMesaMakeCurrent(context, color_buffer, GL_UNSIGNED_BYTE, width, height)) {
+        fprintf(stderr, "could not make an OSMesa context of %dx%d\n", width, height);
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    OSMesaPixelStore(OSMESA_Y_UP, 1);
+    piglit_width = width;
+    piglit_height = height;
+    glViewport(0, 0, width, height);
+}
+
+bool piglit_is_extension_supported(const char *name)
+{
+    const char *list = (const char *)glGetString(GL_EXTENSIONS);
+    size_t n = strlen(name);
+    for (const char *p = list; p && (p = strstr(p, name)); p += n) {
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
+            return true;
+    }
+    return false;
+}
+
+void piglit_require_extension(const char *name)
+{
+    if (!piglit_is_extension_supported(name)) {
+        printf("Test requires %s, which %s does not advertise\n", name, (const char *)glGetString(GL_RENDERER));
+        piglit_report_result(PIGLIT_SKIP);
+    }
+}
+
+void (*piglit_get_proc_address(const char *name))(void)
+{
+    return (void (*)(void))OSMesaGetProcAddress(name);
+}
+
+bool piglit_check_gl_error(GLenum expected)
+{
+    GLenum got = glGetError();
+    if (got == expected)
+        return true;
+    printf("Unexpected GL error: 0x%04x, expected 0x%04x\n", got, expected);
+    return false;
+}
+
+bool piglit_probe_rect_rgba_ub(int x, int y, int w, int h, const unsigned char expected[4], int tolerance)
+{
+    unsigned char *pixels = malloc((size_t)w * (size_t)h * 4);
+    glReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+    for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+            const unsigned char *p = pixels + ((size_t)j * (size_t)w + (size_t)i) * 4;
+            for (int c = 0; c < 4; ++c) {
+                if (abs(p[c] - expected[c]) > tolerance) {
+                    printf("Probe at (%d, %d): expected %u %u %u %u, observed %u %u %u %u (tolerance %d)\n",
+                           x + i, y + j, expected[0], expected[1], expected[2], expected[3],
+                           p[0], p[1], p[2], p[3], tolerance);
+                    free(pixels);
+                    return false;
+                }
+            }
+        }
+    }
+    free(pixels);
+    return true;
+}

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Installs the Debian packages occu needs, only those that are missing.
+# Usage: tools/deps.sh [build|test|all]   (default: all)
+set -euo pipefail
+source "$(dirname "$0")/lib.sh"
+
+# To build Mesa (gallium swrast, OSMesa, EGL surfaceless with glvnd) and occu.
+BUILD_PACKAGES=(
+    dpkg-dev            # apt-get source unpacks with dpkg-source
+    meson ninja-build pkg-config ccache
+    python3-mako        # for /usr/bin/python3, which runs Mesa's generators
+    flex bison
+    llvm-15-dev         # llvmpipe's JIT
+    libdrm-dev libelf-dev zlib1g-dev libzstd-dev libexpat1-dev
+    libglvnd-dev libglvnd-core-dev
+    g++ libglm-dev libgtest-dev libpng-dev
+)
+# To run the piglit regression run on the patched driver.
+TEST_PACKAGES=(
+    piglit
+)
+
+what=${1:-all}
+case $what in
+    build) wanted=("${BUILD_PACKAGES[@]}") ;;
+    test|all) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
+    *) die "tools/deps.sh: unknown argument '$what' (expected build, test or all)" ;;
+esac
+
+# apt-get source needs a deb-src entry; derive one from the deb entries when none exists.
+ensure_deb_src() {
+    if grep -rqsE '^(Types:.*deb-src|deb-src )' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+        return 1
+    fi
+    local src=/etc/apt/sources.list.d/debian.sources
+    [ -f "$src" ] || die "no deb-src entry and no $src to derive one from; add a deb-src line for Debian bookworm by hand"
+    say "adding a deb-src entry derived from $src"
+    sed -e 's/^Types:.*/Types: deb-src/' "$src" | as_root tee /etc/apt/sources.list.d/occu-deb-src.sources >/dev/null
+    return 0
+}
+
+missing=()
+for p in "${wanted[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+
+need_update=0
+ensure_deb_src && need_update=1
+# A fresh machine has empty package lists.
+compgen -G '/var/lib/apt/lists/*_Packages*' >/dev/null || need_update=1
+compgen -G '/var/lib/apt/lists/*_Sources*' >/dev/null || need_update=1
+[ ${#missing[@]} -gt 0 ] && need_update=1
+if [ $need_update = 1 ]; then
+    say "apt-get update"
+    as_root apt-get update -qq
+fi
+if [ ${#missing[@]} -gt 0 ]; then
+    say "installing: ${missing[*]}"
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

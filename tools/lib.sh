@@ -1,0 +1,20 @@
+# Shared shell helpers for occu's tools (sourced, not run).
+# Everything that is cached lives under $OCCU_CACHE, outside the work tree,
+# so that a second run, a CI run or another clone on the same machine reuses it.
+
+OCCU_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+OCCU_CACHE=${OCCU_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/occu}
+
+# The Mesa this project patches: Debian 12's source package, pinned.
+MESA_UPSTREAM_VERSION=22.3.6
+MESA_DEBIAN_VERSION=22.3.6-1+deb12u2
+
+# Debian's own interpreter: it has python3-mako, the first python3 on PATH may not.
+SYSTEM_PYTHON=/usr/bin/python3
+
+say()  { printf '\033[1m[occu]\033[0m %s\n' "$*" >&2; }
+die()  { printf '\033[1;31m[occu] error:\033[0m %s\n' "$*" >&2; exit 1; }
+
+as_root() {
+    if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi
+}

@@ -1,0 +1,153 @@
+#!/usr/bin/env bash
+# Fetches Debian's Mesa source, applies patches/mesa/series, builds and installs it
+# into a cache outside the work tree; prints the install prefix on stdout.
+#
+# Usage: tools/mesa.sh [--unpatched]
+#   --unpatched   build the same Mesa with the same options but an empty series
+#                 (the reference for patched-vs-unpatched measurements)
+#
+# Cache layout under $OCCU_CACHE/mesa/<debian version>/:
+#   source/                  the unpacked source package, a git repository whose first
+#                            commit is pristine; patches are applied to its work tree
+#   build-<options>-<variant>/   meson build dir, reused so that a patch change
+#                            rebuilds only what it touches
+#   install-<options>-<patches>/ the installed Mesa, one per key; '.complete' marks it done
+# The key is the Mesa version, the hash of the build options and the hash of the
+# patch series (its 'series' file and every patch it names, in order).
+set -euo pipefail
+source "$(dirname "$0")/lib.sh"
+
+variant=patched
+case ${1:-} in
+    "") ;;
+    --unpatched) variant=unpatched ;;
+    *) die "tools/mesa.sh: unknown option '$1' (expected --unpatched or nothing)" ;;
+esac
+
+# The build: gallium's software rasterizers only (softpipe, llvmpipe on LLVM 15),
+# OSMesa, and EGL (surfaceless is always built with EGL) behind glvnd so that
+# unmodified programs linked to libGL/libEGL reach this Mesa. Nothing else.
+MESA_OPTIONS=(
+    --buildtype=release -Db_ndebug=true
+    -Dplatforms= -Dgallium-drivers=swrast -Dvulkan-drivers=
+    -Dllvm=enabled -Dshared-llvm=enabled -Ddraw-use-llvm=true
+    -Dosmesa=true -Degl=enabled -Dglvnd=true -Dglx=disabled -Dgbm=disabled
+    -Dgles1=disabled -Dgles2=enabled -Dopengl=true -Dshared-glapi=enabled
+    -Ddri3=disabled -Dxlib-lease=disabled
+    -Dgallium-vdpau=disabled -Dgallium-va=disabled -Dgallium-xa=disabled
+    -Dgallium-omx=disabled -Dgallium-nine=false -Dgallium-opencl=disabled
+    -Dgallium-rusticl=false -Dvideo-codecs=
+    -Dmicrosoft-clc=disabled -Dintel-clc=disabled -Dspirv-to-dxil=false
+    -Dvalgrind=disabled -Dlibunwind=disabled -Dlmsensors=disabled -Dselinux=false
+    -Dbuild-tests=false -Dtools=
+)
+
+series_file=$OCCU_ROOT/patches/mesa/series
+patches=()
+if [ $variant = patched ] && [ -f "$series_file" ]; then
+    while IFS= read -r line || [ -n "$line" ]; do
+        line=${line%%#*}; line=$(echo "$line" | xargs)
+        [ -n "$line" ] || continue
+        [ -f "$OCCU_ROOT/patches/mesa/$line" ] || die "patches/mesa/series names '$line', which does not exist"
+        patches+=("$OCCU_ROOT/patches/mesa/$line")
+    done < "$series_file"
+fi
+
+options_hash=$(printf '%s\n' "${MESA_OPTIONS[@]}" | sha256sum | cut -c1-12)
+patches_hash=$( { printf '%s\n' "${patches[@]##*/}"; for p in "${patches[@]}"; do cat "$p"; done; } | sha256sum | cut -c1-12)
+
+top=$OCCU_CACHE/mesa/$MESA_DEBIAN_VERSION
+src=$top/source
+build=$top/build-$options_hash-$variant
+prefix=$top/install-$options_hash-$patches_hash
+
+if [ -f "$prefix/.complete" ]; then
+    echo "$prefix"; exit 0
+fi
+
+mkdir -p "$top"
+exec 9>"$top/.lock"
+flock 9    # one build at a time per Mesa version; others wait, then reuse
+if [ -f "$prefix/.complete" ]; then
+    echo "$prefix"; exit 0
+fi
+
+"$OCCU_ROOT/tools/deps.sh" build
+
+# --- fetch: Debian's source package at the pinned version -----------------------------
+if [ ! -f "$src/.occu-pristine" ]; then
+    dl=$OCCU_CACHE/mesa/download
+    mkdir -p "$dl"
+    apt_version=$(apt-cache showsrc mesa 2>/dev/null | sed -n 's/^Version: //p' | sort -V | tail -n1)
+    [ -n "$apt_version" ] || die "apt knows no source package 'mesa' (is there a deb-src entry? run 'apt-get update')"
+    if [ "$apt_version" != "$MESA_DEBIAN_VERSION" ]; then
+        die "apt would fetch mesa $apt_version, but occu is pinned to $MESA_DEBIAN_VERSION (tools/lib.sh). \
+Check that patches/mesa still applies to $apt_version, then change MESA_DEBIAN_VERSION."
+    fi
+    say "fetching Debian's mesa $MESA_DEBIAN_VERSION source package"
+    (cd "$dl" && apt-get source -qq --download-only "mesa=$MESA_DEBIAN_VERSION" 2>&1 | grep -v 'unsandboxed' >&2 || true)
+    dsc=$dl/mesa_$MESA_DEBIAN_VERSION.dsc
+    [ -f "$dsc" ] || die "apt-get source did not produce $dsc"
+    rm -rf "$src" "$src.tmp"
+    say "unpacking (Debian's own patches applied)"
+    dpkg-source --no-check -x "$dsc" "$src.tmp" >/dev/null
+    (cd "$src.tmp" && git init -q && git add -A -f . && \
+        git -c user.name=occu -c user.email=occu@localhost commit -q -m "Debian mesa $MESA_DEBIAN_VERSION, pristine")
+    echo "$MESA_DEBIAN_VERSION" > "$src.tmp/.git/occu-version"
+    mv "$src.tmp" "$src"
+    touch "$src/.occu-pristine"
+fi
+
+# --- patch: reset the tree to pristine, apply the series in order ---------------------
+applied=$(cat "$src/.git/occu-applied" 2>/dev/null || true)
+if [ "$applied" != "$patches_hash" ]; then
+    say "applying patches/mesa/series (${#patches[@]} patches)"
+    (cd "$src" && git reset -q --hard && git clean -q -fd -e .occu-pristine)
+    rm -f "$src/.git/occu-applied"
+    for p in "${patches[@]}"; do
+        if ! (cd "$src" && git apply --whitespace=nowarn "$p" 2>&1 >&2); then
+            die "patch ${p#$OCCU_ROOT/} does not apply to mesa $MESA_DEBIAN_VERSION"
+        fi
+    done
+    echo "$patches_hash" > "$src/.git/occu-applied"
+fi
+
+# --- build and install --------------------------------------------------------------
+# Mesa's generators need mako, which Debian's python has; put /usr/bin first so that
+# meson's find_installation('python3') picks it.
+export PATH=/usr/bin:$PATH
+export CCACHE_DIR=${CCACHE_DIR:-$OCCU_CACHE/ccache}
+if [ ! -f "$build/build.ninja" ]; then
+    say "configuring Mesa (options $options_hash, $variant)"
+    rm -rf "$build"
+    meson setup "$build" "$src" --prefix="$prefix" --libdir=lib "${MESA_OPTIONS[@]}" >"$top/configure-$variant.log" 2>&1 \
+        || { tail -n 30 "$top/configure-$variant.log" >&2; die "Mesa's meson setup failed (log: $top/configure-$variant.log)"; }
+else
+    meson configure "$build" --prefix="$prefix" >/dev/null
+fi
+say "building Mesa into $prefix (log: $top/build-$variant.log)"
+start=$(date +%s)
+if ! ninja -C "$build" install >"$top/build-$variant.log" 2>&1; then
+    grep -E 'error|FAILED' "$top/build-$variant.log" | head -n 30 >&2
+    die "Mesa build failed (log: $top/build-$variant.log)"
+fi
+
+# glvnd finds vendors through JSON files; programs are pointed at this one (absolute
+# path, so that no system Mesa is picked instead) with __EGL_VENDOR_LIBRARY_FILENAMES.
+mkdir -p "$prefix/occu"
+cat > "$prefix/occu/egl_vendor.json" <<JSON
+{
+    "file_format_version" : "1.0.0",
+    "ICD" : { "library_path" : "$prefix/lib/libEGL_mesa.so.0" }
+}
+JSON
+cat > "$prefix/occu/env.sh" <<ENV
+# Source this to run programs on occu's Mesa ($variant, series $patches_hash).
+export PKG_CONFIG_PATH="$prefix/lib/pkgconfig\${PKG_CONFIG_PATH:+:\$PKG_CONFIG_PATH}"
+export LD_LIBRARY_PATH="$prefix/lib\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
+export LIBGL_DRIVERS_PATH="$prefix/lib/dri"
+export __EGL_VENDOR_LIBRARY_FILENAMES="$prefix/occu/egl_vendor.json"
+ENV
+touch "$prefix/.complete"
+say "Mesa built in $(( $(date +%s) - start ))s"
+echo "$prefix"
