@@ -7,6 +7,7 @@
  *   renderer-names-driver   GL_RENDERER contains $GALLIUM_DRIVER (skip when unset)
  *   scissored-clear         a scissored clear changes exactly its rectangle (tolerance 0)
  */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 

@@ -1,0 +1,18 @@
+/*
+ * GL_MESAX_occlusion_unit: tokens and entry-point types, as
+ * spec/MESAX_occlusion_unit.txt defines them. Include after <GL/gl.h>;
+ * fetch the entry points with the platform's GetProcAddress.
+ */
+#ifndef GL_MESAX_occlusion_unit
+#define GL_MESAX_occlusion_unit 1
+
+#define GL_BRIEF_OCCLUSION_MESAX      0x8BBC
+#define GL_VERBOSE_OCCLUSION_MESAX    0x8BBD
+#define GL_MAX_OCCLUSION_TILES_MESAX  0x8BBE
+#define GL_OCCLUSION_TILE_COUNT_MESAX 0x8BBF
+
+typedef void (APIENTRYP PFNGLSCISSORSMESAXPROC)(GLsizei count, const GLint *tiles);
+typedef void (APIENTRYP PFNGLOCCLUSIONBUFFERSMESAXPROC)(GLsizei count, const GLsizei *sizes,
+                                                        GLuint *const *buffers);
+
+#endif

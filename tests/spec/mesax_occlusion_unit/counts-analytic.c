@@ -1,0 +1,103 @@
+/*
+ * GL_MESAX_occlusion_unit: exact NOHC, PHC, bounding box and depth range
+ * for coverage known analytically: axis-aligned rectangles on pixel
+ * boundaries (no rasterization ambiguity), a half-occluded rectangle, a
+ * fully occluded one, and tiles that cut a rectangle's edges.
+ *
+ * Tolerances: counts and coordinates exact; depth within 512 record units
+ * (2^-23 of the range: float32 rounding of a constant z).
+ */
+#include "ou_util.h"
+
+#define W 64
+#define H 64
+#define ZTOL 512
+
+static enum piglit_result result = PIGLIT_PASS;
+
+static void
+check(const char *name, const GLuint *got, const GLuint expected[OU_BRIEF_SIZE])
+{
+    bool ok = ou_check_record(name, got, expected, ZTOL) && piglit_check_gl_error(GL_NO_ERROR);
+    piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "%s", name);
+    if (!ok)
+        result = PIGLIT_FAIL;
+}
+
+/* The tested object: 20 x 10 pixels at depth 0.5. */
+static void draw_target(void) { ou_rect(10, 20, 30, 30, 0.5f); }
+
+static void
+reset_depth(void)
+{
+    glDepthMask(GL_TRUE);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+}
+
+int main(int argc, char **argv)
+{
+    ou_init(argc, argv, W, H);
+    GLuint rec[4][OU_BRIEF_SIZE];
+    const GLuint z = ou_depth(0.5);
+
+    /* Depth test off: every fragment is non-occluded. */
+    glDisable(GL_DEPTH_TEST);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    check("no-depth-test", rec[0], (GLuint[]){200, 200, 10, 29, 20, 29, z, z});
+
+    /* Depth test on, empty depth buffer. */
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    reset_depth();
+    ou_brief_pass(0, NULL, rec, draw_target);
+    check("unoccluded", rec[0], (GLuint[]){200, 200, 10, 29, 20, 29, z, z});
+
+    /* The left half hidden by a nearer occluder drawn in GL_RENDER. */
+    reset_depth();
+    ou_rect(10, 20, 20, 30, 0.25f);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    check("half-occluded", rec[0], (GLuint[]){100, 200, 20, 29, 20, 29, z, z});
+
+    /* Tiles cutting the half-occluded rectangle's edges; one off-screen, one 1x1. */
+    const GLint tiles[16] = {
+        25, 0, 100, 100,   /* columns 25..29 of the visible half: 5 x 10 */
+        0, 25, 15, 5,      /* rows 25..29, columns 10..14: all occluded */
+        -50, -50, 10, 10,  /* off-screen */
+        29, 29, 1, 1,      /* the top-right pixel */
+    };
+    ou_brief_pass(4, tiles, rec, draw_target);
+    check("tile-cuts-right-edge", rec[0], (GLuint[]){50, 50, 25, 29, 20, 29, z, z});
+    check("tile-cuts-left-edge-occluded", rec[1],
+          (GLuint[]){0, 25, OU_EMPTY_MIN, OU_EMPTY_MAX, OU_EMPTY_MIN, OU_EMPTY_MAX, OU_EMPTY_MIN, OU_EMPTY_MAX});
+    check("tile-off-screen", rec[2],
+          (GLuint[]){0, 0, OU_EMPTY_MIN, OU_EMPTY_MAX, OU_EMPTY_MIN, OU_EMPTY_MAX, OU_EMPTY_MIN, OU_EMPTY_MAX});
+    check("tile-1x1", rec[3], (GLuint[]){1, 1, 29, 29, 29, 29, z, z});
+
+    /* Fully occluded: NOHC 0, PHC the projection, empty extents. */
+    reset_depth();
+    ou_rect(0, 0, W, H, 0.1f);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    check("fully-occluded", rec[0],
+          (GLuint[]){0, 200, OU_EMPTY_MIN, OU_EMPTY_MAX, OU_EMPTY_MIN, OU_EMPTY_MAX, OU_EMPTY_MIN, OU_EMPTY_MAX});
+
+    /* glScissor as the default tile (scissor test on): the tile and the
+     * scissor test both cut the rectangle to columns 10..14. */
+    reset_depth();
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 15, H);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    glDisable(GL_SCISSOR_TEST);
+    check("scissor-is-default-tile", rec[0], (GLuint[]){50, 50, 10, 14, 20, 29, z, z});
+
+    /* The viewport is the default tile without the scissor test. */
+    glViewport(0, 0, 20, H);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glOrtho(0, 20, 0, H, 0, -1);
+    glMatrixMode(GL_MODELVIEW);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    check("viewport-is-default-tile", rec[0], (GLuint[]){100, 100, 10, 19, 20, 29, z, z});
+
+    piglit_report_result(result);
+}

@@ -1,0 +1,125 @@
+/*
+ * Helpers shared by the GL_MESAX_occlusion_unit tests.
+ *
+ * Conventions: ou_init sets a projection in which object coordinates are
+ * window coordinates: x and y in pixels (a rectangle from (x0, y0) to
+ * (x1, y1) covers exactly the pixels x0..x1-1, y0..y1-1, whose centres it
+ * contains) and z in [0, 1] is window depth.
+ */
+#ifndef OU_UTIL_H
+#define OU_UTIL_H
+
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "piglit_util.h"
+#include "GL/mesax_occlusion_unit.h"
+
+/* Words of a record (spec section 5.X). */
+enum { OU_NOHC, OU_PHC, OU_XMIN, OU_XMAX, OU_YMIN, OU_YMAX, OU_ZMIN, OU_ZMAX, OU_BRIEF_SIZE };
+
+#define OU_EMPTY_MIN 0xffffffffu
+#define OU_EMPTY_MAX 0u
+
+static PFNGLSCISSORSMESAXPROC ScissorsMESAX;
+static PFNGLOCCLUSIONBUFFERSMESAXPROC OcclusionBuffersMESAX;
+
+/* Makes the context, requires the extension (skips without it; fails on
+ * softpipe, which occu's patches give it), sets pixel-exact projection. */
+static inline void
+ou_init(int argc, char **argv, int width, int height)
+{
+    piglit_osmesa_init(argc, argv, width, height);
+    if (!piglit_is_extension_supported("GL_MESAX_occlusion_unit")) {
+        const char *renderer = (const char *)glGetString(GL_RENDERER);
+        if (renderer && strstr(renderer, "softpipe")) {
+            printf("softpipe must advertise GL_MESAX_occlusion_unit with occu's patches\n");
+            piglit_report_result(PIGLIT_FAIL);
+        }
+        piglit_require_extension("GL_MESAX_occlusion_unit");
+    }
+    ScissorsMESAX = (PFNGLSCISSORSMESAXPROC)piglit_get_proc_address("glScissorsMESAX");
+    OcclusionBuffersMESAX = (PFNGLOCCLUSIONBUFFERSMESAXPROC)piglit_get_proc_address("glOcclusionBuffersMESAX");
+    if (!ScissorsMESAX || !OcclusionBuffersMESAX) {
+        printf("extension advertised but its entry points are missing\n");
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glOrtho(0, width, 0, height, 0, -1); /* window z = object z */
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+}
+
+static inline void
+ou_rect(float x0, float y0, float x1, float y1, float z)
+{
+    glBegin(GL_QUADS);
+    glVertex3f(x0, y0, z);
+    glVertex3f(x1, y0, z);
+    glVertex3f(x1, y1, z);
+    glVertex3f(x0, y1, z);
+    glEnd();
+}
+
+/* One buffer per tile, each of `size` words, filled with a sentinel so that
+ * tests see which words the GL wrote. */
+#define OU_SENTINEL 0xdeadbeefu
+
+static inline void
+ou_fill(GLuint *buffer, int size)
+{
+    for (int i = 0; i < size; ++i)
+        buffer[i] = OU_SENTINEL;
+}
+
+/* Record depth of window z, as the spec maps it. */
+static inline GLuint
+ou_depth(double z)
+{
+    if (z < 0) z = 0;
+    if (z > 1) z = 1;
+    return (GLuint)(z * 4294967295.0 + 0.5);
+}
+
+/* Compares a record's 8 words with expectations; prints the differences. */
+static inline bool
+ou_check_record(const char *what, const GLuint *got, const GLuint expected[OU_BRIEF_SIZE], GLuint z_tolerance)
+{
+    static const char *names[] = {"NOHC", "PHC", "xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+    bool ok = true;
+    for (int i = 0; i < OU_BRIEF_SIZE; ++i) {
+        const GLuint tol = i >= OU_ZMIN ? z_tolerance : 0;
+        const GLuint diff = got[i] > expected[i] ? got[i] - expected[i] : expected[i] - got[i];
+        if (diff > tol) {
+            printf("%s: %s is %u (0x%08x), expected %u (0x%08x), tolerance %u\n", what, names[i], got[i], got[i],
+                   expected[i], expected[i], tol);
+            ok = false;
+        }
+    }
+    return ok;
+}
+
+/* Brief pass over `draw` with one buffer per tile; returns RenderMode's value. */
+static inline GLint
+ou_brief_pass(int num_tiles, const GLint *tiles, GLuint (*records)[OU_BRIEF_SIZE], void (*draw)(void))
+{
+    GLuint *buffers[64];
+    GLsizei sizes[64];
+    int n = num_tiles > 0 ? num_tiles : 1;
+    for (int i = 0; i < n; ++i) {
+        ou_fill(records[i], OU_BRIEF_SIZE);
+        buffers[i] = records[i];
+        sizes[i] = OU_BRIEF_SIZE;
+    }
+    OcclusionBuffersMESAX(n, sizes, buffers);
+    ScissorsMESAX(num_tiles, tiles);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    draw();
+    GLint r = glRenderMode(GL_RENDER);
+    ScissorsMESAX(0, NULL);
+    return r;
+}
+
+#endif

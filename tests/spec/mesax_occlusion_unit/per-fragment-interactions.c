@@ -1,0 +1,165 @@
+/*
+ * GL_MESAX_occlusion_unit and the other per-fragment operations (spec
+ * issues 1, 7 and 10): PHC counts fragments entering the per-fragment tests
+ * (after scissor and discard), NOHC those passing alpha, stencil and depth
+ * tests; an occlusion pass writes no depth, so its own primitives never
+ * occlude each other; an active SAMPLES_PASSED query counts NOHC.
+ * Object: a 20 x 10 rectangle at z = 0.5, left half behind an occluder at
+ * z = 0.25 where noted. Counts exact.
+ */
+#include "ou_util.h"
+
+#define W 64
+#define H 64
+
+static enum piglit_result result = PIGLIT_PASS;
+static GLuint rec[1][OU_BRIEF_SIZE];
+
+static void
+expect(const char *name, GLuint nohc, GLuint phc)
+{
+    bool ok = rec[0][OU_NOHC] == nohc && rec[0][OU_PHC] == phc && piglit_check_gl_error(GL_NO_ERROR);
+    if (!ok)
+        printf("%s: NOHC %u PHC %u, expected %u %u\n", name, rec[0][OU_NOHC], rec[0][OU_PHC], nohc, phc);
+    piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "%s", name);
+    if (!ok)
+        result = PIGLIT_FAIL;
+}
+
+static void draw_target(void) { ou_rect(10, 20, 30, 30, 0.5f); }
+static void draw_target_twice(void) { ou_rect(10, 20, 30, 30, 0.5f); ou_rect(10, 20, 30, 30, 0.6f); }
+
+static void
+scene_with_occluder(void)
+{
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glClearDepth(1.0);
+    glClearStencil(0);
+    glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    ou_rect(10, 20, 20, 30, 0.25f);
+}
+
+static GLuint
+compile_discard_program(void)
+{
+    PFNGLCREATESHADERPROC CreateShader = (PFNGLCREATESHADERPROC)piglit_get_proc_address("glCreateShader");
+    PFNGLSHADERSOURCEPROC ShaderSource = (PFNGLSHADERSOURCEPROC)piglit_get_proc_address("glShaderSource");
+    PFNGLCOMPILESHADERPROC CompileShader = (PFNGLCOMPILESHADERPROC)piglit_get_proc_address("glCompileShader");
+    PFNGLCREATEPROGRAMPROC CreateProgram = (PFNGLCREATEPROGRAMPROC)piglit_get_proc_address("glCreateProgram");
+    PFNGLATTACHSHADERPROC AttachShader = (PFNGLATTACHSHADERPROC)piglit_get_proc_address("glAttachShader");
+    PFNGLLINKPROGRAMPROC LinkProgram = (PFNGLLINKPROGRAMPROC)piglit_get_proc_address("glLinkProgram");
+    PFNGLGETPROGRAMIVPROC GetProgramiv = (PFNGLGETPROGRAMIVPROC)piglit_get_proc_address("glGetProgramiv");
+    /* Discards the columns x < 20: the left half of the object. */
+    const char *fs = "#version 110\n"
+                     "void main() { if (gl_FragCoord.x < 20.0) discard; gl_FragColor = vec4(1.0); }\n";
+    GLuint s = CreateShader(GL_FRAGMENT_SHADER);
+    ShaderSource(s, 1, &fs, NULL);
+    CompileShader(s);
+    GLuint p = CreateProgram();
+    AttachShader(p, s);
+    LinkProgram(p);
+    GLint linked = 0;
+    GetProgramiv(p, GL_LINK_STATUS, &linked);
+    return linked ? p : 0;
+}
+
+int main(int argc, char **argv)
+{
+    ou_init(argc, argv, W, H);
+
+    scene_with_occluder();
+    ou_brief_pass(0, NULL, rec, draw_target);
+    expect("depth-less", 100, 200);
+
+    scene_with_occluder();
+    glDepthFunc(GL_GREATER);   /* passes only where the occluder is: stored 0.25 < 0.5 */
+    ou_brief_pass(0, NULL, rec, draw_target);
+    expect("depth-greater", 100, 200);
+    glDepthFunc(GL_LESS);
+
+    scene_with_occluder();
+    glDepthMask(GL_FALSE);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    expect("depth-mask-off", 100, 200);
+    glDepthMask(GL_TRUE);
+
+    /* The pass writes no depth: the second, farther copy is not occluded by the first. */
+    scene_with_occluder();
+    ou_brief_pass(0, NULL, rec, draw_target_twice);
+    expect("pass-does-not-occlude-itself", 200, 400);
+
+    /* Stencil: only the right 5 columns have stencil 1; PHC counts before the test. */
+    scene_with_occluder();
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glDisable(GL_DEPTH_TEST);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    ou_rect(25, 0, W, H, 0.0f);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glEnable(GL_DEPTH_TEST);
+    glStencilFunc(GL_EQUAL, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    glDisable(GL_STENCIL_TEST);
+    expect("stencil-equal", 50, 200);
+
+    /* Alpha test: a failing alpha removes fragments from NOHC, not from PHC. */
+    scene_with_occluder();
+    glEnable(GL_ALPHA_TEST);
+    glAlphaFunc(GL_GREATER, 0.5f);
+    glColor4f(1, 1, 1, 0.25f);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    expect("alpha-test-fails", 0, 200);
+    glColor4f(1, 1, 1, 0.75f);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    expect("alpha-test-passes", 100, 200);
+    glDisable(GL_ALPHA_TEST);
+    glColor4f(1, 1, 1, 1);
+
+    /* Scissor test with an explicit tile: the scissor test comes first. */
+    scene_with_occluder();
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 25, H);
+    const GLint whole[4] = {0, 0, W, H};
+    ou_brief_pass(1, whole, rec, draw_target);
+    glDisable(GL_SCISSOR_TEST);
+    expect("scissor-test-before-tile", 50, 150);
+
+    /* Discard in a fragment shader removes fragments from PHC too. */
+    GLuint program = compile_discard_program();
+    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    if (program && UseProgram) {
+        glDisable(GL_DEPTH_TEST);
+        UseProgram(program);
+        ou_brief_pass(0, NULL, rec, draw_target);
+        UseProgram(0);
+        expect("shader-discard", 100, 100);
+    } else {
+        piglit_report_subtest_result(PIGLIT_SKIP, "shader-discard");
+    }
+
+    /* An active SAMPLES_PASSED query counts what NOHC counts. */
+    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
+        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    GLuint query, samples = 0;
+    scene_with_occluder();
+    GenQueries(1, &query);
+    BeginQuery(GL_SAMPLES_PASSED, query);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    EndQuery(GL_SAMPLES_PASSED);
+    GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+    bool ok = samples == rec[0][OU_NOHC] && samples == 100;
+    if (!ok)
+        printf("SAMPLES_PASSED %u, NOHC %u\n", samples, rec[0][OU_NOHC]);
+    piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "samples-passed-query-equals-nohc");
+    if (!ok)
+        result = PIGLIT_FAIL;
+
+    piglit_report_result(result);
+}
