@@ -3,7 +3,8 @@
  *
  * Each test is one small program about one behaviour. It prints the result
  * lines piglit's runner parses ("PIGLIT: {...}") and exits with the code
- * meson and piglit both read: 0 pass, 1 fail, 77 skip.
+ * piglit reads: 0 for pass and skip, 1 for fail; with OCCU_SKIP_EXIT_CODE=77
+ * in the environment (meson test sets it) a skip exits 77, meson's skip.
  *
  * Conventions: window coordinates as in OpenGL (origin bottom-left); the
  * default framebuffer is RGBA8 with 24-bit depth and 8-bit stencil, made by

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Benchmark of the Occlusion Unit against ARB_occlusion_query, and of
+# GL_RENDER on patched vs unpatched Mesa (same build options), in one run.
+# Usage: bench/occlusion-unit.sh [softpipe|llvmpipe] [ROUNDS]
+# Prints a markdown table of medians and ratios; nothing here is a test.
+set -euo pipefail
+source "$(dirname "$0")/../tools/lib.sh"
+
+driver=${1:-softpipe}
+rounds=${2:-5}
+patched=$("$OCCU_ROOT/tools/build.sh")
+unpatched=$("$OCCU_ROOT/tools/mesa.sh" --unpatched)
+bench=$OCCU_ROOT/build/bench/occu-bench-ou
+
+run_on() {  # prefix, args...
+    local prefix=$1; shift
+    LD_LIBRARY_PATH=$prefix/lib GALLIUM_DRIVER=$driver "$bench" --driver "$driver" "$@"
+}
+
+echo "## Occlusion Unit vs ARB_occlusion_query ($driver, 256x256, medians of 15)"
+echo
+echo "| case | N | brief pass (ms) | ARB queries (ms) | ratio |"
+echo "|---|---|---|---|---|"
+run_on "$patched" box tiles:1 tiles:4 tiles:16 tiles:64 |
+    awk -F, '{printf "| %s | %s | %.3f | %.3f | %.3f |\n", $1, $4, $5, $6, $7}'
+
+echo
+echo "## GL_RENDER frame, patched vs unpatched Mesa ($driver, $rounds alternating rounds)"
+echo
+p=(); u=()
+for ((r = 0; r < rounds; r++)); do
+    p+=("$(run_on "$patched" --repeat 5 render | cut -d, -f5)")
+    u+=("$(run_on "$unpatched" --repeat 5 render | cut -d, -f5)")
+done
+/usr/bin/python3 - "${p[*]}" "${u[*]}" <<'PY'
+import statistics, sys
+p = [float(x) for x in sys.argv[1].split()]
+u = [float(x) for x in sys.argv[2].split()]
+mp, mu = statistics.median(p), statistics.median(u)
+print("| Mesa | frame (ms), median | rounds |")
+print("|---|---|---|")
+print(f"| patched | {mp:.2f} | {' '.join(f'{x:.1f}' for x in p)} |")
+print(f"| unpatched | {mu:.2f} | {' '.join(f'{x:.1f}' for x in u)} |")
+print(f"\npatched / unpatched = {mp / mu:.3f}")
+PY

@@ -1,0 +1,82 @@
+/*
+ * GL_MESAX_occlusion_unit and display lists, glPushAttrib (spec issue 8):
+ * ScissorsMESAX and OcclusionBuffersMESAX execute immediately even while a
+ * list is compiled, and are not compiled into it; no attribute group saves
+ * the tiles; PopAttrib(SCISSOR_BIT) restores the scissor box, which is the
+ * default tile of the next pass.
+ */
+#include "ou_util.h"
+
+#define W 32
+#define H 32
+
+static enum piglit_result result = PIGLIT_PASS;
+
+static void
+subtest(bool ok, const char *name)
+{
+    piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "%s", name);
+    if (!ok)
+        result = PIGLIT_FAIL;
+}
+
+static GLint
+tile_count(void)
+{
+    GLint v = -1;
+    glGetIntegerv(GL_OCCLUSION_TILE_COUNT_MESAX, &v);
+    return v;
+}
+
+static void draw_all(void) { ou_rect(0, 0, W, H, 0.5f); }
+
+int main(int argc, char **argv)
+{
+    ou_init(argc, argv, W, H);
+    glDisable(GL_DEPTH_TEST);
+    const GLint tiles[12] = {0, 0, 1, 1, 0, 0, 2, 2, 0, 0, 3, 3};
+
+    GLuint list = glGenLists(1);
+    glNewList(list, GL_COMPILE);
+    ScissorsMESAX(2, tiles);
+    glEndList();
+    subtest(tile_count() == 2 && piglit_check_gl_error(GL_NO_ERROR), "scissors-executes-while-compiling");
+    ScissorsMESAX(0, NULL);
+    glCallList(list);
+    subtest(tile_count() == 0, "scissors-not-compiled");
+
+    /* Buffers set while compiling are in effect at once. */
+    GLuint record[8];
+    GLuint *buffers[1] = {record};
+    GLsizei size = 8;
+    GLuint list2 = glGenLists(1);
+    glNewList(list2, GL_COMPILE);
+    OcclusionBuffersMESAX(1, &size, buffers);
+    glEndList();
+    ou_fill(record, 8);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    bool entered = piglit_check_gl_error(GL_NO_ERROR);
+    draw_all();
+    glRenderMode(GL_RENDER);
+    subtest(entered && record[OU_NOHC] == W * H, "buffers-execute-while-compiling");
+
+    /* No attribute group holds the tiles. */
+    glPushAttrib(GL_ALL_ATTRIB_BITS);
+    ScissorsMESAX(3, tiles);
+    glPopAttrib();
+    subtest(tile_count() == 3, "push-pop-attrib-keeps-tiles");
+    ScissorsMESAX(0, NULL);
+
+    /* PopAttrib restores the scissor box: the default tile of the next pass. */
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 4, 4);
+    glPushAttrib(GL_SCISSOR_BIT);
+    glScissor(0, 0, 8, 8);
+    glPopAttrib();
+    GLuint rec[1][OU_BRIEF_SIZE];
+    ou_brief_pass(0, NULL, rec, draw_all);
+    glDisable(GL_SCISSOR_TEST);
+    subtest(rec[0][OU_NOHC] == 16 && rec[0][OU_XMAX] == 3, "pop-attrib-scissor-is-default-tile");
+
+    piglit_report_result(result);
+}
