@@ -9,6 +9,7 @@
 # Cache layout under $OCCU_CACHE/mesa/<debian version>/:
 #   source/                  the unpacked source package, a git repository whose first
 #                            commit is pristine; patches are applied to its work tree
+#   source-unpatched/        a second work tree of that commit, for --unpatched
 #   build-<options>-<variant>/   meson build dir, reused so that a patch change
 #                            rebuilds only what it touches
 #   install-<options>-<patches>/ the installed Mesa, one per key; '.complete' marks it done
@@ -98,18 +99,27 @@ Check that patches/mesa still applies to $apt_version, then change MESA_DEBIAN_V
     touch "$src/.occu-pristine"
 fi
 
+# The unpatched variant builds from a second work tree of the pristine commit,
+# so that switching variants never touches the patched tree's files.
+if [ $variant = unpatched ]; then
+    if [ ! -d "$top/source-unpatched" ]; then
+        git -C "$src" worktree add -q --detach "$top/source-unpatched" HEAD
+    fi
+    src=$top/source-unpatched
+fi
+
 # --- patch: reset the tree to pristine, apply the series in order ---------------------
-applied=$(cat "$src/.git/occu-applied" 2>/dev/null || true)
+applied=$(cat "$src/.occu-applied" 2>/dev/null || true)
 if [ "$applied" != "$patches_hash" ]; then
     say "applying patches/mesa/series (${#patches[@]} patches)"
-    (cd "$src" && git reset -q --hard && git clean -q -fd -e .occu-pristine)
-    rm -f "$src/.git/occu-applied"
+    (cd "$src" && git reset -q --hard && git clean -q -fd -e .occu-pristine -e .occu-applied)
+    rm -f "$src/.occu-applied"
     for p in "${patches[@]}"; do
         if ! (cd "$src" && git apply --whitespace=nowarn "$p" 2>&1 >&2); then
             die "patch ${p#$OCCU_ROOT/} does not apply to mesa $MESA_DEBIAN_VERSION"
         fi
     done
-    echo "$patches_hash" > "$src/.git/occu-applied"
+    echo "$patches_hash" > "$src/.occu-applied"
 fi
 
 # --- build and install --------------------------------------------------------------
