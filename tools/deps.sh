@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages occu needs, only those that are missing.
-# Usage: tools/deps.sh [build|test|all]   (default: all)
+# Usage: tools/deps.sh [build|test|bench|all]   (default: all)
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
@@ -19,12 +19,18 @@ BUILD_PACKAGES=(
 TEST_PACKAGES=(
     piglit
 )
+# To count instructions in benchmarks (wall time on shared machines is noisy).
+BENCH_PACKAGES=(
+    valgrind
+)
 
 what=${1:-all}
 case $what in
     build) wanted=("${BUILD_PACKAGES[@]}") ;;
-    test|all) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
-    *) die "tools/deps.sh: unknown argument '$what' (expected build, test or all)" ;;
+    test) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
+    bench) wanted=("${BUILD_PACKAGES[@]}" "${BENCH_PACKAGES[@]}") ;;
+    all) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${BENCH_PACKAGES[@]}") ;;
+    *) die "tools/deps.sh: unknown argument '$what' (expected build, test, bench or all)" ;;
 esac
 
 # apt-get source needs a deb-src entry; derive one from the deb entries when none exists.
