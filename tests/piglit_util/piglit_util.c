@@ -134,3 +134,34 @@ bool piglit_probe_rect_rgba_ub(int x, int y, int w, int h, const unsigned char e
     free(pixels);
     return true;
 }
+
+GLuint piglit_build_fragment_program(const char *source)
+{
+    PFNGLCREATESHADERPROC CreateShader = (PFNGLCREATESHADERPROC)piglit_get_proc_address("glCreateShader");
+    PFNGLSHADERSOURCEPROC ShaderSource = (PFNGLSHADERSOURCEPROC)piglit_get_proc_address("glShaderSource");
+    PFNGLCOMPILESHADERPROC CompileShader = (PFNGLCOMPILESHADERPROC)piglit_get_proc_address("glCompileShader");
+    PFNGLCREATEPROGRAMPROC CreateProgram = (PFNGLCREATEPROGRAMPROC)piglit_get_proc_address("glCreateProgram");
+    PFNGLATTACHSHADERPROC AttachShader = (PFNGLATTACHSHADERPROC)piglit_get_proc_address("glAttachShader");
+    PFNGLLINKPROGRAMPROC LinkProgram = (PFNGLLINKPROGRAMPROC)piglit_get_proc_address("glLinkProgram");
+    PFNGLGETPROGRAMIVPROC GetProgramiv = (PFNGLGETPROGRAMIVPROC)piglit_get_proc_address("glGetProgramiv");
+    PFNGLGETPROGRAMINFOLOGPROC GetProgramInfoLog =
+        (PFNGLGETPROGRAMINFOLOGPROC)piglit_get_proc_address("glGetProgramInfoLog");
+    if (!CreateShader || !ShaderSource || !CompileShader || !CreateProgram || !AttachShader || !LinkProgram ||
+        !GetProgramiv || !GetProgramInfoLog)
+        return 0;
+    GLuint shader = CreateShader(GL_FRAGMENT_SHADER);
+    ShaderSource(shader, 1, &source, NULL);
+    CompileShader(shader);
+    GLuint program = CreateProgram();
+    AttachShader(program, shader);
+    LinkProgram(program);
+    GLint linked = 0;
+    GetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) {
+        char log[1024];
+        GetProgramInfoLog(program, sizeof(log), NULL, log);
+        printf("fragment program failed to link: %s\n", log);
+        return 0;
+    }
+    return program;
+}

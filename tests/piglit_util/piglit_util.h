@@ -50,6 +50,10 @@ bool piglit_is_extension_supported(const char *name);
 /* Entry point of the current context's GL, or NULL. */
 void (*piglit_get_proc_address(const char *name))(void);
 
+/* A program of one GLSL fragment shader (compatibility profile); 0 when it
+ * does not compile or link, or GL 2.0 is missing (the log is printed). */
+GLuint piglit_build_fragment_program(const char *source);
+
 /* True when glGetError() is `expected`; prints what it got otherwise. */
 bool piglit_check_gl_error(GLenum expected);
 

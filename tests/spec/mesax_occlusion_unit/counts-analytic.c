@@ -13,7 +13,6 @@
 #define H 64
 #define ZTOL 512
 
-static enum piglit_result result = PIGLIT_PASS;
 
 static void
 check(const char *name, const GLuint *got, const GLuint expected[OU_BRIEF_SIZE])

@@ -13,16 +13,8 @@
 #define W 64
 #define H 64
 
-static enum piglit_result result = PIGLIT_PASS;
 static GLuint rec[1][OU_BRIEF_SIZE];
 
-static void
-subtest(bool ok, const char *name)
-{
-    piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "%s", name);
-    if (!ok)
-        result = PIGLIT_FAIL;
-}
 
 /* An axis-aligned box, faces wound counter-clockwise seen from outside. */
 static float box_lo[3], box_hi[3];

@@ -12,7 +12,6 @@
 #define W 80
 #define H 40
 
-static enum piglit_result result = PIGLIT_PASS;
 static void draw_band(void) { ou_rect(0, 10, W, 30, 0.5f); }   /* rows 10..29, all columns */
 
 int main(int argc, char **argv)

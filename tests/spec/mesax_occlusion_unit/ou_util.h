@@ -22,6 +22,17 @@ enum { OU_NOHC, OU_PHC, OU_XMIN, OU_XMAX, OU_YMIN, OU_YMAX, OU_ZMIN, OU_ZMAX, OU
 #define OU_EMPTY_MIN 0xffffffffu
 #define OU_EMPTY_MAX 0u
 
+/* The test's overall result; subtest() reports one subtest and folds it in. */
+static enum piglit_result result = PIGLIT_PASS;
+
+static inline void
+subtest(bool ok, const char *name)
+{
+    piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "%s", name);
+    if (!ok)
+        result = PIGLIT_FAIL;
+}
+
 static PFNGLSCISSORSMESAXPROC ScissorsMESAX;
 static PFNGLOCCLUSIONBUFFERSMESAXPROC OcclusionBuffersMESAX;
 

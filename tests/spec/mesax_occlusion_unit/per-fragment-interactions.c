@@ -12,7 +12,6 @@
 #define W 64
 #define H 64
 
-static enum piglit_result result = PIGLIT_PASS;
 static GLuint rec[1][OU_BRIEF_SIZE];
 
 static void
@@ -39,30 +38,6 @@ scene_with_occluder(void)
     glClearStencil(0);
     glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     ou_rect(10, 20, 20, 30, 0.25f);
-}
-
-static GLuint
-compile_discard_program(void)
-{
-    PFNGLCREATESHADERPROC CreateShader = (PFNGLCREATESHADERPROC)piglit_get_proc_address("glCreateShader");
-    PFNGLSHADERSOURCEPROC ShaderSource = (PFNGLSHADERSOURCEPROC)piglit_get_proc_address("glShaderSource");
-    PFNGLCOMPILESHADERPROC CompileShader = (PFNGLCOMPILESHADERPROC)piglit_get_proc_address("glCompileShader");
-    PFNGLCREATEPROGRAMPROC CreateProgram = (PFNGLCREATEPROGRAMPROC)piglit_get_proc_address("glCreateProgram");
-    PFNGLATTACHSHADERPROC AttachShader = (PFNGLATTACHSHADERPROC)piglit_get_proc_address("glAttachShader");
-    PFNGLLINKPROGRAMPROC LinkProgram = (PFNGLLINKPROGRAMPROC)piglit_get_proc_address("glLinkProgram");
-    PFNGLGETPROGRAMIVPROC GetProgramiv = (PFNGLGETPROGRAMIVPROC)piglit_get_proc_address("glGetProgramiv");
-    /* Discards the columns x < 20: the left half of the object. */
-    const char *fs = "#version 110\n"
-                     "void main() { if (gl_FragCoord.x < 20.0) discard; gl_FragColor = vec4(1.0); }\n";
-    GLuint s = CreateShader(GL_FRAGMENT_SHADER);
-    ShaderSource(s, 1, &fs, NULL);
-    CompileShader(s);
-    GLuint p = CreateProgram();
-    AttachShader(p, s);
-    LinkProgram(p);
-    GLint linked = 0;
-    GetProgramiv(p, GL_LINK_STATUS, &linked);
-    return linked ? p : 0;
 }
 
 int main(int argc, char **argv)
@@ -129,7 +104,10 @@ int main(int argc, char **argv)
     expect("scissor-test-before-tile", 50, 150);
 
     /* Discard in a fragment shader removes fragments from PHC too. */
-    GLuint program = compile_discard_program();
+    /* Discards the columns x < 20: the left half of the object. */
+    GLuint program = piglit_build_fragment_program(
+        "#version 110\n"
+        "void main() { if (gl_FragCoord.x < 20.0) discard; gl_FragColor = vec4(1.0); }\n");
     PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
     if (program && UseProgram) {
         glDisable(GL_DEPTH_TEST);

@@ -10,15 +10,7 @@
 #define W 32
 #define H 32
 
-static enum piglit_result result = PIGLIT_PASS;
 
-static void
-subtest(bool ok, const char *name)
-{
-    piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "%s", name);
-    if (!ok)
-        result = PIGLIT_FAIL;
-}
 
 static GLint
 mode(void)

@@ -19,25 +19,6 @@ static PFNGLENDQUERYPROC EndQuery;
 static PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv;
 static PFNGLUSEPROGRAMPROC UseProgram;
 static GLuint query;
-static enum piglit_result result = PIGLIT_PASS;
-
-static GLuint
-program(const char *fs)
-{
-    PFNGLCREATESHADERPROC CreateShader = (PFNGLCREATESHADERPROC)piglit_get_proc_address("glCreateShader");
-    PFNGLSHADERSOURCEPROC ShaderSource = (PFNGLSHADERSOURCEPROC)piglit_get_proc_address("glShaderSource");
-    PFNGLCOMPILESHADERPROC CompileShader = (PFNGLCOMPILESHADERPROC)piglit_get_proc_address("glCompileShader");
-    PFNGLCREATEPROGRAMPROC CreateProgram = (PFNGLCREATEPROGRAMPROC)piglit_get_proc_address("glCreateProgram");
-    PFNGLATTACHSHADERPROC AttachShader = (PFNGLATTACHSHADERPROC)piglit_get_proc_address("glAttachShader");
-    PFNGLLINKPROGRAMPROC LinkProgram = (PFNGLLINKPROGRAMPROC)piglit_get_proc_address("glLinkProgram");
-    GLuint s = CreateShader(GL_FRAGMENT_SHADER);
-    ShaderSource(s, 1, &fs, NULL);
-    CompileShader(s);
-    GLuint p = CreateProgram();
-    AttachShader(p, s);
-    LinkProgram(p);
-    return p;
-}
 
 /* Fragment shader invocations of one full-window rectangle in `mode`. */
 static GLuint
@@ -59,7 +40,7 @@ invocations(GLenum mode)
 }
 
 static void
-subtest(bool ok, const char *name, GLuint n)
+check_invocations(bool ok, const char *name, GLuint n)
 {
     if (!ok)
         printf("%s: %u fragment shader invocations\n", name, n);
@@ -80,24 +61,24 @@ int main(int argc, char **argv)
     GenQueries(1, &query);
     glDisable(GL_DEPTH_TEST);
 
-    const GLuint plain = program("#version 110\nvoid main() { gl_FragColor = vec4(gl_FragCoord.x / 32.0); }\n");
-    const GLuint discards = program("#version 110\n"
+    const GLuint plain = piglit_build_fragment_program("#version 110\nvoid main() { gl_FragColor = vec4(gl_FragCoord.x / 32.0); }\n");
+    const GLuint discards = piglit_build_fragment_program("#version 110\n"
                                     "void main() { if (gl_FragCoord.x < 16.0) discard; gl_FragColor = vec4(1.0); }\n");
     UseProgram(plain);
     GLuint n = invocations(GL_RENDER);
-    subtest(n >= W * H, "render-mode-shades", n);
+    check_invocations(n >= W * H, "render-mode-shades", n);
     n = invocations(GL_BRIEF_OCCLUSION_MESAX);
-    subtest(n == 0, "brief-pass-skips-plain-shader", n);
+    check_invocations(n == 0, "brief-pass-skips-plain-shader", n);
     n = invocations(GL_VERBOSE_OCCLUSION_MESAX);
-    subtest(n == 0, "verbose-pass-skips-plain-shader", n);
+    check_invocations(n == 0, "verbose-pass-skips-plain-shader", n);
     glEnable(GL_ALPHA_TEST);
     glAlphaFunc(GL_GREATER, 0.5f);
     n = invocations(GL_BRIEF_OCCLUSION_MESAX);
-    subtest(n >= W * H, "alpha-test-needs-shading", n);
+    check_invocations(n >= W * H, "alpha-test-needs-shading", n);
     glDisable(GL_ALPHA_TEST);
     UseProgram(discards);
     n = invocations(GL_BRIEF_OCCLUSION_MESAX);
-    subtest(n >= W * H, "discarding-shader-runs", n);
+    check_invocations(n >= W * H, "discarding-shader-runs", n);
     UseProgram(0);
 
     piglit_report_result(result);

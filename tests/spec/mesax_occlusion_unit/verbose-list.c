@@ -12,15 +12,7 @@
 #define W 64
 #define H 48
 
-static enum piglit_result result = PIGLIT_PASS;
 
-static void
-subtest(bool ok, const char *name)
-{
-    piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "%s", name);
-    if (!ok)
-        result = PIGLIT_FAIL;
-}
 
 /* A tilted triangle in front of part of the occluder and behind another part. */
 static void
