@@ -1,0 +1,221 @@
+/*
+ * GL_MESAX_occlusion_unit: results do not depend on how the work is split.
+ * The same scenes are measured in child processes on softpipe and on
+ * llvmpipe with LP_NUM_THREADS = 0, 1, 2, 4 and 8 (the driver is chosen
+ * once per process), by 63 tiles of 37 x 29 pixels starting at (-5, -7),
+ * which straddle llvmpipe's 64 x 64 bins and so its threads, one 1x1 tile
+ * on a bin corner (63, 64), and verbose lists of four tiles (compared as
+ * sorted sets):
+ *   rectangles  200 overlapping axis-aligned rectangles on whole pixels,
+ *               each at its own depth: every configuration, softpipe
+ *               included, must give identical records (no tolerance).
+ *   triangles   300 random triangles of varying depth: llvmpipe's thread
+ *               counts must agree exactly. (softpipe is not compared here:
+ *               its rasterizer covers other edge pixels than llvmpipe's in
+ *               GL_RENDER too (hundreds of pixels in a scene like this), and its
+ *               z plane rounds differently; verbose-list and
+ *               extents-vs-readpixels check each driver against its own
+ *               GL_RENDER.)
+ * Both scenes are depth tested against an occluder drawn in GL_RENDER.
+ * The test ignores GALLIUM_DRIVER: it runs every configuration itself.
+ */
+#define _DEFAULT_SOURCE 1   /* setenv */
+#include <math.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "ou_util.h"
+
+#define SIZE 256
+#define TILES 64
+#define LIST_TILES 4
+#define LIST_WORDS (8 + 2 * 300000)   /* fragments, not pixels: triangles overlap */
+
+struct records {
+    GLuint brief[TILES][OU_BRIEF_SIZE];
+    GLuint verbose[LIST_TILES][LIST_WORDS];
+};
+
+struct results {
+    int ok;
+    struct records scene[2];   /* rectangles, triangles */
+};
+
+static unsigned seed = 12345;
+static float rnd(void) { seed = seed * 1103515245u + 12345u; return (float)((seed >> 8) & 0xffff) / 65535.0f; }
+
+static void
+draw_triangles(void)
+{
+    seed = 12345;
+    glBegin(GL_TRIANGLES);
+    for (int i = 0; i < 300; ++i) {
+        const float cx = rnd() * SIZE, cy = rnd() * SIZE, r = 4 + rnd() * 40;
+        for (int v = 0; v < 3; ++v)
+            glVertex3f(cx + (rnd() - 0.5f) * 2 * r, cy + (rnd() - 0.5f) * 2 * r, 0.1f + 0.8f * rnd());
+    }
+    glEnd();
+}
+
+static void
+draw_rectangles(void)
+{
+    seed = 777;
+    for (int i = 0; i < 200; ++i) {
+        const float x = floorf(rnd() * SIZE), y = floorf(rnd() * SIZE);
+        const float w = floorf(1 + rnd() * 60), h = floorf(1 + rnd() * 60);
+        ou_rect(x, y, x + w, y + h, 0.1f + 0.8f * rnd());
+    }
+}
+
+static int
+cmp_pair(const void *a, const void *b)
+{
+    const GLuint *p = a, *q = b;
+    if (p[1] != q[1])
+        return p[1] < q[1] ? -1 : 1;
+    return p[0] < q[0] ? -1 : p[0] > q[0];
+}
+
+static bool
+measure_scene(struct records *out, void (*draw)(void))
+{
+    static GLint tiles[4 * TILES];
+    for (int i = 0; i < 63; ++i) {
+        tiles[4 * i] = -5 + (i % 8) * 37;
+        tiles[4 * i + 1] = -7 + (i / 8) * 29 * 9 / 8;
+        tiles[4 * i + 2] = 37;
+        tiles[4 * i + 3] = 29;
+    }
+    tiles[4 * 63] = 63; tiles[4 * 63 + 1] = 64; tiles[4 * 63 + 2] = 1; tiles[4 * 63 + 3] = 1;
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    ou_rect(60, 40, 200, 180, 0.45f);   /* the occluder, in GL_RENDER */
+
+    ou_brief_pass(TILES, tiles, out->brief, draw);
+
+    GLuint *buffers[LIST_TILES];
+    GLsizei sizes[LIST_TILES];
+    for (int i = 0; i < LIST_TILES; ++i) {
+        ou_fill(out->verbose[i], LIST_WORDS);
+        buffers[i] = out->verbose[i];
+        sizes[i] = LIST_WORDS;
+    }
+    const GLint list_tiles[4 * LIST_TILES] = {60, 60, 10, 10, 0, 0, 128, 128, 50, 50, 30, 30, 120, 120, 30, 30};
+    OcclusionBuffersMESAX(LIST_TILES, sizes, buffers);
+    ScissorsMESAX(LIST_TILES, list_tiles);
+    glRenderMode(GL_VERBOSE_OCCLUSION_MESAX);
+    draw();
+    GLint overflowed = glRenderMode(GL_RENDER);
+    ScissorsMESAX(0, NULL);
+    for (int i = 0; i < LIST_TILES; ++i)
+        qsort(out->verbose[i] + 8, out->verbose[i][0], 2 * sizeof(GLuint), cmp_pair);
+    return overflowed == 0 && glGetError() == GL_NO_ERROR;
+}
+
+static void
+measure(struct results *out)
+{
+    out->ok = measure_scene(&out->scene[0], draw_rectangles) && measure_scene(&out->scene[1], draw_triangles);
+}
+
+/* Runs measure() in a child on `driver` with `threads` (NULL: unset). */
+static bool
+run_child(const char *driver, const char *threads, struct results *out, int argc, char **argv)
+{
+    int fd[2];
+    if (pipe(fd) != 0)
+        return false;
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fd[0]);
+        setenv("GALLIUM_DRIVER", driver, 1);
+        if (threads)
+            setenv("LP_NUM_THREADS", threads, 1);
+        /* The child reports through the pipe, not with piglit lines. */
+        ou_init(argc, argv, SIZE, SIZE);
+        static struct results r;
+        measure(&r);
+        const char *p = (const char *)&r;
+        for (size_t left = sizeof(r); left > 0;) {
+            ssize_t n = write(fd[1], p, left);
+            if (n <= 0)
+                _exit(1);
+            p += n;
+            left -= (size_t)n;
+        }
+        _exit(0);
+    }
+    close(fd[1]);
+    char *p = (char *)out;
+    size_t got = 0;
+    for (ssize_t n; got < sizeof(*out) && (n = read(fd[0], p + got, sizeof(*out) - got)) > 0;)
+        got += (size_t)n;
+    close(fd[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return got == sizeof(*out) && WIFEXITED(status) && WEXITSTATUS(status) == 0 && out->ok;
+}
+
+static bool
+same(const struct records *a, const struct records *b, const char *name)
+{
+    for (int t = 0; t < TILES; ++t) {
+        char what[96];
+        snprintf(what, sizeof(what), "%s tile %d", name, t);
+        if (!ou_check_record(what, b->brief[t], a->brief[t], 0))
+            return false;
+    }
+    for (int t = 0; t < LIST_TILES; ++t) {
+        const GLuint n = a->verbose[t][0];
+        if (b->verbose[t][0] != n || memcmp(a->verbose[t] + 8, b->verbose[t] + 8, 2 * n * sizeof(GLuint))) {
+            printf("%s: verbose list of tile %d differs\n", name, t);
+            return false;
+        }
+    }
+    return true;
+}
+
+static bool
+nontrivial(const struct records *r)
+{
+    bool visible = false, occluded = false;
+    for (int t = 0; t < 63; ++t) {
+        visible |= r->brief[t][OU_NOHC] > 0;
+        occluded |= r->brief[t][OU_NOHC] < r->brief[t][OU_PHC];
+    }
+    return visible && occluded && r->verbose[1][0] > 100;
+}
+
+int main(int argc, char **argv)
+{
+    static struct results softpipe, first, other;
+    if (!run_child("softpipe", NULL, &softpipe, argc, argv)) {
+        printf("softpipe child failed (does softpipe advertise the extension?)\n");
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    subtest(nontrivial(&softpipe.scene[0]) && nontrivial(&softpipe.scene[1]), "scenes-are-nontrivial");
+
+    const char *threads[] = {"0", "1", "2", "4", "8"};
+    for (int i = 0; i < 5; ++i) {
+        char name[64];
+        snprintf(name, sizeof(name), "llvmpipe-threads-%s", threads[i]);
+        struct results *r = i == 0 ? &first : &other;
+        if (!run_child("llvmpipe", threads[i], r, argc, argv)) {
+            piglit_report_subtest_result(PIGLIT_SKIP, "%s", name);
+            continue;
+        }
+        char what[96];
+        snprintf(what, sizeof(what), "%s-rectangles-equal-softpipe", name);
+        subtest(same(&softpipe.scene[0], &r->scene[0], what), what);
+        if (i > 0) {
+            snprintf(what, sizeof(what), "%s-triangles-equal-threads-0", name);
+            subtest(same(&first.scene[1], &r->scene[1], what), what);
+        }
+    }
+    piglit_report_result(result);
+}
