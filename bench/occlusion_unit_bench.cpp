@@ -4,6 +4,12 @@
 //   box      one box tested in a brief pass vs in a GL_SAMPLES_PASSED query
 //   tiles N  N tiles tested in one brief pass vs N scissored ARB queries
 //            (each query draws the geometry again, scissored to its tile)
+//   mesh:N   the same, with a 20k-triangle mesh over the window as the
+//            geometry: ARB queries draw it N times, the brief pass once
+//   shaded   a window-sized object with an expensive fragment shader: a
+//            brief pass over it vs drawing it in GL_RENDER
+//   passes   brief passes per second over the mesh (run it with several
+//            LP_NUM_THREADS values for the throughput table)
 //   render   GL_RENDER frame time of a draw-heavy scene (no occlusion at
 //            all): run it once per Mesa build to compare patched/unpatched
 //
@@ -28,6 +34,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using occu::gl::get_proc_address;
+
+// --only N runs only variant N of each comparison (0: the Occlusion Unit),
+// for instruction counts under callgrind, which repeat exactly.
+int g_only = -1;
 
 struct Options {
     occu::gl::Driver driver = occu::gl::Driver::softpipe;
@@ -107,6 +117,10 @@ std::vector<double> compare(const std::vector<std::function<void()>> &variants, 
     std::vector<std::vector<double>> samples(variants.size());
     for (int r = 0; r < repeat; ++r)
         for (std::size_t v = 0; v < variants.size(); ++v) {
+            if (g_only >= 0 && int(v) != g_only) {
+                samples[v].push_back(1.0);
+                continue;
+            }
             const auto start = Clock::now();
             for (int i = 0; i < iterations; ++i)
                 variants[v]();
@@ -130,6 +144,160 @@ void setup_frame(int size)
     glEnable(GL_CULL_FACE);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     draw_occluder(size);
+}
+
+// A 100 x 100 grid of quads (20k triangles) over the window, its depth
+// rolling between 0.3 and 0.7: geometry that costs vertex work.
+const std::vector<float> &mesh_vertices(int size)
+{
+    static std::vector<float> v;
+    if (!v.empty())
+        return v;
+    const int n = 100;
+    const float step = float(size) / n;
+    auto z = [](int i, int j) { return 0.5f + 0.2f * std::sin(0.3f * i) * std::cos(0.2f * j); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const float x0 = i * step, y0 = j * step, x1 = x0 + step, y1 = y0 + step;
+            const float q[6][3] = {{x0, y0, z(i, j)},         {x1, y0, z(i + 1, j)}, {x1, y1, z(i + 1, j + 1)},
+                                   {x0, y0, z(i, j)},         {x1, y1, z(i + 1, j + 1)}, {x0, y1, z(i, j + 1)}};
+            for (auto &p : q)
+                v.insert(v.end(), p, p + 3);
+        }
+    return v;
+}
+
+void draw_mesh(int size)
+{
+    const auto &v = mesh_vertices(size);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glVertexPointer(3, GL_FLOAT, 0, v.data());
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(v.size() / 3));
+    glDisableClientState(GL_VERTEX_ARRAY);
+}
+
+GLuint build_program(const char *fragment_source)
+{
+    auto CreateShader = reinterpret_cast<PFNGLCREATESHADERPROC>(get_proc_address("glCreateShader"));
+    auto ShaderSource = reinterpret_cast<PFNGLSHADERSOURCEPROC>(get_proc_address("glShaderSource"));
+    auto CompileShader = reinterpret_cast<PFNGLCOMPILESHADERPROC>(get_proc_address("glCompileShader"));
+    auto CreateProgram = reinterpret_cast<PFNGLCREATEPROGRAMPROC>(get_proc_address("glCreateProgram"));
+    auto AttachShader = reinterpret_cast<PFNGLATTACHSHADERPROC>(get_proc_address("glAttachShader"));
+    auto LinkProgram = reinterpret_cast<PFNGLLINKPROGRAMPROC>(get_proc_address("glLinkProgram"));
+    const GLuint shader = CreateShader(GL_FRAGMENT_SHADER);
+    ShaderSource(shader, 1, &fragment_source, nullptr);
+    CompileShader(shader);
+    const GLuint program = CreateProgram();
+    AttachShader(program, shader);
+    LinkProgram(program);
+    return program;
+}
+
+// N tiles over `draw`: one brief pass vs N scissored SAMPLES_PASSED queries.
+void compare_tiles(const Options &o, int n, const char *label, const std::function<void()> &draw)
+{
+    setup_frame(o.size);
+    std::vector<GLint> tiles;
+    grid_tiles(n, o.size, tiles);
+    std::vector<GLuint> records(8 * std::size_t(n));
+    std::vector<GLuint *> buffers(n);
+    std::vector<GLsizei> sizes(n, 8);
+    for (int i = 0; i < n; ++i)
+        buffers[i] = &records[8 * std::size_t(i)];
+    std::vector<GLuint> queries(n), samples(n);
+    GenQueries(n, queries.data());
+    auto occlusion_unit = [&] {
+        OcclusionBuffersMESAX(n, sizes.data(), buffers.data());
+        ScissorsMESAX(n, tiles.data());
+        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        draw();
+        glRenderMode(GL_RENDER);
+        ScissorsMESAX(0, nullptr);
+    };
+    auto arb_queries = [&] {
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_SCISSOR_TEST);
+        for (int i = 0; i < n; ++i) {
+            glScissor(tiles[4 * i], tiles[4 * i + 1], tiles[4 * i + 2], tiles[4 * i + 3]);
+            BeginQuery(GL_SAMPLES_PASSED, queries[i]);
+            draw();
+            EndQuery(GL_SAMPLES_PASSED);
+        }
+        for (int i = 0; i < n; ++i)
+            GetQueryObjectuiv(queries[i], GL_QUERY_RESULT, &samples[i]);
+        glDisable(GL_SCISSOR_TEST);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthMask(GL_TRUE);
+    };
+    const auto t = compare({occlusion_unit, arb_queries}, o.repeat, 2);
+    for (int i = 0; i < n; ++i)
+        if (records[8 * std::size_t(i)] != samples[i])
+            std::fprintf(stderr, "occu-bench-ou: %s tile %d: NOHC %u but SAMPLES_PASSED %u\n", label, i,
+                         records[8 * std::size_t(i)], samples[i]);
+    std::printf("%s,%s,%d,%d,%.4f,%.4f,%.3f\n", label, occu::gl::driver_name(o.driver), o.size, n, t[0], t[1],
+                t[0] / t[1]);
+}
+
+// An expensive shader (a 300-step loop per fragment) on an object covering
+// the window: a brief pass need not run it, GL_RENDER must.
+void case_shaded(const Options &o)
+{
+    setup_frame(o.size);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    const GLuint program = build_program(
+        "#version 110\n"
+        "void main() {\n"
+        "  vec2 p = gl_FragCoord.xy / 64.0; float a = 0.0;\n"
+        "  for (int i = 0; i < 300; ++i) a += sin(p.x * float(i)) * cos(p.y + a);\n"
+        "  gl_FragColor = vec4(fract(a));\n"
+        "}\n");
+    auto UseProgram = reinterpret_cast<PFNGLUSEPROGRAMPROC>(get_proc_address("glUseProgram"));
+    GLuint record[8];
+    GLuint *buffers[1] = {record};
+    GLsizei sizes[1] = {8};
+    const float s = float(o.size);
+    glDepthFunc(GL_ALWAYS);
+    UseProgram(program);
+    auto occlusion_unit = [&] {
+        OcclusionBuffersMESAX(1, sizes, buffers);
+        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        draw_box(0, 0, s, s, 0.4f, 0.6f);
+        glRenderMode(GL_RENDER);
+    };
+    auto render = [&] {
+        draw_box(0, 0, s, s, 0.4f, 0.6f);
+        glFinish();
+    };
+    const auto t = compare({occlusion_unit, render}, o.repeat, 2);
+    UseProgram(0);
+    glDepthFunc(GL_LESS);
+    std::printf("shaded,%s,%d,1,%.4f,%.4f,%.3f\n", occu::gl::driver_name(o.driver), o.size, t[0], t[1], t[0] / t[1]);
+}
+
+// Brief passes per second: 16 tiles over the mesh.
+void case_passes(const Options &o)
+{
+    setup_frame(o.size);
+    std::vector<GLint> tiles;
+    grid_tiles(16, o.size, tiles);
+    std::vector<GLuint> records(8 * 16);
+    std::vector<GLuint *> buffers(16);
+    std::vector<GLsizei> sizes(16, 8);
+    for (int i = 0; i < 16; ++i)
+        buffers[i] = &records[8 * std::size_t(i)];
+    auto pass = [&] {
+        OcclusionBuffersMESAX(16, sizes.data(), buffers.data());
+        ScissorsMESAX(16, tiles.data());
+        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        draw_mesh(o.size);
+        glRenderMode(GL_RENDER);
+        ScissorsMESAX(0, nullptr);
+    };
+    const auto t = compare({pass}, o.repeat, 4);
+    const char *threads = std::getenv("LP_NUM_THREADS");
+    std::printf("passes,%s,%d,%s,%.4f,%.1f\n", occu::gl::driver_name(o.driver), o.size, threads ? threads : "default",
+                t[0], 1000.0 / t[0]);
 }
 
 void case_box(const Options &o)
@@ -164,47 +332,12 @@ void case_box(const Options &o)
 
 void case_tiles(const Options &o, int n)
 {
-    setup_frame(o.size);
-    std::vector<GLint> tiles;
-    grid_tiles(n, o.size, tiles);
-    std::vector<GLuint> records(8 * std::size_t(n));
-    std::vector<GLuint *> buffers(n);
-    std::vector<GLsizei> sizes(n, 8);
-    for (int i = 0; i < n; ++i)
-        buffers[i] = &records[8 * std::size_t(i)];
-    std::vector<GLuint> queries(n), samples(n);
-    GenQueries(n, queries.data());
-    auto occlusion_unit = [&] {
-        OcclusionBuffersMESAX(n, sizes.data(), buffers.data());
-        ScissorsMESAX(n, tiles.data());
-        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
-        draw_grid(n, o.size);
-        glRenderMode(GL_RENDER);
-        ScissorsMESAX(0, nullptr);
-    };
-    auto arb_queries = [&] {
-        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        glDepthMask(GL_FALSE);
-        glEnable(GL_SCISSOR_TEST);
-        for (int i = 0; i < n; ++i) {
-            glScissor(tiles[4 * i], tiles[4 * i + 1], tiles[4 * i + 2], tiles[4 * i + 3]);
-            BeginQuery(GL_SAMPLES_PASSED, queries[i]);
-            draw_grid(n, o.size);
-            EndQuery(GL_SAMPLES_PASSED);
-        }
-        for (int i = 0; i < n; ++i)
-            GetQueryObjectuiv(queries[i], GL_QUERY_RESULT, &samples[i]);
-        glDisable(GL_SCISSOR_TEST);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glDepthMask(GL_TRUE);
-    };
-    const auto t = compare({occlusion_unit, arb_queries}, o.repeat, 2);
-    for (int i = 0; i < n; ++i)
-        if (records[8 * std::size_t(i)] != samples[i])
-            std::fprintf(stderr, "occu-bench-ou: tile %d: NOHC %u but SAMPLES_PASSED %u\n", i,
-                         records[8 * std::size_t(i)], samples[i]);
-    std::printf("tiles,%s,%d,%d,%.4f,%.4f,%.3f\n", occu::gl::driver_name(o.driver), o.size, n, t[0], t[1],
-                t[0] / t[1]);
+    compare_tiles(o, n, "tiles", [&] { draw_grid(n, o.size); });
+}
+
+void case_mesh(const Options &o, int n)
+{
+    compare_tiles(o, n, "mesh", [&] { draw_mesh(o.size); });
 }
 
 // GL_RENDER frame: 4096 lit-free boxes (49k triangles) with depth test.
@@ -224,9 +357,10 @@ void case_render(const Options &o)
     if (error)
         std::fprintf(stderr, "occu-bench-ou: %s\n", error);
     std::fprintf(error ? stderr : stdout,
-                 "usage: occu-bench-ou [--driver softpipe|llvmpipe] [--size PIXELS] [--repeat N] CASE...\n"
-                 "cases: box, tiles:N (N = 1..64), render\n"
-                 "prints CSV: case,driver,size,n,ms_occlusion_unit,ms_arb,ratio (render: case,driver,size,boxes,ms)\n");
+                 "usage: occu-bench-ou [--driver softpipe|llvmpipe] [--size PIXELS] [--repeat N] [--only 0|1] CASE...\n"
+                 "cases: box, tiles:N, mesh:N (N = 1..64), shaded, passes, render\n"
+                 "prints CSV: case,driver,size,n,ms_occlusion_unit,ms_other,ratio\n"
+                 "  (passes: case,driver,size,threads,ms,passes_per_s; render: case,driver,size,boxes,ms)\n");
     std::exit(error ? 2 : 0);
 }
 
@@ -249,7 +383,7 @@ int main(int argc, char **argv)
         const std::string a = argv[i];
         if (a == "-h" || a == "--help")
             usage(nullptr);
-        else if ((a == "--driver" || a == "--size" || a == "--repeat") && i + 1 >= argc)
+        else if ((a == "--driver" || a == "--size" || a == "--repeat" || a == "--only") && i + 1 >= argc)
             usage((a + " needs a value").c_str());
         else if (a == "--driver") {
             try {
@@ -261,7 +395,10 @@ int main(int argc, char **argv)
             o.size = parse_int(argv[++i], "--size", 16, 4096);
         else if (a == "--repeat")
             o.repeat = parse_int(argv[++i], "--repeat", 1, 1000);
-        else if (a == "box" || a == "render" || a.rfind("tiles:", 0) == 0)
+        else if (a == "--only")
+            g_only = parse_int(argv[++i], "--only", 0, 1);
+        else if (a == "box" || a == "render" || a == "shaded" || a == "passes" || a.rfind("tiles:", 0) == 0 ||
+                 a.rfind("mesh:", 0) == 0)
             o.cases.push_back(a);
         else
             usage(("unknown argument '" + a + "'").c_str());
@@ -287,6 +424,12 @@ int main(int argc, char **argv)
                          ctx.renderer().c_str());
         else if (c == "box")
             case_box(o);
+        else if (c == "shaded")
+            case_shaded(o);
+        else if (c == "passes")
+            case_passes(o);
+        else if (c.rfind("mesh:", 0) == 0)
+            case_mesh(o, parse_int(c.c_str() + 5, "mesh:N", 1, 64));
         else
             case_tiles(o, parse_int(c.c_str() + 6, "tiles:N", 1, 64));
     }
