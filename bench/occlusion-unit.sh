@@ -21,16 +21,50 @@ echo "## Occlusion Unit vs ARB_occlusion_query ($driver, 256x256, medians of 15)
 echo
 echo "| case | N | brief pass (ms) | ARB queries (ms) | ratio |"
 echo "|---|---|---|---|---|"
-run_on "$patched" box tiles:1 tiles:4 tiles:16 tiles:64 |
+run_on "$patched" box tiles:1 tiles:4 tiles:16 tiles:64 mesh:1 mesh:16 |
     awk -F, '{printf "| %s | %s | %.3f | %.3f | %.3f |\n", $1, $4, $5, $6, $7}'
+
+# Instructions of one brief pass vs one ARB query of the box (callgrind, one
+# rasterizer thread): each variant alone, minus a run with a tenth of the
+# iterations, which removes start-up and shader compilation.
+box_instructions() {  # variant repeat
+    LD_LIBRARY_PATH=$patched/lib GALLIUM_DRIVER=$driver LP_NUM_THREADS=0 valgrind --tool=callgrind \
+        --callgrind-out-file=/dev/null "$bench" --driver "$driver" --only "$1" --repeat "$2" box 2>&1 |
+        sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
+}
+ou=$(( ($(box_instructions 0 15) - $(box_instructions 0 1)) / 280 ))
+arb=$(( ($(box_instructions 1 15) - $(box_instructions 1 1)) / 280 ))
+echo
+echo "Instructions per box test (callgrind, LP_NUM_THREADS=0): brief pass $ou, ARB query $arb," \
+     "ratio $(/usr/bin/python3 -c "print(f'{$ou / $arb:.3f}')")"
+
+echo
+echo "## A brief pass over a heavily shaded object vs drawing it ($driver)"
+echo
+echo "| case | brief pass (ms) | GL_RENDER draw (ms) | ratio |"
+echo "|---|---|---|---|"
+run_on "$patched" shaded | awk -F, '{printf "| %s | %.3f | %.3f | %.3f |\n", $1, $5, $6, $7}'
+
+if [ "$driver" = llvmpipe ]; then
+    echo
+    echo "## Brief passes per second by rasterizer threads (16 tiles over the 20k-triangle mesh)"
+    echo
+    echo "| LP_NUM_THREADS | ms per pass | passes/s |"
+    echo "|---|---|---|"
+    for t in 1 2 4 8; do
+        LP_NUM_THREADS=$t run_on "$patched" passes | awk -F, '{printf "| %s | %.3f | %.1f |\n", $4, $5, $6}'
+    done
+fi
 
 echo
 echo "## GL_RENDER frame, patched vs unpatched Mesa ($driver, $rounds alternating rounds)"
 echo
 # Wall time on a shared machine is noisy, so the script also counts the
 # instructions of the frame loop with callgrind, which repeats exactly.
+# One rasterizer thread (LP_NUM_THREADS=0): callgrind then sees all the work
+# in the thread that runs the frame loop, and the count repeats exactly.
 instructions() {  # prefix
-    LD_LIBRARY_PATH=$1/lib GALLIUM_DRIVER=$driver valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+    LD_LIBRARY_PATH=$1/lib GALLIUM_DRIVER=$driver LP_NUM_THREADS=0 valgrind --tool=callgrind --callgrind-out-file=/dev/null \
         --toggle-collect='*case_render*' "$bench" --driver "$driver" --repeat 1 render 2>&1 |
         sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
 }
