@@ -69,15 +69,6 @@ draw_rectangles(void)
     }
 }
 
-static int
-cmp_pair(const void *a, const void *b)
-{
-    const GLuint *p = a, *q = b;
-    if (p[1] != q[1])
-        return p[1] < q[1] ? -1 : 1;
-    return p[0] < q[0] ? -1 : p[0] > q[0];
-}
-
 static bool
 measure_scene(struct records *out, void (*draw)(void))
 {
@@ -112,7 +103,7 @@ measure_scene(struct records *out, void (*draw)(void))
     GLint overflowed = glRenderMode(GL_RENDER);
     ScissorsMESAX(0, NULL);
     for (int i = 0; i < LIST_TILES; ++i)
-        qsort(out->verbose[i] + 8, out->verbose[i][0], 2 * sizeof(GLuint), cmp_pair);
+        ou_sort_pairs(out->verbose[i] + 8, out->verbose[i][0]);
     return overflowed == 0 && glGetError() == GL_NO_ERROR;
 }
 

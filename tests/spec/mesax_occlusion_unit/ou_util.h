@@ -11,6 +11,7 @@
 
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "piglit_util.h"
@@ -92,6 +93,22 @@ ou_depth(double z)
     if (z < 0) z = 0;
     if (z > 1) z = 1;
     return (GLuint)(z * 4294967295.0 + 0.5);
+}
+
+static int
+ou_compare_pairs(const void *a, const void *b)
+{
+    const GLuint *p = a, *q = b;
+    if (p[1] != q[1])
+        return p[1] < q[1] ? -1 : 1;
+    return p[0] < q[0] ? -1 : p[0] > q[0];
+}
+
+/* Sorts n (x, y) pairs by y, then x: verbose lists are sets, in no order. */
+static inline void
+ou_sort_pairs(GLuint *pairs, size_t n)
+{
+    qsort(pairs, n, 2 * sizeof(GLuint), ou_compare_pairs);
 }
 
 /* Compares a record's 8 words with expectations; prints the differences. */

@@ -36,15 +36,6 @@ setup_scene(void)
     ou_rect(20, 0, 44, 48, 0.4f);   /* occludes the triangle where it is deeper than 0.4 */
 }
 
-static int
-cmp_pair(const void *a, const void *b)
-{
-    const GLuint *p = a, *q = b;
-    if (p[1] != q[1])
-        return p[1] < q[1] ? -1 : 1;
-    return p[0] < q[0] ? -1 : p[0] > q[0];
-}
-
 int main(int argc, char **argv)
 {
     ou_init(argc, argv, W, H);
@@ -84,7 +75,7 @@ int main(int argc, char **argv)
 
     bool same = nohc == count;
     if (same) {
-        qsort(buffer + 8, nohc, 2 * sizeof(GLuint), cmp_pair);
+        ou_sort_pairs(buffer + 8, nohc);
         same = memcmp(buffer + 8, expected, count * 2 * sizeof(GLuint)) == 0;
         if (!same)
             printf("the verbose list differs from the set of changed pixels\n");
