@@ -1,0 +1,46 @@
+#include "camera/camera.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace occu {
+
+glm::mat4 Camera::view() const
+{
+    return glm::lookAt(position, target, up);
+}
+
+glm::mat4 Camera::projection() const
+{
+    return glm::perspective(glm::radians(fovy_degrees), aspect, near_plane, far_plane);
+}
+
+Frustum::Frustum(const glm::mat4 &m)
+{
+    // Row i of the matrix is (m[0][i], m[1][i], m[2][i], m[3][i]) in GLM's
+    // column-major storage; a point p is inside when -w <= x, y, z <= w.
+    auto row = [&m](int i) { return glm::vec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
+    const glm::vec4 w = row(3);
+    planes_ = {w + row(0), w - row(0), w + row(1), w - row(1), w + row(2), w - row(2)};
+    for (glm::vec4 &p : planes_)
+        p /= glm::length(glm::vec3(p));
+}
+
+Frustum::Side Frustum::classify(const Aabb &box) const
+{
+    Side side = Side::inside;
+    for (const glm::vec4 &p : planes_) {
+        const glm::vec3 n(p);
+        // The corner farthest along the normal, and the nearest.
+        const glm::vec3 far_corner{n.x >= 0 ? box.max.x : box.min.x, n.y >= 0 ? box.max.y : box.min.y,
+                                   n.z >= 0 ? box.max.z : box.min.z};
+        const glm::vec3 near_corner{n.x >= 0 ? box.min.x : box.max.x, n.y >= 0 ? box.min.y : box.max.y,
+                                    n.z >= 0 ? box.min.z : box.max.z};
+        if (glm::dot(n, far_corner) + p.w < 0.0f)
+            return Side::outside;
+        if (glm::dot(n, near_corner) + p.w < 0.0f)
+            side = Side::intersecting;
+    }
+    return side;
+}
+
+}  // namespace occu

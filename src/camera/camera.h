@@ -1,0 +1,44 @@
+// Cameras and view frusta. OpenGL conventions: the camera looks down its
+// -z axis, clip space z in [-w, w], window depth in [0, 1].
+#pragma once
+
+#include <array>
+
+#include <glm/glm.hpp>
+
+#include "geometry/aabb.h"
+
+namespace occu {
+
+struct Camera {
+    glm::vec3 position{0.0f, 1.7f, 0.0f};
+    glm::vec3 target{0.0f, 1.7f, -1.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovy_degrees = 60.0f;
+    float aspect = 1.0f;
+    float near_plane = 0.5f;
+    float far_plane = 5000.0f;
+
+    glm::mat4 view() const;
+    glm::mat4 projection() const;
+    glm::mat4 view_projection() const { return projection() * view(); }
+};
+
+// The six planes of a view-projection matrix, normals pointing inwards
+// (Gribb and Hartmann's extraction from the matrix rows).
+class Frustum {
+public:
+    enum class Side { outside, intersecting, inside };
+
+    explicit Frustum(const glm::mat4 &view_projection);
+
+    // Conservative: `outside` only when one plane has the whole box behind it.
+    Side classify(const Aabb &box) const;
+
+    const std::array<glm::vec4, 6> &planes() const { return planes_; }
+
+private:
+    std::array<glm::vec4, 6> planes_;
+};
+
+}  // namespace occu

@@ -1,0 +1,64 @@
+#include "culling/culler.h"
+
+#include <optional>
+#include <stdexcept>
+
+namespace occu {
+
+const char *visibility_name(Visibility v)
+{
+    switch (v) {
+    case Visibility::visible: return "visible";
+    case Visibility::occluded: return "occluded";
+    case Visibility::view_culled: return "view_culled";
+    }
+    return "?";
+}
+
+namespace {
+
+// Draws everything: the reference every other strategy is compared with.
+class NoCulling final : public Culler {
+public:
+    std::string_view name() const override { return "none"; }
+    bool conservative() const override { return true; }
+    void begin_frame(const Camera &) override {}
+    Visibility test(const Aabb &) override { return Visibility::visible; }
+};
+
+// View-frustum culling only (Moeller and Haines: the baseline of the
+// occlusion culling comparisons).
+class ViewFrustumCulling final : public Culler {
+public:
+    std::string_view name() const override { return "vfc"; }
+    bool conservative() const override { return true; }
+    void begin_frame(const Camera &camera) override { frustum_.emplace(camera.view_projection()); }
+    Visibility test(const Aabb &box) override
+    {
+        return frustum_->classify(box) == Frustum::Side::outside ? Visibility::view_culled : Visibility::visible;
+    }
+
+private:
+    std::optional<Frustum> frustum_;
+};
+
+}  // namespace
+
+std::vector<std::string> culler_names()
+{
+    return {"none", "vfc"};
+}
+
+std::unique_ptr<Culler> make_culler(std::string_view name)
+{
+    if (name == "none")
+        return std::make_unique<NoCulling>();
+    if (name == "vfc")
+        return std::make_unique<ViewFrustumCulling>();
+    std::string known;
+    for (const std::string &n : culler_names())
+        known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown culling strategy '" + std::string(name) + "' (known: " + known + ")");
+}
+
+}  // namespace occu

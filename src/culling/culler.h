@@ -1,0 +1,46 @@
+// The one interface every culling strategy implements, so that demos and
+// benchmarks select strategies by name (in the manner of Intel's Masked
+// Occlusion Culling: clear, render occluders, test boxes).
+//
+// A frame: begin_frame(camera) clears the strategy's occlusion state; then
+// the caller tests boxes (world-space AABBs) with test(), front to back,
+// and tells the strategy what it drew with rendered(), which occlusion
+// strategies use as occluders. Results:
+//   visible      the box may contribute pixels: draw or descend into it;
+//   occluded     nothing in the box can be seen (conservative strategies)
+//                or contributes too little (approximate ones);
+//   view_culled  the box lies outside the view frustum.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "camera/camera.h"
+#include "geometry/aabb.h"
+
+namespace occu {
+
+enum class Visibility { visible, occluded, view_culled };
+
+const char *visibility_name(Visibility v);
+
+class Culler {
+public:
+    virtual ~Culler() = default;
+    virtual std::string_view name() const = 0;
+    // True when the strategy never culls a box with a visible pixel.
+    virtual bool conservative() const = 0;
+    virtual void begin_frame(const Camera &camera) = 0;
+    virtual Visibility test(const Aabb &box) = 0;
+    // The caller drew the contents of `box`.
+    virtual void rendered(const Aabb &box) { (void)box; }
+};
+
+// Strategies that need no GL: "none" and "vfc". Throws std::invalid_argument
+// naming the unknown strategy and the known ones.
+std::unique_ptr<Culler> make_culler(std::string_view name);
+std::vector<std::string> culler_names();
+
+}  // namespace occu

@@ -1,0 +1,118 @@
+#include "spatial/hierarchy.h"
+
+#include <algorithm>
+#include <array>
+
+namespace occu {
+
+namespace {
+
+struct Item {
+    TriangleRef ref;
+    Aabb box;
+    glm::vec3 centroid;
+};
+
+class Builder {
+public:
+    Builder(std::vector<HierarchyNode> &nodes, std::vector<TriangleRef> &out, const HierarchyOptions &o)
+        : nodes_(nodes), out_(out), options_(o)
+    {
+    }
+
+    void build(std::uint32_t node, std::vector<Item> items, std::uint32_t depth)
+    {
+        HierarchyNode &n = nodes_[node];
+        n.depth = depth;
+        for (const Item &it : items)
+            n.bounds.expand(it.box);
+        if (items.size() <= options_.max_leaf_triangles || depth >= options_.max_depth) {
+            make_leaf(node, items);
+            return;
+        }
+        std::vector<std::vector<Item>> groups = split(items);
+        if (groups.size() < 2) {   // all centroids coincide: nothing separates them
+            make_leaf(node, items);
+            return;
+        }
+        const auto first = std::uint32_t(nodes_.size());
+        nodes_.resize(nodes_.size() + groups.size());
+        nodes_[node].first_child = first;
+        nodes_[node].child_count = std::uint32_t(groups.size());
+        for (std::size_t i = 0; i < groups.size(); ++i)
+            build(first + std::uint32_t(i), std::move(groups[i]), depth + 1);
+    }
+
+private:
+    void make_leaf(std::uint32_t node, const std::vector<Item> &items)
+    {
+        nodes_[node].first_triangle = std::uint32_t(out_.size());
+        nodes_[node].triangle_count = std::uint32_t(items.size());
+        for (const Item &it : items)
+            out_.push_back(it.ref);
+    }
+
+    // Octants around the centre of the centroids' box; if every centroid
+    // falls in one octant, halves at the median of the longest axis.
+    static std::vector<std::vector<Item>> split(std::vector<Item> &items)
+    {
+        Aabb centroids;
+        for (const Item &it : items)
+            centroids.expand(it.centroid);
+        const glm::vec3 c = centroids.center();
+        std::array<std::vector<Item>, 8> octants;
+        for (Item &it : items) {
+            const int o = (it.centroid.x > c.x) | (it.centroid.y > c.y) << 1 | (it.centroid.z > c.z) << 2;
+            octants[o].push_back(it);
+        }
+        std::vector<std::vector<Item>> groups;
+        for (auto &o : octants)
+            if (!o.empty())
+                groups.push_back(std::move(o));
+        if (groups.size() > 1)
+            return groups;
+
+        const glm::vec3 e = centroids.extent();
+        const int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
+        if (e[axis] <= 0.0f)
+            return {};
+        const auto mid = items.begin() + std::ptrdiff_t(items.size() / 2);
+        std::nth_element(items.begin(), mid, items.end(),
+                         [axis](const Item &a, const Item &b) { return a.centroid[axis] < b.centroid[axis]; });
+        return {std::vector<Item>(items.begin(), mid), std::vector<Item>(mid, items.end())};
+    }
+
+    std::vector<HierarchyNode> &nodes_;
+    std::vector<TriangleRef> &out_;
+    const HierarchyOptions &options_;
+};
+
+}  // namespace
+
+Hierarchy Hierarchy::build(const Scene &scene, const HierarchyOptions &options)
+{
+    Hierarchy h;
+    std::vector<Item> items;
+    items.reserve(scene.triangle_count());
+    for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh &mesh = scene.meshes[m];
+        for (std::uint32_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+            Item it{{m, i}, {}, {}};
+            for (int k = 0; k < 3; ++k)
+                it.box.expand(mesh.positions[mesh.indices[i + k]]);
+            it.centroid = it.box.center();
+            items.push_back(it);
+        }
+    }
+    h.nodes_.resize(1);
+    h.triangles_.reserve(items.size());
+    Builder(h.nodes_, h.triangles_, options).build(0, std::move(items), 0);
+    return h;
+}
+
+std::size_t Hierarchy::leaf_count() const
+{
+    return std::size_t(std::count_if(nodes_.begin(), nodes_.end(), [](const HierarchyNode &n) { return n.leaf(); }));
+}
+
+}  // namespace occu

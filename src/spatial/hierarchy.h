@@ -1,0 +1,50 @@
+// The spatial hierarchy occlusion-driven rendering traverses: an octree
+// over the scene's triangles whose nodes are bounded by the boxes of the
+// triangles they hold, so siblings may overlap. This is the "sloppy n-ary
+// space partitioning tree" of Bartz et al. (1998, section 1; their ref.
+// [10]): a triangle is never split and belongs to exactly one leaf, and a
+// node's box is tight around its contents, which is what is rendered as its
+// occlusion proxy (Moeller and Haines, "hierarchical visibility").
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/aabb.h"
+#include "scene/scene.h"
+
+namespace occu {
+
+struct TriangleRef {
+    std::uint32_t mesh;
+    std::uint32_t first_index;   // into Mesh::indices
+};
+
+struct HierarchyNode {
+    Aabb bounds;
+    std::uint32_t first_child = 0, child_count = 0;          // nodes[first_child ..]
+    std::uint32_t first_triangle = 0, triangle_count = 0;    // leaves: triangles[first_triangle ..]
+    std::uint32_t depth = 0;
+    bool leaf() const { return child_count == 0; }
+};
+
+struct HierarchyOptions {
+    std::uint32_t max_leaf_triangles = 256;
+    std::uint32_t max_depth = 20;
+};
+
+class Hierarchy {
+public:
+    static Hierarchy build(const Scene &scene, const HierarchyOptions &options = {});
+
+    const std::vector<HierarchyNode> &nodes() const { return nodes_; }
+    const std::vector<TriangleRef> &triangles() const { return triangles_; }
+    const HierarchyNode &root() const { return nodes_.front(); }
+    std::size_t leaf_count() const;
+
+private:
+    std::vector<HierarchyNode> nodes_;
+    std::vector<TriangleRef> triangles_;
+};
+
+}  // namespace occu

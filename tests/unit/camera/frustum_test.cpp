@@ -1,0 +1,67 @@
+#include "camera/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace occu;
+
+namespace {
+Camera looking_down_minus_z()
+{
+    Camera c;
+    c.position = {0, 0, 0};
+    c.target = {0, 0, -1};
+    c.near_plane = 1.0f;
+    c.far_plane = 100.0f;
+    return c;
+}
+
+bool point_inside(const glm::mat4 &vp, const glm::vec3 &p)
+{
+    const glm::vec4 c = vp * glm::vec4(p, 1.0f);
+    return c.w > 0 && std::abs(c.x) <= c.w && std::abs(c.y) <= c.w && std::abs(c.z) <= c.w;
+}
+}  // namespace
+
+TEST(Frustum, ClassifiesObviousBoxes)
+{
+    const Frustum f(looking_down_minus_z().view_projection());
+    EXPECT_EQ(f.classify(Aabb::of({-1, -1, -11}, {1, 1, -9})), Frustum::Side::inside);
+    EXPECT_EQ(f.classify(Aabb::of({-1, -1, 5}, {1, 1, 9})), Frustum::Side::outside);        // behind the eye
+    EXPECT_EQ(f.classify(Aabb::of({-1, -1, -200}, {1, 1, -150})), Frustum::Side::outside);  // past far
+    EXPECT_EQ(f.classify(Aabb::of({-1, -1, -2}, {1, 1, 2})), Frustum::Side::intersecting);  // contains the eye
+    EXPECT_EQ(f.classify(Aabb::of({-1, -1, -1.5f}, {1, 1, -0.5f})), Frustum::Side::intersecting);  // near plane
+}
+
+TEST(Frustum, NeverCullsABoxWithAPointInside)
+{
+    Camera c = looking_down_minus_z();
+    c.position = {3, 2, 1};
+    c.target = {-5, 1, -20};
+    c.aspect = 1.5f;
+    const glm::mat4 vp = c.view_projection();
+    const Frustum f(vp);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> pos(-60, 60), size(0.01f, 20), unit(0, 1);
+    int outside = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 lo{pos(rng), pos(rng) * 0.3f, pos(rng)};
+        const Aabb box = Aabb::of(lo, lo + glm::vec3(size(rng), size(rng), size(rng)));
+        if (f.classify(box) != Frustum::Side::outside)
+            continue;
+        ++outside;
+        for (int k = 0; k < 200; ++k) {
+            const glm::vec3 p = box.min + glm::vec3(unit(rng), unit(rng), unit(rng)) * box.extent();
+            ASSERT_FALSE(point_inside(vp, p)) << "box " << i << " culled with a point inside";
+        }
+    }
+    EXPECT_GT(outside, 200);   // the test exercised culling
+}
+
+TEST(Frustum, HugeCoordinatesStayFinite)
+{
+    const Frustum f(looking_down_minus_z().view_projection());
+    EXPECT_EQ(f.classify(Aabb::of({-1e30f, -1e30f, -1e30f}, {1e30f, 1e30f, 1e30f})), Frustum::Side::intersecting);
+    EXPECT_EQ(f.classify(Aabb::of({1e20f, 1e20f, -1e20f}, {2e20f, 2e20f, -1e19f})), Frustum::Side::outside);
+}

@@ -1,0 +1,40 @@
+#include "culling/culler.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+using namespace occu;
+
+TEST(MakeCuller, KnownNamesAndAnErrorNamingTheUnknownOne)
+{
+    for (const std::string &n : culler_names()) {
+        auto c = make_culler(n);
+        EXPECT_EQ(c->name(), n);
+        EXPECT_TRUE(c->conservative());
+    }
+    try {
+        make_culler("zbuffer-magic");
+        FAIL() << "no exception";
+    } catch (const std::invalid_argument &e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("'zbuffer-magic'"), std::string::npos) << what;
+        EXPECT_NE(what.find("vfc"), std::string::npos) << what;
+    }
+}
+
+TEST(Vfc, CullsOnlyWhatTheFrustumExcludes)
+{
+    Camera c;
+    c.position = {0, 0, 0};
+    c.target = {0, 0, -1};
+    auto vfc = make_culler("vfc");
+    auto none = make_culler("none");
+    vfc->begin_frame(c);
+    none->begin_frame(c);
+    const Aabb ahead = Aabb::of({-1, -1, -20}, {1, 1, -10}), behind = Aabb::of({-1, -1, 10}, {1, 1, 20});
+    EXPECT_EQ(vfc->test(ahead), Visibility::visible);
+    EXPECT_EQ(vfc->test(behind), Visibility::view_culled);
+    EXPECT_EQ(none->test(behind), Visibility::visible);
+    EXPECT_STREQ(visibility_name(Visibility::occluded), "occluded");
+}

@@ -1,0 +1,57 @@
+#include "scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "scene/city.h"
+
+using namespace occu;
+
+TEST(AppendBox, TwelveTrianglesWoundOutwards)
+{
+    Mesh m;
+    const Aabb box = Aabb::of({-1, 2, 3}, {4, 5, 9});
+    append_box(m, box);
+    ASSERT_EQ(m.triangle_count(), 12u);
+    for (std::size_t t = 0; t < m.indices.size(); t += 3) {
+        const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                        c = m.positions[m.indices[t + 2]];
+        const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+        // Counter-clockwise seen from outside: the winding's normal is the outward one.
+        EXPECT_NEAR(glm::dot(n, m.normals[m.indices[t]]), 1.0f, 1e-6f) << "triangle " << t / 3;
+        EXPECT_GT(glm::dot(n, a - box.center()), 0.0f) << "triangle " << t / 3;
+    }
+    EXPECT_EQ(m.bounds.min, box.min);
+    EXPECT_EQ(m.bounds.max, box.max);
+}
+
+TEST(City, DefaultIsAbout300kTrianglesAndDeterministic)
+{
+    const Scene a = generate_city({});
+    const Scene b = generate_city({});
+    EXPECT_GT(a.triangle_count(), 250000u);
+    EXPECT_LT(a.triangle_count(), 350000u);
+    ASSERT_EQ(a.meshes.size(), b.meshes.size());
+    EXPECT_EQ(a.meshes[17].positions, b.meshes[17].positions);
+    // Streets at street level: the ground's top is y = 0 and buildings stand on it.
+    EXPECT_FLOAT_EQ(a.bounds.min.y, -1.0f);
+    EXPECT_GT(a.bounds.max.y, 20.0f);
+}
+
+TEST(City, CopiesMultiplyTheGrid)
+{
+    CityOptions small;
+    small.blocks_x = small.blocks_z = 2;
+    CityOptions copied = small;
+    copied.copies = 3;
+    const Scene one = generate_city(small), nine = generate_city(copied);
+    // Nine copies of the buildings, one ground.
+    EXPECT_EQ(nine.triangle_count() - 12, 9 * (one.triangle_count() - 12));
+    EXPECT_NEAR(nine.bounds.extent().x, 3 * one.bounds.extent().x, 1e-3f);
+}
+
+TEST(City, OtherSeedOtherCity)
+{
+    CityOptions a, b;
+    b.seed = 7;
+    EXPECT_NE(generate_city(a).triangle_count(), generate_city(b).triangle_count());
+}

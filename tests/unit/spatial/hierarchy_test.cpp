@@ -1,0 +1,88 @@
+#include "spatial/hierarchy.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "scene/city.h"
+
+using namespace occu;
+
+namespace {
+Scene small_city()
+{
+    CityOptions o;
+    o.blocks_x = o.blocks_z = 3;
+    return generate_city(o);
+}
+
+Aabb triangle_box(const Scene &s, const TriangleRef &t)
+{
+    Aabb b;
+    for (int k = 0; k < 3; ++k)
+        b.expand(s.meshes[t.mesh].positions[s.meshes[t.mesh].indices[t.first_index + k]]);
+    return b;
+}
+}  // namespace
+
+TEST(Hierarchy, EveryTriangleInExactlyOneLeafWithinItsBounds)
+{
+    const Scene s = small_city();
+    const Hierarchy h = Hierarchy::build(s);
+    ASSERT_EQ(h.triangles().size(), s.triangle_count());
+    std::set<std::pair<std::uint32_t, std::uint32_t>> seen;
+    std::size_t in_leaves = 0;
+    for (const HierarchyNode &n : h.nodes()) {
+        if (!n.leaf())
+            continue;
+        EXPECT_LE(n.triangle_count, 256u);
+        in_leaves += n.triangle_count;
+        for (std::uint32_t i = 0; i < n.triangle_count; ++i) {
+            const TriangleRef &t = h.triangles()[n.first_triangle + i];
+            EXPECT_TRUE(seen.insert({t.mesh, t.first_index}).second);
+            const Aabb b = triangle_box(s, t);
+            EXPECT_TRUE(n.bounds.contains(b.min) && n.bounds.contains(b.max));
+        }
+    }
+    EXPECT_EQ(in_leaves, s.triangle_count());
+    EXPECT_GT(h.leaf_count(), s.triangle_count() / 256);
+}
+
+TEST(Hierarchy, ParentsBoundTheirChildren)
+{
+    const Hierarchy h = Hierarchy::build(small_city());
+    for (const HierarchyNode &n : h.nodes())
+        for (std::uint32_t c = 0; c < n.child_count; ++c) {
+            const HierarchyNode &child = h.nodes()[n.first_child + c];
+            EXPECT_TRUE(n.bounds.contains(child.bounds.min) && n.bounds.contains(child.bounds.max));
+            EXPECT_EQ(child.depth, n.depth + 1);
+        }
+}
+
+TEST(Hierarchy, LeafSizeIsAKnob)
+{
+    const Scene s = small_city();
+    HierarchyOptions o;
+    o.max_leaf_triangles = 64;
+    const Hierarchy fine = Hierarchy::build(s, o);
+    const Hierarchy coarse = Hierarchy::build(s);
+    EXPECT_GT(fine.leaf_count(), coarse.leaf_count());
+    for (const HierarchyNode &n : fine.nodes()) {
+        if (n.leaf()) {
+            EXPECT_LE(n.triangle_count, 64u);
+        }
+    }
+}
+
+TEST(Hierarchy, CoincidentTrianglesEndInOneLeafInsteadOfRecursingForever)
+{
+    Scene s;
+    Mesh m;
+    for (int i = 0; i < 1000; ++i)
+        append_box(m, Aabb::of({0, 0, 0}, {1, 1, 1}));
+    s.meshes.push_back(m);
+    s.update_bounds();
+    const Hierarchy h = Hierarchy::build(s);
+    EXPECT_EQ(h.triangles().size(), 12000u);
+    EXPECT_LE(h.nodes().size(), 64u);
+}
