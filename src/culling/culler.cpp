@@ -3,6 +3,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include "culling/occlusion_unit_culler.h"
+
 namespace occu {
 
 const char *visibility_name(Visibility v)
@@ -46,11 +48,13 @@ private:
 
 std::vector<std::string> culler_names()
 {
-    return {"none", "vfc"};
+    return {"none", "vfc", "occu-hier"};
 }
 
-std::unique_ptr<Culler> make_culler(std::string_view name)
+std::unique_ptr<Culler> make_culler(std::string_view name, float adaptive_threshold)
 {
+    if (name == "occu-hier")
+        return std::make_unique<OcclusionUnitCuller>(adaptive_threshold);
     if (name == "none")
         return std::make_unique<NoCulling>();
     if (name == "vfc")

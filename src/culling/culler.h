@@ -12,6 +12,7 @@
 //   view_culled  the box lies outside the view frustum.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -34,13 +35,25 @@ public:
     virtual bool conservative() const = 0;
     virtual void begin_frame(const Camera &camera) = 0;
     virtual Visibility test(const Aabb &box) = 0;
+    // Tests several boxes at once (strategies that batch, such as the
+    // Occlusion Unit with one tile per box, override it).
+    virtual void test_many(const std::vector<Aabb> &boxes, std::vector<Visibility> &results)
+    {
+        results.resize(boxes.size());
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            results[i] = test(boxes[i]);
+    }
     // The caller drew the contents of `box`.
     virtual void rendered(const Aabb &box) { (void)box; }
+    // Occlusion passes (or queries) issued since begin_frame.
+    virtual std::uint32_t passes() const { return 0; }
 };
 
-// Strategies that need no GL: "none" and "vfc". Throws std::invalid_argument
-// naming the unknown strategy and the known ones.
-std::unique_ptr<Culler> make_culler(std::string_view name);
+// Strategies by name: "none", "vfc", and with a current GL context that
+// advertises GL_MESAX_occlusion_unit, "occu-hier" (adaptive_threshold: see
+// occlusion_unit_culler.h). Throws std::invalid_argument naming the unknown
+// strategy and the known ones.
+std::unique_ptr<Culler> make_culler(std::string_view name, float adaptive_threshold = 0.0f);
 std::vector<std::string> culler_names();
 
 }  // namespace occu

@@ -4,10 +4,13 @@
 
 #include <stdexcept>
 
+#include "gl/offscreen_context.h"
+
 using namespace occu;
 
 TEST(MakeCuller, KnownNamesAndAnErrorNamingTheUnknownOne)
 {
+    gl::OffscreenContext ctx(8, 8);   // occu-hier queries the context's extensions
     for (const std::string &n : culler_names()) {
         auto c = make_culler(n);
         EXPECT_EQ(c->name(), n);
@@ -21,6 +24,8 @@ TEST(MakeCuller, KnownNamesAndAnErrorNamingTheUnknownOne)
         EXPECT_NE(what.find("'zbuffer-magic'"), std::string::npos) << what;
         EXPECT_NE(what.find("vfc"), std::string::npos) << what;
     }
+    EXPECT_FALSE(make_culler("occu-hier", 0.1f)->conservative());
+    EXPECT_THROW(make_culler("occu-hier", 1.5f), std::invalid_argument);
 }
 
 TEST(Vfc, CullsOnlyWhatTheFrustumExcludes)

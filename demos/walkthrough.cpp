@@ -1,0 +1,203 @@
+// walkthrough: renders a route through a scene with several culling
+// strategies and reports what each drew and how long it took.
+//
+//   walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]
+//               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
+//               [--city-copies N] [--leaf-triangles N] [--batch N]
+//               [--threshold T] [--png-every N] [--out DIR]
+//
+// Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
+// every --png-every frames, and prints a summary table.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "camera/route.h"
+#include "culling/traversal.h"
+#include "gl/offscreen_context.h"
+#include "image/png.h"
+#include "scene/city.h"
+
+namespace {
+
+struct Options {
+    std::string route = "dense";
+    std::vector<std::string> strategies = {"none", "vfc", "occu-hier"};
+    int frames = 60;
+    int size = 512;
+    std::string driver = "llvmpipe";
+    int city_copies = 1;
+    int leaf_triangles = 256;
+    int batch = 16;
+    float threshold = 0.0f;
+    int png_every = 20;
+    std::string out = "walkthrough-out";
+};
+
+[[noreturn]] void usage(const std::string &error)
+{
+    std::fprintf(stderr,
+                 "%s%susage: walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]\n"
+                 "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
+                 "                   [--leaf-triangles N] [--batch N] [--threshold T] [--png-every N] [--out DIR]\n",
+                 error.empty() ? "" : ("walkthrough: " + error + "\n").c_str(), "");
+    std::exit(error.empty() ? 0 : 2);
+}
+
+int to_int(const std::string &flag, const std::string &v, int lo, int hi)
+{
+    char *end = nullptr;
+    const long x = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end || x < lo || x > hi)
+        usage(flag + " wants an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + v + "'");
+    return int(x);
+}
+
+Options parse(int argc, char **argv)
+{
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "-h" || a == "--help")
+            usage("");
+        if (i + 1 >= argc)
+            usage("unknown argument or missing value: '" + a + "'");
+        const std::string v = argv[++i];
+        if (a == "--route") o.route = v;
+        else if (a == "--strategies") {
+            o.strategies.clear();
+            std::stringstream ss(v);
+            for (std::string s; std::getline(ss, s, ',');)
+                if (!s.empty())
+                    o.strategies.push_back(s);
+            if (o.strategies.empty())
+                usage("--strategies is empty");
+        }
+        else if (a == "--frames") o.frames = to_int(a, v, 1, 100000);
+        else if (a == "--size") o.size = to_int(a, v, 16, 8192);
+        else if (a == "--driver") o.driver = v;
+        else if (a == "--city-copies") o.city_copies = to_int(a, v, 1, 64);
+        else if (a == "--leaf-triangles") o.leaf_triangles = to_int(a, v, 1, 1 << 20);
+        else if (a == "--batch") o.batch = to_int(a, v, 1, 4096);
+        else if (a == "--png-every") o.png_every = to_int(a, v, 0, 100000);
+        else if (a == "--out") o.out = v;
+        else if (a == "--threshold") {
+            char *end = nullptr;
+            o.threshold = std::strtof(v.c_str(), &end);
+            if (v.empty() || *end || !(o.threshold >= 0.0f && o.threshold < 1.0f))
+                usage("--threshold wants a number in [0, 1), got '" + v + "'");
+        } else
+            usage("unknown argument '" + a + "'");
+    }
+    return o;
+}
+
+void progress(const std::string &what, int done, int total)
+{
+    if (!isatty(STDERR_FILENO))
+        return;
+    const int width = 30, filled = done * width / std::max(total, 1);
+    std::fprintf(stderr, "\r%-12s [%s%s] %d/%d", what.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), done, total);
+    if (done == total)
+        std::fprintf(stderr, "\n");
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    using namespace occu;
+    const Options o = parse(argc, argv);
+    try {
+        gl::select_driver(gl::parse_driver(o.driver));
+        CityOptions city;
+        city.copies = o.city_copies;
+        const Scene scene = generate_city(city);
+        HierarchyOptions ho;
+        ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
+        const Hierarchy hierarchy = Hierarchy::build(scene, ho);
+        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f);
+
+        gl::OffscreenContext ctx(o.size, o.size);
+        SceneRenderer renderer(scene, hierarchy);
+        std::filesystem::create_directories(o.out);
+        std::ofstream csv(o.out + "/frames.csv");
+        if (!csv)
+            throw std::runtime_error("cannot write '" + o.out + "/frames.csv'");
+        csv << "strategy,route,frame,ms,triangles,leaves_drawn,nodes_tested,passes,view_culled,occluded,culled_percent\n";
+        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s\n", scene.triangle_count(),
+                    hierarchy.leaf_count(), o.route.c_str(), route.size(), o.size, o.size, ctx.renderer().c_str());
+
+        struct Summary {
+            std::vector<double> ms;
+            double triangles = 0, passes = 0;
+        };
+        std::map<std::string, Summary> summary;
+        TraversalOptions to;
+        to.batch = std::size_t(o.batch);
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_CULL_FACE);
+        glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
+        for (const std::string &name : o.strategies) {
+            auto culler = make_culler(name, o.threshold);
+            Summary &s = summary[name];
+            for (std::size_t f = 0; f < route.size(); ++f) {
+                const auto start = std::chrono::steady_clock::now();
+                glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+                load_camera(route[f]);
+                const FrameStats st = render_hierarchy(renderer, hierarchy, *culler, route[f], to);
+                glFinish();
+                const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                s.ms.push_back(ms);
+                s.triangles += double(st.triangles);
+                s.passes += st.passes;
+                csv << name << ',' << o.route << ',' << f << ',' << ms << ',' << st.triangles << ',' << st.leaves_drawn
+                    << ',' << st.nodes_tested << ',' << st.passes << ',' << st.nodes_view_culled << ','
+                    << st.nodes_occluded << ',' << 100.0 * (1.0 - double(st.triangles) / double(scene.triangle_count()))
+                    << '\n';
+                if (o.png_every > 0 && f % std::size_t(o.png_every) == 0) {
+                    char file[64];
+                    std::snprintf(file, sizeof(file), "/%s-%04zu.png", name.c_str(), f);
+                    write_png(o.out + file, o.size, o.size, ctx.pixels());
+                }
+                progress(name, int(f + 1), int(route.size()));
+            }
+        }
+
+        const double vfc_ms = summary.count("vfc") ? [&] {
+            auto v = summary["vfc"].ms;
+            double t = 0;
+            for (double x : v) t += x;
+            return t / double(v.size());
+        }() : 0.0;
+        std::printf("\n%-10s %10s %10s %12s %8s %8s\n", "strategy", "mean ms", "median ms", "triangles", "passes",
+                    "vs vfc");
+        for (const std::string &name : o.strategies) {
+            Summary s = summary[name];
+            double total = 0;
+            for (double x : s.ms) total += x;
+            const double mean = total / double(s.ms.size());
+            std::sort(s.ms.begin(), s.ms.end());
+            const double n = double(s.ms.size());
+            std::printf("%-10s %10.2f %10.2f %12.0f %8.1f %8s\n", name.c_str(), mean, s.ms[s.ms.size() / 2],
+                        s.triangles / n, s.passes / n,
+                        vfc_ms > 0 ? (std::to_string(vfc_ms / mean).substr(0, 5) + "x").c_str() : "-");
+        }
+        std::printf("\nframes: %s/<strategy>-NNNN.png; per-frame data: %s/frames.csv\n", o.out.c_str(), o.out.c_str());
+        return 0;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "walkthrough: %s\n", e.what());
+        return 1;
+    }
+}

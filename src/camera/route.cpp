@@ -1,0 +1,73 @@
+#include "camera/route.h"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace occu {
+
+namespace {
+
+std::vector<Camera> read_route_file(const std::string &path, float aspect)
+{
+    std::ifstream in(path);
+    if (!in)
+        throw std::runtime_error("cannot read route file '" + path + "'");
+    std::vector<Camera> route;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        line = line.substr(0, line.find('#'));
+        std::istringstream fields(line);
+        Camera c;
+        c.aspect = aspect;
+        std::string extra;
+        if (!(fields >> std::ws).eof()) {
+            if (!(fields >> c.position.x >> c.position.y >> c.position.z >> c.target.x >> c.target.y >> c.target.z) ||
+                (fields >> extra))
+                throw std::runtime_error(path + ":" + std::to_string(number) +
+                                         ": expected six numbers \"px py pz tx ty tz\", got \"" + line + "\"");
+            if (c.position == c.target)
+                throw std::runtime_error(path + ":" + std::to_string(number) + ": position and target coincide");
+            route.push_back(c);
+        }
+    }
+    if (route.empty())
+        throw std::runtime_error("route file '" + path + "' has no cameras");
+    return route;
+}
+
+}  // namespace
+
+std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, const CityOptions &city, int frames,
+                               float aspect)
+{
+    if (name != "dense" && name != "medium" && name != "open")
+        return read_route_file(name, aspect);
+    if (frames < 1)
+        throw std::invalid_argument("a route needs at least one frame");
+
+    const glm::vec3 size = bounds.extent();
+    // The street between the two middle rows of blocks.
+    const float street_z = bounds.min.z + std::round(size.z / city.block_size / 2.0f) * city.block_size;
+    std::vector<Camera> route;
+    for (int f = 0; f < frames; ++f) {
+        const float t = frames == 1 ? 0.0f : float(f) / float(frames - 1);
+        Camera c;
+        c.aspect = aspect;
+        if (name == "open") {
+            c.position = {bounds.min.x + size.x * (0.2f + 0.6f * t), 150.0f, bounds.min.z - 0.2f * size.z};
+            c.target = {bounds.min.x + 0.5f * size.x, 0.0f, bounds.min.z + 0.6f * size.z};
+            c.far_plane = 2.0f * glm::length(size) + 300.0f;
+        } else {
+            c.position = {bounds.min.x + size.x * (0.1f + 0.8f * t), 1.7f, street_z};
+            const float angle = name == "dense" ? 0.0f : glm::radians(35.0f);
+            c.target = c.position + glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
+            c.far_plane = 2.0f * glm::length(size);
+        }
+        c.near_plane = 0.5f;
+        route.push_back(c);
+    }
+    return route;
+}
+
+}  // namespace occu

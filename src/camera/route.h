@@ -1,0 +1,29 @@
+// Camera routes through a scene, like the papers' walkthrough paths
+// (Poon and Wang, section 6: best, average and worst routes).
+//
+// Built-in routes for the default city (see scene/city.h):
+//   dense   street level along a street, looking down it: near buildings
+//           hide almost all of the city;
+//   medium  the same walk, looking 35 degrees aside, into crossings and
+//           courtyards;
+//   open    150 m up outside the city, looking across its roofs: little
+//           is hidden.
+// A route file has one camera per line, "px py pz tx ty tz" (position and
+// target); '#' starts a comment.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "camera/camera.h"
+#include "scene/city.h"
+
+namespace occu {
+
+// `name`: dense, medium, open, or a route file's path. Throws
+// std::invalid_argument (unknown name) or std::runtime_error (a file it
+// cannot read or parse, naming the file and line).
+std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds, const CityOptions &city,
+                               int frames, float aspect);
+
+}  // namespace occu

@@ -1,0 +1,142 @@
+#include "culling/occlusion_unit_culler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "gl/extensions.h"
+#include "render/scene_renderer.h"
+
+namespace occu {
+
+OcclusionUnitCuller::OcclusionUnitCuller(float adaptive_threshold) : threshold_(adaptive_threshold)
+{
+    if (!(adaptive_threshold >= 0.0f && adaptive_threshold < 1.0f))
+        throw std::invalid_argument("adaptive threshold " + std::to_string(adaptive_threshold) +
+                                    " is outside [0, 1)");
+    if (!gl::has_extension("GL_MESAX_occlusion_unit"))
+        throw std::runtime_error("occu-hier needs GL_MESAX_occlusion_unit, which this context lacks");
+    ScissorsMESAX_ = reinterpret_cast<PFNGLSCISSORSMESAXPROC>(gl::get_proc_address("glScissorsMESAX"));
+    OcclusionBuffersMESAX_ =
+        reinterpret_cast<PFNGLOCCLUSIONBUFFERSMESAXPROC>(gl::get_proc_address("glOcclusionBuffersMESAX"));
+}
+
+void OcclusionUnitCuller::begin_frame(const Camera &camera)
+{
+    camera_ = camera;
+    view_projection_ = camera.view_projection();
+    glGetIntegerv(GL_VIEWPORT, viewport_);
+    passes_ = 0;
+}
+
+bool OcclusionUnitCuller::screen_rect(const Aabb &box, Rect &rect) const
+{
+    if (box.contains(camera_.position))
+        return false;
+    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec4 c = view_projection_ * glm::vec4(box.corner(i), 1.0f);
+        // In front of the near plane (z_clip < -w) or behind the eye: the
+        // projection is not the box's screen footprint.
+        if (c.w <= 0.0f || c.z < -c.w)
+            return false;
+        x0 = std::min(x0, c.x / c.w);
+        x1 = std::max(x1, c.x / c.w);
+        y0 = std::min(y0, c.y / c.w);
+        y1 = std::max(y1, c.y / c.w);
+    }
+    // Window pixels whose centres the projection can reach, one more each
+    // side for rounding; clamped to the viewport (tiles past it are legal
+    // but count nothing).
+    auto to_x = [this](float ndc) { return viewport_[0] + (ndc + 1.0f) * 0.5f * float(viewport_[2]); };
+    auto to_y = [this](float ndc) { return viewport_[1] + (ndc + 1.0f) * 0.5f * float(viewport_[3]); };
+    auto clamp_x = [this](float v) { return GLint(std::clamp(v, float(viewport_[0]), float(viewport_[0] + viewport_[2]))); };
+    auto clamp_y = [this](float v) { return GLint(std::clamp(v, float(viewport_[1]), float(viewport_[1] + viewport_[3]))); };
+    rect = {clamp_x(std::floor(to_x(x0)) - 1.0f), clamp_y(std::floor(to_y(y0)) - 1.0f),
+            clamp_x(std::ceil(to_x(x1)) + 1.0f), clamp_y(std::ceil(to_y(y1)) + 1.0f)};
+    return true;
+}
+
+Visibility OcclusionUnitCuller::test(const Aabb &box)
+{
+    std::vector<Visibility> r;
+    test_many({box}, r);
+    return r[0];
+}
+
+void OcclusionUnitCuller::test_many(const std::vector<Aabb> &boxes, std::vector<Visibility> &results)
+{
+    results.assign(boxes.size(), Visibility::visible);
+    std::vector<Rect> rects(boxes.size());
+    std::vector<std::size_t> pending;
+    const Frustum frustum(view_projection_);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        if (frustum.classify(boxes[i]) == Frustum::Side::outside)
+            results[i] = Visibility::view_culled;
+        else if (screen_rect(boxes[i], rects[i]))
+            pending.push_back(i);
+    }
+    // Greedy passes of boxes with pairwise disjoint rectangles.
+    while (!pending.empty()) {
+        std::vector<std::size_t> pass, later;
+        for (std::size_t i : pending) {
+            const Rect &r = rects[i];
+            const bool disjoint = pass.size() < records_.size() &&
+                                  std::all_of(pass.begin(), pass.end(), [&](std::size_t j) {
+                                      const Rect &q = rects[j];
+                                      return r.x1 <= q.x0 || q.x1 <= r.x0 || r.y1 <= q.y0 || q.y1 <= r.y0;
+                                  });
+            (disjoint ? pass : later).push_back(i);
+        }
+        run_pass(boxes, pass, rects, results);
+        pending.swap(later);
+    }
+}
+
+void OcclusionUnitCuller::run_pass(const std::vector<Aabb> &boxes, const std::vector<std::size_t> &members,
+                                   const std::vector<Rect> &rects, std::vector<Visibility> &results)
+{
+    const GLsizei n = GLsizei(members.size());
+    GLint tiles[64 * 4];
+    GLuint *buffers[64];
+    GLsizei sizes[64];
+    for (GLsizei k = 0; k < n; ++k) {
+        const Rect &r = rects[members[k]];
+        tiles[4 * k] = r.x0;
+        tiles[4 * k + 1] = r.y0;
+        tiles[4 * k + 2] = r.x1 - r.x0;
+        tiles[4 * k + 3] = r.y1 - r.y0;
+        buffers[k] = records_[std::size_t(k)].data();
+        sizes[k] = 8;
+    }
+    // Back faces culled (the paper's precondition for meaningful counts);
+    // LEQUAL and a box grown by a centimetre, so that a proxy face lying on
+    // a surface already drawn does not hide what the proxy holds.
+    const GLboolean culling = glIsEnabled(GL_CULL_FACE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glDepthFunc(GL_LEQUAL);
+    OcclusionBuffersMESAX_(n, sizes, buffers);
+    ScissorsMESAX_(n, tiles);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    for (std::size_t i : members) {
+        Aabb grown = boxes[i];
+        const glm::vec3 margin = glm::vec3(0.01f) + 1e-4f * grown.extent();
+        grown.min -= margin;
+        grown.max += margin;
+        SceneRenderer::draw_box(grown);
+    }
+    glRenderMode(GL_RENDER);
+    ScissorsMESAX_(0, nullptr);
+    glDepthFunc(GL_LESS);
+    if (!culling)
+        glDisable(GL_CULL_FACE);
+    ++passes_;
+    for (GLsizei k = 0; k < n; ++k) {
+        const GLuint nohc = records_[std::size_t(k)][0], phc = records_[std::size_t(k)][1];
+        const bool occluded = threshold_ == 0.0f ? nohc == 0 : double(nohc) <= double(threshold_) * double(phc);
+        results[members[k]] = occluded ? Visibility::occluded : Visibility::visible;
+    }
+}
+
+}  // namespace occu

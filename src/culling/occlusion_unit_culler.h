@@ -1,0 +1,62 @@
+// "occu-hier": occlusion tests with GL_MESAX_occlusion_unit, the strategy of
+// Bartz, Meissner and Huettner (1998, section 3): render a node's bounding
+// box in GL_BRIEF_OCCLUSION_MESAX mode against the depth of what has been
+// drawn so far; NOHC = 0 means occluded.
+//
+// Batching: test_many draws several boxes in one pass, one occlusion tile
+// per box, the tile being the box's screen rectangle. A tile counts every
+// fragment that falls in it, so boxes share a pass only when their
+// rectangles are disjoint; the others go to further passes (greedy, in the
+// order given, at most 64 tiles a pass).
+//
+// Adaptive culling (paper, section 5): with a threshold t > 0 a box counts
+// as occluded when NOHC <= t * PHC, i.e. when at most that fraction of its
+// projection is visible. t = 0 is exact and conservative.
+//
+// Boxes that contain the eye or reach in front of the near plane are
+// visible without a query: their rasterized faces need not cover what they
+// hold (spec issue 13).
+#pragma once
+
+#include <array>
+
+#include "culling/culler.h"
+#include "gl/gl_headers.h"
+#include "GL/mesax_occlusion_unit.h"
+
+namespace occu {
+
+class OcclusionUnitCuller final : public Culler {
+public:
+    // Needs a current context with GL_MESAX_occlusion_unit; throws
+    // std::runtime_error otherwise, and std::invalid_argument for a
+    // threshold outside [0, 1).
+    explicit OcclusionUnitCuller(float adaptive_threshold = 0.0f);
+
+    std::string_view name() const override { return "occu-hier"; }
+    bool conservative() const override { return threshold_ == 0.0f; }
+    void begin_frame(const Camera &camera) override;
+    Visibility test(const Aabb &box) override;
+    void test_many(const std::vector<Aabb> &boxes, std::vector<Visibility> &results) override;
+    std::uint32_t passes() const override { return passes_; }
+
+private:
+    struct Rect {
+        GLint x0, y0, x1, y1;   // window pixels, max exclusive
+    };
+    // False when the box needs no query (eye inside, near plane crossed).
+    bool screen_rect(const Aabb &box, Rect &rect) const;
+    void run_pass(const std::vector<Aabb> &boxes, const std::vector<std::size_t> &members,
+                  const std::vector<Rect> &rects, std::vector<Visibility> &results);
+
+    float threshold_;
+    Camera camera_;
+    glm::mat4 view_projection_{1.0f};
+    GLint viewport_[4] = {0, 0, 1, 1};
+    std::uint32_t passes_ = 0;
+    PFNGLSCISSORSMESAXPROC ScissorsMESAX_;
+    PFNGLOCCLUSIONBUFFERSMESAXPROC OcclusionBuffersMESAX_;
+    std::array<std::array<GLuint, 8>, 64> records_{};
+};
+
+}  // namespace occu

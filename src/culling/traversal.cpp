@@ -1,0 +1,69 @@
+#include "culling/traversal.h"
+
+#include <queue>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace occu {
+
+namespace {
+float distance_to(const Aabb &box, const glm::vec3 &p)
+{
+    const glm::vec3 d = glm::max(glm::max(box.min - p, p - box.max), glm::vec3(0.0f));
+    return glm::length(d);
+}
+}  // namespace
+
+void load_camera(const Camera &camera)
+{
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixf(glm::value_ptr(camera.projection()));
+    glMatrixMode(GL_MODELVIEW);
+    glLoadMatrixf(glm::value_ptr(camera.view()));
+}
+
+FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler,
+                            const Camera &camera, const TraversalOptions &options)
+{
+    FrameStats stats;
+    const auto &nodes = hierarchy.nodes();
+    using Entry = std::pair<float, std::uint32_t>;   // distance, node
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front;
+    front.push({distance_to(nodes[0].bounds, camera.position), 0});
+    culler.begin_frame(camera);
+
+    std::vector<std::uint32_t> batch;
+    std::vector<Aabb> boxes;
+    std::vector<Visibility> results;
+    while (!front.empty()) {
+        batch.clear();
+        boxes.clear();
+        while (!front.empty() && batch.size() < std::max<std::size_t>(1, options.batch)) {
+            batch.push_back(front.top().second);
+            boxes.push_back(nodes[front.top().second].bounds);
+            front.pop();
+        }
+        culler.test_many(boxes, results);
+        stats.nodes_tested += std::uint32_t(batch.size());
+        for (std::size_t i = 0; i < batch.size(); ++i) {
+            const HierarchyNode &n = nodes[batch[i]];
+            if (results[i] == Visibility::view_culled) {
+                ++stats.nodes_view_culled;
+            } else if (results[i] == Visibility::occluded) {
+                ++stats.nodes_occluded;
+            } else if (n.leaf()) {
+                stats.triangles += renderer.draw_leaf(batch[i]);
+                ++stats.leaves_drawn;
+                stats.drawn.push_back(batch[i]);
+                culler.rendered(n.bounds);
+            } else {
+                for (std::uint32_t c = 0; c < n.child_count; ++c)
+                    front.push({distance_to(nodes[n.first_child + c].bounds, camera.position), n.first_child + c});
+            }
+        }
+    }
+    stats.passes = culler.passes();
+    return stats;
+}
+
+}  // namespace occu
