@@ -4,10 +4,13 @@
 //   walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
-//               [--threshold T] [--png-every N] [--out DIR]
+//               [--threshold T] [--png-every N] [--oracle on|off] [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
-// every --png-every frames, and prints a summary table.
+// and the top view DIR/<strategy>-top-NNNN.png every --png-every frames, and
+// prints a summary table. With the oracle (default), each frame is also
+// drawn as an ID buffer to find the leaves that are really visible; the
+// summary's culling efficiency is occluded leaves culled / occluded leaves.
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,9 +26,11 @@
 #include <vector>
 
 #include "camera/route.h"
+#include "culling/oracle.h"
 #include "culling/traversal.h"
 #include "gl/offscreen_context.h"
 #include "image/png.h"
+#include "render/top_view.h"
 #include "scene/city.h"
 
 namespace {
@@ -41,6 +46,7 @@ struct Options {
     int batch = 16;
     float threshold = 0.0f;
     int png_every = 20;
+    bool oracle = true;
     std::string out = "walkthrough-out";
 };
 
@@ -49,7 +55,8 @@ struct Options {
     std::fprintf(stderr,
                  "%s%susage: walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
-                 "                   [--leaf-triangles N] [--batch N] [--threshold T] [--png-every N] [--out DIR]\n",
+                 "                   [--leaf-triangles N] [--batch N] [--threshold T] [--png-every N]\n"
+                 "                   [--oracle on|off] [--out DIR]\n",
                  error.empty() ? "" : ("walkthrough: " + error + "\n").c_str(), "");
     std::exit(error.empty() ? 0 : 2);
 }
@@ -91,6 +98,11 @@ Options parse(int argc, char **argv)
         else if (a == "--batch") o.batch = to_int(a, v, 1, 4096);
         else if (a == "--png-every") o.png_every = to_int(a, v, 0, 100000);
         else if (a == "--out") o.out = v;
+        else if (a == "--oracle") {
+            if (v != "on" && v != "off")
+                usage("--oracle wants on or off, got '" + v + "'");
+            o.oracle = v == "on";
+        }
         else if (a == "--threshold") {
             char *end = nullptr;
             o.threshold = std::strtof(v.c_str(), &end);
@@ -135,13 +147,16 @@ int main(int argc, char **argv)
         std::ofstream csv(o.out + "/frames.csv");
         if (!csv)
             throw std::runtime_error("cannot write '" + o.out + "/frames.csv'");
-        csv << "strategy,route,frame,ms,triangles,leaves_drawn,nodes_tested,passes,view_culled,occluded,culled_percent\n";
+        csv << "strategy,route,frame,ms,triangles,leaves_drawn,nodes_tested,passes,view_culled,occluded,culled_percent,"
+               "oracle_visible_leaves,oracle_occluded_leaves,occluded_leaves_culled,visible_leaves_culled\n";
+        std::vector<VisibilityTruth> truths(route.size());
         std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s\n", scene.triangle_count(),
                     hierarchy.leaf_count(), o.route.c_str(), route.size(), o.size, o.size, ctx.renderer().c_str());
 
         struct Summary {
             std::vector<double> ms;
             double triangles = 0, passes = 0;
+            std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0;
         };
         std::map<std::string, Summary> summary;
         TraversalOptions to;
@@ -162,15 +177,31 @@ int main(int argc, char **argv)
                 s.ms.push_back(ms);
                 s.triangles += double(st.triangles);
                 s.passes += st.passes;
+                if (o.png_every > 0 && f % std::size_t(o.png_every) == 0) {
+                    char file[80];
+                    std::snprintf(file, sizeof(file), "/%s-%04zu.png", name.c_str(), f);
+                    write_png(o.out + file, o.size, o.size, ctx.pixels());
+                    render_top_view(hierarchy, route[f], st.drawn);
+                    glFinish();
+                    std::snprintf(file, sizeof(file), "/%s-top-%04zu.png", name.c_str(), f);
+                    write_png(o.out + file, o.size, o.size, ctx.pixels());
+                }
+                CullingQuality q;
+                if (o.oracle) {
+                    if (truths[f].in_frustum.empty())   // the same for every strategy
+                        truths[f] = exact_visibility(renderer, hierarchy, route[f], o.size, o.size);
+                    q = compare_with_truth(truths[f], st.drawn);
+                    s.occluded += q.occluded;
+                    s.occluded_culled += q.occluded_culled;
+                    s.visible_culled += q.visible_culled;
+                }
                 csv << name << ',' << o.route << ',' << f << ',' << ms << ',' << st.triangles << ',' << st.leaves_drawn
                     << ',' << st.nodes_tested << ',' << st.passes << ',' << st.nodes_view_culled << ','
                     << st.nodes_occluded << ',' << 100.0 * (1.0 - double(st.triangles) / double(scene.triangle_count()))
-                    << '\n';
-                if (o.png_every > 0 && f % std::size_t(o.png_every) == 0) {
-                    char file[64];
-                    std::snprintf(file, sizeof(file), "/%s-%04zu.png", name.c_str(), f);
-                    write_png(o.out + file, o.size, o.size, ctx.pixels());
-                }
+                    << ',' << truths[f].visible.size() << ',' << q.occluded << ',' << q.occluded_culled << ','
+                    << q.visible_culled << '\n';
+                glEnable(GL_DEPTH_TEST);
+                glEnable(GL_CULL_FACE);
                 progress(name, int(f + 1), int(route.size()));
             }
         }
@@ -181,8 +212,8 @@ int main(int argc, char **argv)
             for (double x : v) t += x;
             return t / double(v.size());
         }() : 0.0;
-        std::printf("\n%-10s %10s %10s %12s %8s %8s\n", "strategy", "mean ms", "median ms", "triangles", "passes",
-                    "vs vfc");
+        std::printf("\n%-10s %10s %10s %12s %8s %8s %11s %14s\n", "strategy", "mean ms", "median ms", "triangles",
+                    "passes", "vs vfc", "efficiency", "visible culled");
         for (const std::string &name : o.strategies) {
             Summary s = summary[name];
             double total = 0;
@@ -190,11 +221,17 @@ int main(int argc, char **argv)
             const double mean = total / double(s.ms.size());
             std::sort(s.ms.begin(), s.ms.end());
             const double n = double(s.ms.size());
-            std::printf("%-10s %10.2f %10.2f %12.0f %8.1f %8s\n", name.c_str(), mean, s.ms[s.ms.size() / 2],
+            char efficiency[32] = "-";
+            if (o.oracle && s.occluded)
+                std::snprintf(efficiency, sizeof(efficiency), "%.1f%%", 100.0 * double(s.occluded_culled) / double(s.occluded));
+            std::printf("%-10s %10.2f %10.2f %12.0f %8.1f %8s %11s %14llu\n", name.c_str(), mean, s.ms[s.ms.size() / 2],
                         s.triangles / n, s.passes / n,
-                        vfc_ms > 0 ? (std::to_string(vfc_ms / mean).substr(0, 5) + "x").c_str() : "-");
+                        vfc_ms > 0 ? (std::to_string(vfc_ms / mean).substr(0, 5) + "x").c_str() : "-", efficiency,
+                        (unsigned long long)s.visible_culled);
         }
-        std::printf("\nframes: %s/<strategy>-NNNN.png; per-frame data: %s/frames.csv\n", o.out.c_str(), o.out.c_str());
+        std::printf("\nframes: %s/<strategy>-NNNN.png; top views: %s/<strategy>-top-NNNN.png; per-frame data: "
+                    "%s/frames.csv\n",
+                    o.out.c_str(), o.out.c_str(), o.out.c_str());
         return 0;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "walkthrough: %s\n", e.what());

@@ -72,6 +72,18 @@ std::uint32_t SceneRenderer::draw_leaf(std::uint32_t node) const
     return std::uint32_t(vertex_counts_[node] / 3);
 }
 
+void SceneRenderer::draw_leaf_flat(std::uint32_t node) const
+{
+    if (!buffers_[node])
+        return;
+    BindBuffer_(GL_ARRAY_BUFFER, buffers_[node]);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glVertexPointer(3, GL_FLOAT, sizeof(Vertex), reinterpret_cast<const void *>(offsetof(Vertex, position)));
+    glDrawArrays(GL_TRIANGLES, 0, vertex_counts_[node]);
+    glDisableClientState(GL_VERTEX_ARRAY);
+    BindBuffer_(GL_ARRAY_BUFFER, 0);
+}
+
 void SceneRenderer::draw_box(const Aabb &b)
 {
     // Counter-clockwise seen from outside, as append_box winds them.

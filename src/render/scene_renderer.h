@@ -21,6 +21,9 @@ public:
 
     // Draws the triangles of leaf `node`; returns how many.
     std::uint32_t draw_leaf(std::uint32_t node) const;
+    // Draws leaf `node` in one flat colour (for ID buffers; the caller sets
+    // it with glColor and turns dithering off).
+    void draw_leaf_flat(std::uint32_t node) const;
     // Draws the faces of `box` (an occlusion proxy: no colour needed).
     static void draw_box(const Aabb &box);
 
