@@ -4,7 +4,8 @@
 //   walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
-//               [--threshold T] [--png-every N] [--oracle on|off] [--out DIR]
+//               [--threshold T] [--max-test-area A] [--png-every N] [--oracle on|off]
+//               [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
 // and the top view DIR/<strategy>-top-NNNN.png every --png-every frames, and
@@ -37,7 +38,7 @@ namespace {
 
 struct Options {
     std::string route = "dense";
-    std::vector<std::string> strategies = {"none", "vfc", "occu-hier"};
+    std::vector<std::string> strategies = {"none", "vfc", "occu-hier", "occu-hier-shared"};
     int frames = 60;
     int size = 512;
     std::string driver = "llvmpipe";
@@ -45,6 +46,7 @@ struct Options {
     int leaf_triangles = 256;
     int batch = 16;
     float threshold = 0.0f;
+    double max_test_area = 0.25;
     int png_every = 20;
     bool oracle = true;
     std::string out = "walkthrough-out";
@@ -53,10 +55,10 @@ struct Options {
 [[noreturn]] void usage(const std::string &error)
 {
     std::fprintf(stderr,
-                 "%s%susage: walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]\n"
+                 "%s%susage: walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier,...]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
-                 "                   [--leaf-triangles N] [--batch N] [--threshold T] [--png-every N]\n"
-                 "                   [--oracle on|off] [--out DIR]\n",
+                 "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"
+                 "                   [--png-every N] [--oracle on|off] [--out DIR]\n",
                  error.empty() ? "" : ("walkthrough: " + error + "\n").c_str(), "");
     std::exit(error.empty() ? 0 : 2);
 }
@@ -108,6 +110,11 @@ Options parse(int argc, char **argv)
             o.threshold = std::strtof(v.c_str(), &end);
             if (v.empty() || *end || !(o.threshold >= 0.0f && o.threshold < 1.0f))
                 usage("--threshold wants a number in [0, 1), got '" + v + "'");
+        } else if (a == "--max-test-area") {
+            char *end = nullptr;
+            o.max_test_area = std::strtod(v.c_str(), &end);
+            if (v.empty() || *end || !(o.max_test_area > 0.0 && o.max_test_area <= 1.0))
+                usage("--max-test-area wants a number in (0, 1], got '" + v + "'");
         } else
             usage("unknown argument '" + a + "'");
     }
@@ -165,7 +172,10 @@ int main(int argc, char **argv)
         glEnable(GL_CULL_FACE);
         glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
         for (const std::string &name : o.strategies) {
-            auto culler = make_culler(name, o.threshold);
+            CullerOptions co;
+            co.adaptive_threshold = o.threshold;
+            co.max_test_area = o.max_test_area;
+            auto culler = make_culler(name, co);
             Summary &s = summary[name];
             for (std::size_t f = 0; f < route.size(); ++f) {
                 const auto start = std::chrono::steady_clock::now();

@@ -58,13 +58,17 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
             c.position = {bounds.min.x + size.x * (0.2f + 0.6f * t), 150.0f, bounds.min.z - 0.2f * size.z};
             c.target = {bounds.min.x + 0.5f * size.x, 0.0f, bounds.min.z + 0.6f * size.z};
             c.far_plane = 2.0f * glm::length(size) + 300.0f;
+            // Nothing is nearer than 100 m up here; a far near plane keeps the
+            // depth buffer fine enough that distant ledges do not z-fight.
+            c.near_plane = 20.0f;
         } else {
             c.position = {bounds.min.x + size.x * (0.1f + 0.8f * t), 1.7f, street_z};
             const float angle = name == "dense" ? 0.0f : glm::radians(35.0f);
             c.target = c.position + glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
             c.far_plane = 2.0f * glm::length(size);
         }
-        c.near_plane = 0.5f;
+        if (name != "open")
+            c.near_plane = 0.5f;
         route.push_back(c);
     }
     return route;

@@ -48,13 +48,15 @@ private:
 
 std::vector<std::string> culler_names()
 {
-    return {"none", "vfc", "occu-hier"};
+    return {"none", "vfc", "occu-hier", "occu-hier-shared"};
 }
 
-std::unique_ptr<Culler> make_culler(std::string_view name, float adaptive_threshold)
+std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &options)
 {
     if (name == "occu-hier")
-        return std::make_unique<OcclusionUnitCuller>(adaptive_threshold);
+        return std::make_unique<OcclusionUnitCuller>(options, false);
+    if (name == "occu-hier-shared")
+        return std::make_unique<OcclusionUnitCuller>(options, true);
     if (name == "none")
         return std::make_unique<NoCulling>();
     if (name == "vfc")

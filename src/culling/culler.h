@@ -49,11 +49,16 @@ public:
     virtual std::uint32_t passes() const { return 0; }
 };
 
+// The knobs of the occlusion strategies (see occlusion_unit_culler.h).
+struct CullerOptions {
+    float adaptive_threshold = 0.0f;   // occluded when NOHC <= t * PHC; 0: exact
+    double max_test_area = 0.25;       // boxes covering more of the viewport are not tested
+};
+
 // Strategies by name: "none", "vfc", and with a current GL context that
-// advertises GL_MESAX_occlusion_unit, "occu-hier" (adaptive_threshold: see
-// occlusion_unit_culler.h). Throws std::invalid_argument naming the unknown
-// strategy and the known ones.
-std::unique_ptr<Culler> make_culler(std::string_view name, float adaptive_threshold = 0.0f);
+// advertises GL_MESAX_occlusion_unit, "occu-hier" and "occu-hier-shared".
+// Throws std::invalid_argument naming the unknown strategy and the known ones.
+std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &options = {});
 std::vector<std::string> culler_names();
 
 }  // namespace occu

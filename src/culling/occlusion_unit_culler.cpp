@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "gl/extensions.h"
@@ -9,11 +10,13 @@
 
 namespace occu {
 
-OcclusionUnitCuller::OcclusionUnitCuller(float adaptive_threshold) : threshold_(adaptive_threshold)
+OcclusionUnitCuller::OcclusionUnitCuller(const CullerOptions &options, bool shared_passes)
+    : threshold_(options.adaptive_threshold), shared_passes_(shared_passes), max_test_area_(options.max_test_area)
 {
-    if (!(adaptive_threshold >= 0.0f && adaptive_threshold < 1.0f))
-        throw std::invalid_argument("adaptive threshold " + std::to_string(adaptive_threshold) +
-                                    " is outside [0, 1)");
+    if (!(threshold_ >= 0.0f && threshold_ < 1.0f))
+        throw std::invalid_argument("adaptive threshold " + std::to_string(threshold_) + " is outside [0, 1)");
+    if (!(max_test_area_ > 0.0 && max_test_area_ <= 1.0))
+        throw std::invalid_argument("max test area " + std::to_string(max_test_area_) + " is outside (0, 1]");
     if (!gl::has_extension("GL_MESAX_occlusion_unit"))
         throw std::runtime_error("occu-hier needs GL_MESAX_occlusion_unit, which this context lacks");
     ScissorsMESAX_ = reinterpret_cast<PFNGLSCISSORSMESAXPROC>(gl::get_proc_address("glScissorsMESAX"));
@@ -57,6 +60,11 @@ bool OcclusionUnitCuller::screen_rect(const Aabb &box, Rect &rect) const
     return true;
 }
 
+double OcclusionUnitCuller::area_fraction(const Rect &r) const
+{
+    return double(r.x1 - r.x0) * double(r.y1 - r.y0) / (double(viewport_[2]) * double(viewport_[3]));
+}
+
 Visibility OcclusionUnitCuller::test(const Aabb &box)
 {
     std::vector<Visibility> r;
@@ -73,7 +81,7 @@ void OcclusionUnitCuller::test_many(const std::vector<Aabb> &boxes, std::vector<
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         if (frustum.classify(boxes[i]) == Frustum::Side::outside)
             results[i] = Visibility::view_culled;
-        else if (screen_rect(boxes[i], rects[i]))
+        else if (screen_rect(boxes[i], rects[i]) && area_fraction(rects[i]) <= max_test_area_)
             pending.push_back(i);
     }
     // Greedy passes of boxes with pairwise disjoint rectangles.
@@ -82,10 +90,10 @@ void OcclusionUnitCuller::test_many(const std::vector<Aabb> &boxes, std::vector<
         for (std::size_t i : pending) {
             const Rect &r = rects[i];
             const bool disjoint = pass.size() < records_.size() &&
-                                  std::all_of(pass.begin(), pass.end(), [&](std::size_t j) {
+                                  (shared_passes_ || std::all_of(pass.begin(), pass.end(), [&](std::size_t j) {
                                       const Rect &q = rects[j];
                                       return r.x1 <= q.x0 || q.x1 <= r.x0 || r.y1 <= q.y0 || q.y1 <= r.y0;
-                                  });
+                                  }));
             (disjoint ? pass : later).push_back(i);
         }
         run_pass(boxes, pass, rects, results);
@@ -109,25 +117,35 @@ void OcclusionUnitCuller::run_pass(const std::vector<Aabb> &boxes, const std::ve
         buffers[k] = records_[std::size_t(k)].data();
         sizes[k] = 8;
     }
-    // Back faces culled (the paper's precondition for meaningful counts);
-    // LEQUAL and a box grown by a centimetre, so that a proxy face lying on
-    // a surface already drawn does not hide what the proxy holds.
+    // Back faces culled (the paper's precondition for meaningful counts).
+    // The proxy must pass wherever what it holds would: content can lie on
+    // the box's faces, and far away a few centimetres are below both the
+    // depth buffer's and float z's resolution. So the test uses LEQUAL and
+    // a polygon offset of a few depth units towards the eye, and the box
+    // grows by about a pixel at its distance, so that snapping and edge
+    // rules at the silhouette cannot drop a pixel the content covers.
     const GLboolean culling = glIsEnabled(GL_CULL_FACE);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     glDepthFunc(GL_LEQUAL);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -4.0f);
     OcclusionBuffersMESAX_(n, sizes, buffers);
     ScissorsMESAX_(n, tiles);
     glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    const float pixel_per_metre =
+        2.0f * std::tan(glm::radians(camera_.fovy_degrees) * 0.5f) / float(std::max(viewport_[3], 1));
     for (std::size_t i : members) {
         Aabb grown = boxes[i];
-        const glm::vec3 margin = glm::vec3(0.01f) + 1e-4f * grown.extent();
-        grown.min -= margin;
-        grown.max += margin;
+        const glm::vec3 nearest = glm::clamp(camera_.position, grown.min, grown.max);
+        const float margin = 0.01f + 1.5f * pixel_per_metre * glm::length(nearest - camera_.position);
+        grown.min -= glm::vec3(margin);
+        grown.max += glm::vec3(margin);
         SceneRenderer::draw_box(grown);
     }
     glRenderMode(GL_RENDER);
     ScissorsMESAX_(0, nullptr);
+    glDisable(GL_POLYGON_OFFSET_FILL);
     glDepthFunc(GL_LESS);
     if (!culling)
         glDisable(GL_CULL_FACE);

@@ -5,9 +5,13 @@
 //
 // Batching: test_many draws several boxes in one pass, one occlusion tile
 // per box, the tile being the box's screen rectangle. A tile counts every
-// fragment that falls in it, so boxes share a pass only when their
-// rectangles are disjoint; the others go to further passes (greedy, in the
-// order given, at most 64 tiles a pass).
+// fragment that falls in it, whichever box it came from, so by default
+// boxes share a pass only when their rectangles are disjoint; the others go
+// to further passes (greedy, in the order given, at most 64 tiles a pass).
+// With shared_passes, overlapping boxes share passes too: another box's
+// fragments in a tile can only make its box look visible, never occluded,
+// so this stays conservative; it trades culling for fewer passes (strategy
+// "occu-hier-shared").
 //
 // Adaptive culling (paper, section 5): with a threshold t > 0 a box counts
 // as occluded when NOHC <= t * PHC, i.e. when at most that fraction of its
@@ -15,7 +19,10 @@
 //
 // Boxes that contain the eye or reach in front of the near plane are
 // visible without a query: their rasterized faces need not cover what they
-// hold (spec issue 13).
+// hold (spec issue 13). So are boxes whose screen rectangle covers more
+// than max_test_area of the viewport: testing them costs most (the unit
+// counts every fragment of the box) and they are rarely hidden; their
+// children are tested instead. 1 tests every box.
 #pragma once
 
 #include <array>
@@ -30,10 +37,10 @@ class OcclusionUnitCuller final : public Culler {
 public:
     // Needs a current context with GL_MESAX_occlusion_unit; throws
     // std::runtime_error otherwise, and std::invalid_argument for a
-    // threshold outside [0, 1).
-    explicit OcclusionUnitCuller(float adaptive_threshold = 0.0f);
+    // threshold outside [0, 1) or a test area outside (0, 1].
+    explicit OcclusionUnitCuller(const CullerOptions &options = {}, bool shared_passes = false);
 
-    std::string_view name() const override { return "occu-hier"; }
+    std::string_view name() const override { return shared_passes_ ? "occu-hier-shared" : "occu-hier"; }
     bool conservative() const override { return threshold_ == 0.0f; }
     void begin_frame(const Camera &camera) override;
     Visibility test(const Aabb &box) override;
@@ -46,10 +53,13 @@ private:
     };
     // False when the box needs no query (eye inside, near plane crossed).
     bool screen_rect(const Aabb &box, Rect &rect) const;
+    double area_fraction(const Rect &rect) const;
     void run_pass(const std::vector<Aabb> &boxes, const std::vector<std::size_t> &members,
                   const std::vector<Rect> &rects, std::vector<Visibility> &results);
 
     float threshold_;
+    bool shared_passes_;
+    double max_test_area_;
     Camera camera_;
     glm::mat4 view_projection_{1.0f};
     GLint viewport_[4] = {0, 0, 1, 1};

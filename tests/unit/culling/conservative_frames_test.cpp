@@ -1,6 +1,7 @@
 // Conservative strategies never remove a visible pixel: on short routes of
-// a small city, every frame drawn with vfc and with occu-hier (batched and
-// strictly front to back) equals the unculled frame byte for byte, while
+// a small city, every frame drawn with vfc, with occu-hier (batched and
+// strictly front to back, testing every box) and with occu-hier-shared
+// (overlapping boxes share passes) equals the unculled frame byte for byte, while
 // occu-hier draws fewer triangles (so the comparison can fail).
 // Runs on the driver meson selects with GALLIUM_DRIVER.
 #include <gtest/gtest.h>
@@ -50,7 +51,10 @@ TEST(ConservativeCulling, FramesEqualUnculledFrames)
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
 
-    auto none = make_culler("none"), vfc = make_culler("vfc"), occu = make_culler("occu-hier");
+    CullerOptions test_everything;
+    test_everything.max_test_area = 1.0;
+    auto none = make_culler("none"), vfc = make_culler("vfc"), occu = make_culler("occu-hier", test_everything);
+    auto shared = make_culler("occu-hier-shared");
     std::uint64_t drawn_none = 0, drawn_occu = 0;
     for (const char *route : {"dense", "medium", "open"}) {
         const auto cameras = make_route(route, scene.bounds, city, 5, 1.0f);
@@ -59,12 +63,40 @@ TEST(ConservativeCulling, FramesEqualUnculledFrames)
             const Frame culled_vfc = draw(ctx, renderer, h, *vfc, cameras[f], 16);
             const Frame culled_one = draw(ctx, renderer, h, *occu, cameras[f], 1);
             const Frame culled_batch = draw(ctx, renderer, h, *occu, cameras[f], 16);
+            const Frame culled_shared = draw(ctx, renderer, h, *shared, cameras[f], 32);
             EXPECT_TRUE(reference.pixels == culled_vfc.pixels) << route << " frame " << f << ": vfc";
             EXPECT_TRUE(reference.pixels == culled_one.pixels) << route << " frame " << f << ": occu-hier, batch 1";
             EXPECT_TRUE(reference.pixels == culled_batch.pixels) << route << " frame " << f << ": occu-hier, batch 16";
+            EXPECT_TRUE(reference.pixels == culled_shared.pixels) << route << " frame " << f << ": occu-hier-shared";
             drawn_none += reference.triangles;
             drawn_occu += culled_batch.triangles;
         }
     }
     EXPECT_LT(drawn_occu, drawn_none / 2) << "occu-hier culled too little for the comparison to mean anything";
+}
+
+// The same at a distance: the default city seen from the open route, where
+// depth resolution is coarse and proxy faces lie on the surfaces they bound.
+TEST(ConservativeCulling, FramesEqualUnculledFramesFarAway)
+{
+    gl::OffscreenContext ctx(256, 256);
+    const CityOptions city;
+    const Scene scene = generate_city(city);
+    const Hierarchy h = Hierarchy::build(scene);
+    SceneRenderer renderer(scene, h);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_CULL_FACE);
+    CullerOptions test_everything;
+    test_everything.max_test_area = 1.0;
+    auto none = make_culler("none"), occu = make_culler("occu-hier", test_everything);
+    const auto cameras = make_route("open", scene.bounds, city, 3, 1.0f);
+    std::uint64_t drawn_none = 0, drawn_occu = 0;
+    for (std::size_t f = 0; f < cameras.size(); ++f) {
+        const Frame reference = draw(ctx, renderer, h, *none, cameras[f], 16);
+        const Frame culled = draw(ctx, renderer, h, *occu, cameras[f], 16);
+        EXPECT_TRUE(reference.pixels == culled.pixels) << "open frame " << f;
+        drawn_none += reference.triangles;
+        drawn_occu += culled.triangles;
+    }
+    EXPECT_LT(drawn_occu, drawn_none) << "occu-hier culled nothing";
 }

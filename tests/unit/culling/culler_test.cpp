@@ -24,8 +24,15 @@ TEST(MakeCuller, KnownNamesAndAnErrorNamingTheUnknownOne)
         EXPECT_NE(what.find("'zbuffer-magic'"), std::string::npos) << what;
         EXPECT_NE(what.find("vfc"), std::string::npos) << what;
     }
-    EXPECT_FALSE(make_culler("occu-hier", 0.1f)->conservative());
-    EXPECT_THROW(make_culler("occu-hier", 1.5f), std::invalid_argument);
+    CullerOptions adaptive;
+    adaptive.adaptive_threshold = 0.1f;
+    EXPECT_FALSE(make_culler("occu-hier", adaptive)->conservative());
+    CullerOptions bad;
+    bad.adaptive_threshold = 1.5f;
+    EXPECT_THROW(make_culler("occu-hier", bad), std::invalid_argument);
+    bad = CullerOptions{};
+    bad.max_test_area = 0.0;
+    EXPECT_THROW(make_culler("occu-hier", bad), std::invalid_argument);
 }
 
 TEST(Vfc, CullsOnlyWhatTheFrustumExcludes)
