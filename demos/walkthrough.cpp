@@ -4,8 +4,8 @@
 //   walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
-//               [--threshold T] [--max-test-area A] [--png-every N] [--oracle on|off]
-//               [--out DIR]
+//               [--threshold T] [--max-test-area A] [--coherent on|off]
+//               [--png-every N] [--oracle on|off] [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
 // and the top view DIR/<strategy>-top-NNNN.png every --png-every frames, and
@@ -49,6 +49,7 @@ struct Options {
     double max_test_area = 0.25;
     int png_every = 20;
     bool oracle = true;
+    bool coherent = true;
     std::string out = "walkthrough-out";
 };
 
@@ -58,7 +59,7 @@ struct Options {
                  "%s%susage: walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier,...]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"
-                 "                   [--png-every N] [--oracle on|off] [--out DIR]\n",
+                 "                   [--coherent on|off] [--png-every N] [--oracle on|off] [--out DIR]\n",
                  error.empty() ? "" : ("walkthrough: " + error + "\n").c_str(), "");
     std::exit(error.empty() ? 0 : 2);
 }
@@ -100,6 +101,11 @@ Options parse(int argc, char **argv)
         else if (a == "--batch") o.batch = to_int(a, v, 1, 4096);
         else if (a == "--png-every") o.png_every = to_int(a, v, 0, 100000);
         else if (a == "--out") o.out = v;
+        else if (a == "--coherent") {
+            if (v != "on" && v != "off")
+                usage("--coherent wants on or off, got '" + v + "'");
+            o.coherent = v == "on";
+        }
         else if (a == "--oracle") {
             if (v != "on" && v != "off")
                 usage("--oracle wants on or off, got '" + v + "'");
@@ -177,11 +183,14 @@ int main(int argc, char **argv)
             co.max_test_area = o.max_test_area;
             auto culler = make_culler(name, co);
             Summary &s = summary[name];
+            // Temporal coherence for the strategies that test occlusion.
+            Coherence coherence;
+            Coherence *use_coherence = o.coherent && name.rfind("occu-", 0) == 0 ? &coherence : nullptr;
             for (std::size_t f = 0; f < route.size(); ++f) {
                 const auto start = std::chrono::steady_clock::now();
                 glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
                 load_camera(route[f]);
-                const FrameStats st = render_hierarchy(renderer, hierarchy, *culler, route[f], to);
+                const FrameStats st = render_hierarchy(renderer, hierarchy, *culler, route[f], to, use_coherence);
                 glFinish();
                 const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                 s.ms.push_back(ms);

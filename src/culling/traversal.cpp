@@ -23,10 +23,21 @@ void load_camera(const Camera &camera)
 }
 
 FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler,
-                            const Camera &camera, const TraversalOptions &options)
+                            const Camera &camera, const TraversalOptions &options, Coherence *coherence)
 {
     FrameStats stats;
     const auto &nodes = hierarchy.nodes();
+    std::vector<std::uint8_t> visible_now;
+    if (coherence) {
+        coherence->visible_last_frame.resize(nodes.size(), 0);
+        visible_now.assign(nodes.size(), 0);
+    }
+    const Frustum frustum(camera.view_projection());
+    // Taken as visible without a test: visible last frame and not due.
+    auto assumed_visible = [&](std::uint32_t n) {
+        return coherence && coherence->visible_last_frame[n] &&
+               (coherence->frame + n) % std::max<std::uint32_t>(1, coherence->retest_period) != 0;
+    };
     using Entry = std::pair<float, std::uint32_t>;   // distance, node
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front;
     front.push({distance_to(nodes[0].bounds, camera.position), 0});
@@ -38,15 +49,28 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     while (!front.empty()) {
         batch.clear();
         boxes.clear();
+        std::vector<std::uint32_t> assumed;
         while (!front.empty() && batch.size() < std::max<std::size_t>(1, options.batch)) {
-            batch.push_back(front.top().second);
-            boxes.push_back(nodes[front.top().second].bounds);
+            const std::uint32_t n = front.top().second;
             front.pop();
+            if (assumed_visible(n) && frustum.classify(nodes[n].bounds) != Frustum::Side::outside) {
+                assumed.push_back(n);
+                continue;
+            }
+            batch.push_back(n);
+            boxes.push_back(nodes[n].bounds);
         }
         culler.test_many(boxes, results);
         stats.nodes_tested += std::uint32_t(batch.size());
+        // Assumed-visible nodes join the batch's results as visible.
+        for (std::uint32_t n : assumed) {
+            batch.push_back(n);
+            results.push_back(Visibility::visible);
+        }
         for (std::size_t i = 0; i < batch.size(); ++i) {
             const HierarchyNode &n = nodes[batch[i]];
+            if (coherence && results[i] == Visibility::visible)
+                visible_now[batch[i]] = 1;
             if (results[i] == Visibility::view_culled) {
                 ++stats.nodes_view_culled;
             } else if (results[i] == Visibility::occluded) {
@@ -63,6 +87,10 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
         }
     }
     stats.passes = culler.passes();
+    if (coherence) {
+        coherence->visible_last_frame.swap(visible_now);
+        ++coherence->frame;
+    }
     return stats;
 }
 

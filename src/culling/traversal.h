@@ -19,6 +19,20 @@ struct TraversalOptions {
     std::size_t batch = 16;
 };
 
+// Temporal coherence (Greene et al.'s visible node list, as in Moeller and
+// Haines): nodes that were visible in the previous frame are taken as
+// visible again without an occlusion test, except every `retest_period`
+// frames (staggered by node), so that nodes which became hidden are found.
+// Drawing a node that is hidden is only wasted work, never a wrong pixel,
+// so this keeps a conservative strategy conservative, and it removes the
+// test cost where the scene has little occlusion. One per strategy and
+// hierarchy, kept across frames.
+struct Coherence {
+    std::vector<std::uint8_t> visible_last_frame;   // by node
+    std::uint32_t frame = 0;
+    std::uint32_t retest_period = 8;
+};
+
 struct FrameStats {
     std::uint64_t triangles = 0;
     std::uint32_t leaves_drawn = 0;
@@ -31,8 +45,9 @@ struct FrameStats {
 
 // Draws one frame into the current context's bound framebuffer (the caller
 // clears it and sets the camera's matrices) and returns what it did.
+// With `coherence`, uses and updates it (see Coherence).
 FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler,
-                            const Camera &camera, const TraversalOptions &options);
+                            const Camera &camera, const TraversalOptions &options, Coherence *coherence = nullptr);
 
 // Loads the camera's projection and view into GL's fixed-function matrices.
 void load_camera(const Camera &camera);

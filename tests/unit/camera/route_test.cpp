@@ -1,6 +1,7 @@
 #include "camera/route.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -22,7 +23,8 @@ TEST(Route, BuiltInRoutesHaveTheFramesAsked)
 
 TEST(Route, FileRoutesAndErrorsNamingFileAndLine)
 {
-    const std::string path = ::testing::TempDir() + "occu_route_test.txt";
+    // Per process: meson runs this binary once per driver, at the same time.
+    const std::string path = ::testing::TempDir() + "occu_route_test_" + std::to_string(getpid()) + ".txt";
     {
         std::ofstream f(path);
         f << "# a two-camera route\n0 1.7 0  10 1.7 0\n\n5 2 5 5 2 -5  # comment\n";

@@ -1,7 +1,8 @@
 // Conservative strategies never remove a visible pixel: on short routes of
 // a small city, every frame drawn with vfc, with occu-hier (batched and
 // strictly front to back, testing every box) and with occu-hier-shared
-// (overlapping boxes share passes) equals the unculled frame byte for byte, while
+// (overlapping boxes share passes), also with temporal coherence across the
+// route's frames, equals the unculled frame byte for byte, while
 // occu-hier draws fewer triangles (so the comparison can fail).
 // Runs on the driver meson selects with GALLIUM_DRIVER.
 #include <gtest/gtest.h>
@@ -24,13 +25,13 @@ struct Frame {
 };
 
 Frame draw(const gl::OffscreenContext &ctx, const SceneRenderer &renderer, const Hierarchy &h, Culler &culler,
-           const Camera &camera, std::size_t batch)
+           const Camera &camera, std::size_t batch, Coherence *coherence = nullptr)
 {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     load_camera(camera);
     TraversalOptions o;
     o.batch = batch;
-    const FrameStats s = render_hierarchy(renderer, h, culler, camera, o);
+    const FrameStats s = render_hierarchy(renderer, h, culler, camera, o, coherence);
     glFinish();
     const std::size_t n = std::size_t(ctx.width()) * std::size_t(ctx.height()) * 4;
     return {std::vector<std::uint8_t>(ctx.pixels(), ctx.pixels() + n), s.triangles};
@@ -58,16 +59,21 @@ TEST(ConservativeCulling, FramesEqualUnculledFrames)
     std::uint64_t drawn_none = 0, drawn_occu = 0;
     for (const char *route : {"dense", "medium", "open"}) {
         const auto cameras = make_route(route, scene.bounds, city, 5, 1.0f);
+        Coherence coherence;
+        coherence.retest_period = 3;
         for (std::size_t f = 0; f < cameras.size(); ++f) {
             const Frame reference = draw(ctx, renderer, h, *none, cameras[f], 16);
             const Frame culled_vfc = draw(ctx, renderer, h, *vfc, cameras[f], 16);
             const Frame culled_one = draw(ctx, renderer, h, *occu, cameras[f], 1);
             const Frame culled_batch = draw(ctx, renderer, h, *occu, cameras[f], 16);
             const Frame culled_shared = draw(ctx, renderer, h, *shared, cameras[f], 32);
+            const Frame culled_coherent = draw(ctx, renderer, h, *shared, cameras[f], 32, &coherence);
             EXPECT_TRUE(reference.pixels == culled_vfc.pixels) << route << " frame " << f << ": vfc";
             EXPECT_TRUE(reference.pixels == culled_one.pixels) << route << " frame " << f << ": occu-hier, batch 1";
             EXPECT_TRUE(reference.pixels == culled_batch.pixels) << route << " frame " << f << ": occu-hier, batch 16";
             EXPECT_TRUE(reference.pixels == culled_shared.pixels) << route << " frame " << f << ": occu-hier-shared";
+            EXPECT_TRUE(reference.pixels == culled_coherent.pixels)
+                << route << " frame " << f << ": occu-hier-shared with temporal coherence";
             drawn_none += reference.triangles;
             drawn_occu += culled_batch.triangles;
         }

@@ -1,6 +1,7 @@
 #include "image/png.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <stdexcept>
@@ -13,7 +14,8 @@ TEST(Png, WritesBottomUpRowsTopFirstAndReadsThemBack)
     // Bottom row red, top row blue, as glReadPixels returns them.
     std::vector<std::uint8_t> rgba = {255, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255,
                                       0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255, 255};
-    const std::string path = ::testing::TempDir() + "occu_png_test.png";
+    // Per process: meson runs this binary once per driver, at the same time.
+    const std::string path = ::testing::TempDir() + "occu_png_test_" + std::to_string(getpid()) + ".png";
     write_png(path, w, h, rgba.data());
     int rw = 0, rh = 0;
     const auto back = read_png(path, rw, rh);
