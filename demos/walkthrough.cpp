@@ -4,7 +4,7 @@
 //   walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
-//               [--threshold T] [--max-test-area A] [--coherent on|off]
+//               [--threshold T] [--max-test-area A] [--coherent on|off] [--switch-off F]
 //               [--png-every N] [--oracle on|off] [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
@@ -50,6 +50,7 @@ struct Options {
     int png_every = 20;
     bool oracle = true;
     bool coherent = true;
+    float switch_off = 0.5f;
     std::string out = "walkthrough-out";
 };
 
@@ -59,7 +60,8 @@ struct Options {
                  "%s%susage: walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier,...]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"
-                 "                   [--coherent on|off] [--png-every N] [--oracle on|off] [--out DIR]\n",
+                 "                   [--coherent on|off] [--switch-off F] [--png-every N] [--oracle on|off]\n"
+                 "                   [--out DIR]\n",
                  error.empty() ? "" : ("walkthrough: " + error + "\n").c_str(), "");
     std::exit(error.empty() ? 0 : 2);
 }
@@ -101,6 +103,12 @@ Options parse(int argc, char **argv)
         else if (a == "--batch") o.batch = to_int(a, v, 1, 4096);
         else if (a == "--png-every") o.png_every = to_int(a, v, 0, 100000);
         else if (a == "--out") o.out = v;
+        else if (a == "--switch-off") {
+            char *end = nullptr;
+            o.switch_off = std::strtof(v.c_str(), &end);
+            if (v.empty() || *end || !(o.switch_off >= 0.0f && o.switch_off <= 1.0f))
+                usage("--switch-off wants a number in [0, 1], got '" + v + "'");
+        }
         else if (a == "--coherent") {
             if (v != "on" && v != "off")
                 usage("--coherent wants on or off, got '" + v + "'");
@@ -185,6 +193,7 @@ int main(int argc, char **argv)
             Summary &s = summary[name];
             // Temporal coherence for the strategies that test occlusion.
             Coherence coherence;
+            coherence.switch_off_fraction = o.switch_off;
             Coherence *use_coherence = o.coherent && name.rfind("occu-", 0) == 0 ? &coherence : nullptr;
             for (std::size_t f = 0; f < route.size(); ++f) {
                 const auto start = std::chrono::steady_clock::now();

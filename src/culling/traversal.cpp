@@ -33,10 +33,18 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
         visible_now.assign(nodes.size(), 0);
     }
     const Frustum frustum(camera.view_projection());
+    // Occlusion switched off: this frame tests the frustum only, unless it probes.
+    // A probe frame tests everything afresh, so that it measures what
+    // occlusion culling would gain now.
+    const bool off = coherence && coherence->occlusion_off;
+    const bool probe = off && coherence->frame % std::max<std::uint32_t>(1, coherence->probe_period) == 0;
+    const bool switched_off = off && !probe;
+    stats.occlusion_tested = !switched_off;
     // Taken as visible without a test: visible last frame and not due.
     auto assumed_visible = [&](std::uint32_t n) {
-        return coherence && coherence->visible_last_frame[n] &&
-               (coherence->frame + n) % std::max<std::uint32_t>(1, coherence->retest_period) != 0;
+        return switched_off ||
+               (!probe && coherence && coherence->visible_last_frame[n] &&
+                (coherence->frame + n) % std::max<std::uint32_t>(1, coherence->retest_period) != 0);
     };
     using Entry = std::pair<float, std::uint32_t>;   // distance, node
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front;
@@ -75,6 +83,7 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
                 ++stats.nodes_view_culled;
             } else if (results[i] == Visibility::occluded) {
                 ++stats.nodes_occluded;
+                stats.triangles_occluded += n.subtree_triangles;
             } else if (n.leaf()) {
                 stats.triangles += renderer.draw_leaf(batch[i]);
                 ++stats.leaves_drawn;
@@ -89,6 +98,9 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     stats.passes = culler.passes();
     if (coherence) {
         coherence->visible_last_frame.swap(visible_now);
+        if (stats.occlusion_tested)
+            coherence->occlusion_off = double(stats.triangles_occluded) <
+                                       double(coherence->switch_off_fraction) * double(stats.triangles);
         ++coherence->frame;
     }
     return stats;

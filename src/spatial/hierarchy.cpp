@@ -107,6 +107,13 @@ Hierarchy Hierarchy::build(const Scene &scene, const HierarchyOptions &options)
     h.nodes_.resize(1);
     h.triangles_.reserve(items.size());
     Builder(h.nodes_, h.triangles_, options).build(0, std::move(items), 0);
+    // Children always come after their parent: sum from the back.
+    for (std::size_t i = h.nodes_.size(); i-- > 0;) {
+        HierarchyNode &n = h.nodes_[i];
+        n.subtree_triangles = n.triangle_count;
+        for (std::uint32_t c = 0; c < n.child_count; ++c)
+            n.subtree_triangles += h.nodes_[n.first_child + c].subtree_triangles;
+    }
     return h;
 }
 

@@ -25,6 +25,7 @@ struct HierarchyNode {
     std::uint32_t first_child = 0, child_count = 0;          // nodes[first_child ..]
     std::uint32_t first_triangle = 0, triangle_count = 0;    // leaves: triangles[first_triangle ..]
     std::uint32_t depth = 0;
+    std::uint32_t subtree_triangles = 0;   // in this node's leaves
     bool leaf() const { return child_count == 0; }
 };
 
