@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -169,15 +170,18 @@ int main(int argc, char **argv)
         if (!csv)
             throw std::runtime_error("cannot write '" + o.out + "/frames.csv'");
         csv << "strategy,route,frame,ms,triangles,leaves_drawn,nodes_tested,passes,view_culled,occluded,culled_percent,"
-               "oracle_visible_leaves,oracle_occluded_leaves,occluded_leaves_culled,visible_leaves_culled\n";
+               "oracle_visible_leaves,oracle_occluded_leaves,occluded_leaves_culled,visible_leaves_culled,wrong_pixels\n";
         std::vector<VisibilityTruth> truths(route.size());
+        auto reference_culler = make_culler("none");
+        std::vector<std::uint8_t> reference;
         std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s\n", scene.triangle_count(),
                     hierarchy.leaf_count(), o.route.c_str(), route.size(), o.size, o.size, ctx.renderer().c_str());
 
         struct Summary {
             std::vector<double> ms;
             double triangles = 0, passes = 0;
-            std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0;
+            std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0, wrong_pixels = 0;
+            bool conservative = true;
         };
         std::map<std::string, Summary> summary;
         TraversalOptions to;
@@ -205,6 +209,21 @@ int main(int argc, char **argv)
                 s.ms.push_back(ms);
                 s.triangles += double(st.triangles);
                 s.passes += st.passes;
+                // Approximate strategies: count the pixels that differ from the
+                // unculled frame (drawn untimed, after the measured one).
+                std::uint64_t wrong = 0;
+                s.conservative = culler->conservative();
+                if (!culler->conservative()) {
+                    const std::size_t n = std::size_t(o.size) * std::size_t(o.size) * 4;
+                    const std::vector<std::uint8_t> culled(ctx.pixels(), ctx.pixels() + n);
+                    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+                    render_hierarchy(renderer, hierarchy, *reference_culler, route[f], to);
+                    glFinish();
+                    for (std::size_t i = 0; i < n; i += 4)
+                        wrong += std::memcmp(&culled[i], ctx.pixels() + i, 4) != 0;
+                    s.wrong_pixels += wrong;
+                    std::memcpy(ctx.pixels_mutable(), culled.data(), n);   // the PNG shows the culled frame
+                }
                 if (o.png_every > 0 && f % std::size_t(o.png_every) == 0) {
                     char file[80];
                     std::snprintf(file, sizeof(file), "/%s-%04zu.png", name.c_str(), f);
@@ -227,7 +246,7 @@ int main(int argc, char **argv)
                     << ',' << st.nodes_tested << ',' << st.passes << ',' << st.nodes_view_culled << ','
                     << st.nodes_occluded << ',' << 100.0 * (1.0 - double(st.triangles) / double(scene.triangle_count()))
                     << ',' << truths[f].visible.size() << ',' << q.occluded << ',' << q.occluded_culled << ','
-                    << q.visible_culled << '\n';
+                    << q.visible_culled << ',' << wrong << '\n';
                 glEnable(GL_DEPTH_TEST);
                 glEnable(GL_CULL_FACE);
                 progress(name, int(f + 1), int(route.size()));
@@ -240,8 +259,8 @@ int main(int argc, char **argv)
             for (double x : v) t += x;
             return t / double(v.size());
         }() : 0.0;
-        std::printf("\n%-10s %10s %10s %12s %8s %8s %11s %14s\n", "strategy", "mean ms", "median ms", "triangles",
-                    "passes", "vs vfc", "efficiency", "visible culled");
+        std::printf("\n%-10s %10s %10s %12s %8s %8s %11s %14s %13s\n", "strategy", "mean ms", "median ms",
+                    "triangles", "passes", "vs vfc", "efficiency", "visible culled", "wrong pixels");
         for (const std::string &name : o.strategies) {
             Summary s = summary[name];
             double total = 0;
@@ -252,10 +271,13 @@ int main(int argc, char **argv)
             char efficiency[32] = "-";
             if (o.oracle && s.occluded)
                 std::snprintf(efficiency, sizeof(efficiency), "%.1f%%", 100.0 * double(s.occluded_culled) / double(s.occluded));
-            std::printf("%-10s %10.2f %10.2f %12.0f %8.1f %8s %11s %14llu\n", name.c_str(), mean, s.ms[s.ms.size() / 2],
-                        s.triangles / n, s.passes / n,
+            char wrong[32] = "-";
+            if (!s.conservative)
+                std::snprintf(wrong, sizeof(wrong), "%.1f", double(s.wrong_pixels) / n);
+            std::printf("%-10s %10.2f %10.2f %12.0f %8.1f %8s %11s %14llu %13s\n", name.c_str(), mean,
+                        s.ms[s.ms.size() / 2], s.triangles / n, s.passes / n,
                         vfc_ms > 0 ? (std::to_string(vfc_ms / mean).substr(0, 5) + "x").c_str() : "-", efficiency,
-                        (unsigned long long)s.visible_culled);
+                        (unsigned long long)s.visible_culled, wrong);
         }
         std::printf("\nframes: %s/<strategy>-NNNN.png; top views: %s/<strategy>-top-NNNN.png; per-frame data: "
                     "%s/frames.csv\n",

@@ -39,6 +39,7 @@ public:
     int height() const { return height_; }
     // Colour buffer, RGBA8, bottom row first.
     const std::uint8_t *pixels() const { return pixels_.data(); }
+    std::uint8_t *pixels_mutable() { return pixels_.data(); }
 
     std::string renderer() const;
     std::string version() const;
