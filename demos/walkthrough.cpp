@@ -1,7 +1,7 @@
 // walkthrough: renders a route through a scene with several culling
 // strategies and reports what each drew and how long it took.
 //
-//   walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]
+//   walkthrough [--scene FILE] [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
 //               [--threshold T] [--max-test-area A] [--coherent on|off] [--switch-off F]
@@ -34,11 +34,13 @@
 #include "image/png.h"
 #include "render/top_view.h"
 #include "scene/city.h"
+#include "scene/scene_file.h"
 
 namespace {
 
 struct Options {
     std::string route = "dense";
+    std::string scene;   // empty: the procedural city
     std::vector<std::string> strategies = {"none", "vfc", "occu-hier", "occu-hier-shared"};
     int frames = 60;
     int size = 512;
@@ -58,7 +60,8 @@ struct Options {
 [[noreturn]] void usage(const std::string &error)
 {
     std::fprintf(stderr,
-                 "%s%susage: walkthrough [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier,...]\n"
+                 "%s%susage: walkthrough [--scene FILE] [--route dense|medium|open|FILE]\n"
+                 "                   [--strategies none,vfc,occu-hier,occu-hier-shared]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"
                  "                   [--coherent on|off] [--switch-off F] [--png-every N] [--oracle on|off]\n"
@@ -87,6 +90,7 @@ Options parse(int argc, char **argv)
             usage("unknown argument or missing value: '" + a + "'");
         const std::string v = argv[++i];
         if (a == "--route") o.route = v;
+        else if (a == "--scene") o.scene = v;
         else if (a == "--strategies") {
             o.strategies.clear();
             std::stringstream ss(v);
@@ -157,7 +161,8 @@ int main(int argc, char **argv)
         gl::select_driver(gl::parse_driver(o.driver));
         CityOptions city;
         city.copies = o.city_copies;
-        const Scene scene = generate_city(city);
+        // A user scene (OBJ, glTF, ... through assimp) or the default city.
+        const Scene scene = o.scene.empty() ? generate_city(city) : load_scene(o.scene);
         HierarchyOptions ho;
         ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
         const Hierarchy hierarchy = Hierarchy::build(scene, ho);

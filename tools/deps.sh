@@ -14,6 +14,7 @@ BUILD_PACKAGES=(
     libdrm-dev libelf-dev zlib1g-dev libzstd-dev libexpat1-dev
     libglvnd-dev libglvnd-core-dev
     g++ libglm-dev libgtest-dev libpng-dev
+    libassimp-dev       # user scenes (OBJ, glTF)
 )
 # To run the piglit regression run on the patched driver.
 TEST_PACKAGES=(
