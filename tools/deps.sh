@@ -7,6 +7,7 @@ source "$(dirname "$0")/lib.sh"
 # To build Mesa (gallium swrast, OSMesa, EGL surfaceless with glvnd) and occu.
 BUILD_PACKAGES=(
     dpkg-dev            # apt-get source unpacks with dpkg-source
+    git                 # the Mesa tree is a git repository (pristine commit, worktrees)
     meson ninja-build pkg-config ccache
     python3-mako        # for /usr/bin/python3, which runs Mesa's generators
     flex bison
