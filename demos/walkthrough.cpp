@@ -5,6 +5,7 @@
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
 //               [--threshold T] [--max-test-area A] [--coherent on|off] [--switch-off F]
+//               [--occluders N] [--tolerance PIXELS]
 //               [--png-every N] [--oracle on|off] [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
@@ -50,6 +51,8 @@ struct Options {
     int batch = 16;
     float threshold = 0.0f;
     double max_test_area = 0.25;
+    int occluders = 64;
+    int tolerance = 0;
     int png_every = 20;
     bool oracle = true;
     bool coherent = true;
@@ -64,7 +67,8 @@ struct Options {
                  "                   [--strategies none,vfc,occu-hier,occu-hier-shared]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"
-                 "                   [--coherent on|off] [--switch-off F] [--png-every N] [--oracle on|off]\n"
+                 "                   [--coherent on|off] [--switch-off F] [--occluders N] [--tolerance PIXELS]\n"
+                 "                   [--png-every N] [--oracle on|off]\n"
                  "                   [--out DIR]\n",
                  error.empty() ? "" : ("walkthrough: " + error + "\n").c_str(), "");
     std::exit(error.empty() ? 0 : 2);
@@ -107,6 +111,8 @@ Options parse(int argc, char **argv)
         else if (a == "--leaf-triangles") o.leaf_triangles = to_int(a, v, 1, 1 << 20);
         else if (a == "--batch") o.batch = to_int(a, v, 1, 4096);
         else if (a == "--png-every") o.png_every = to_int(a, v, 0, 100000);
+        else if (a == "--occluders") o.occluders = to_int(a, v, 1, 1 << 20);
+        else if (a == "--tolerance") o.tolerance = to_int(a, v, 0, 1 << 20);
         else if (a == "--out") o.out = v;
         else if (a == "--switch-off") {
             char *end = nullptr;
@@ -198,6 +204,10 @@ int main(int argc, char **argv)
             CullerOptions co;
             co.adaptive_threshold = o.threshold;
             co.max_test_area = o.max_test_area;
+            co.occluders = std::size_t(o.occluders);
+            co.tolerance = std::uint32_t(o.tolerance);
+            co.hierarchy = &hierarchy;
+            co.renderer = &renderer;
             auto culler = make_culler(name, co);
             Summary &s = summary[name];
             // Temporal coherence for the strategies that test occlusion.

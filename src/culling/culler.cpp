@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "culling/occlusion_unit_culler.h"
+#include "culling/opacity_map_culler.h"
 
 namespace occu {
 
@@ -48,7 +49,7 @@ private:
 
 std::vector<std::string> culler_names()
 {
-    return {"none", "vfc", "occu-hier", "occu-hier-shared"};
+    return {"none", "vfc", "occu-hier", "occu-hier-shared", "om-ps"};
 }
 
 std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &options)
@@ -57,6 +58,14 @@ std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &
         return std::make_unique<OcclusionUnitCuller>(options, false);
     if (name == "occu-hier-shared")
         return std::make_unique<OcclusionUnitCuller>(options, true);
+    if (name == "om-ps") {
+        if (!options.hierarchy || !options.renderer)
+            throw std::invalid_argument("om-ps needs the hierarchy and renderer it draws occluders from");
+        OpacityMapOptions om;
+        om.occluders = options.occluders;
+        om.tolerance = options.tolerance;
+        return std::make_unique<OpacityMapCuller>(*options.hierarchy, *options.renderer, om);
+    }
     if (name == "none")
         return std::make_unique<NoCulling>();
     if (name == "vfc")

@@ -49,14 +49,23 @@ public:
     virtual std::uint32_t passes() const { return 0; }
 };
 
-// The knobs of the occlusion strategies (see occlusion_unit_culler.h).
+class Hierarchy;
+class SceneRenderer;
+
+// The knobs of the occlusion strategies (occlusion_unit_culler.h,
+// opacity_map_culler.h).
 struct CullerOptions {
-    float adaptive_threshold = 0.0f;   // occluded when NOHC <= t * PHC; 0: exact
-    double max_test_area = 0.25;       // boxes covering more of the viewport are not tested
+    float adaptive_threshold = 0.0f;   // occu-hier: occluded when NOHC <= t * PHC; 0: exact
+    double max_test_area = 0.25;       // occu-hier: boxes covering more of the viewport are not tested
+    std::size_t occluders = 64;        // om-ps: leaves rendered as occluders
+    std::uint32_t tolerance = 0;       // om-ps: hole pixels the overlap test ignores; 0: exact
+    const Hierarchy *hierarchy = nullptr;         // om-ps draws occluders from these
+    const SceneRenderer *renderer = nullptr;
 };
 
 // Strategies by name: "none", "vfc", and with a current GL context that
-// advertises GL_MESAX_occlusion_unit, "occu-hier" and "occu-hier-shared".
+// advertises GL_MESAX_occlusion_unit, "occu-hier" and "occu-hier-shared";
+// with a context and options.hierarchy/renderer, "om-ps".
 // Throws std::invalid_argument naming the unknown strategy and the known ones.
 std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &options = {});
 std::vector<std::string> culler_names();

@@ -5,14 +5,25 @@
 #include <stdexcept>
 
 #include "gl/offscreen_context.h"
+#include "render/scene_renderer.h"
 
 using namespace occu;
 
 TEST(MakeCuller, KnownNamesAndAnErrorNamingTheUnknownOne)
 {
     gl::OffscreenContext ctx(8, 8);   // occu-hier queries the context's extensions
+    Scene scene;
+    scene.meshes.emplace_back();
+    append_box(scene.meshes[0], Aabb::of({0, 0, 0}, {1, 1, 1}));
+    scene.update_bounds();
+    const Hierarchy h = Hierarchy::build(scene);
+    const SceneRenderer renderer(scene, h);   // om-ps draws occluders with it
+    CullerOptions with_scene;
+    with_scene.hierarchy = &h;
+    with_scene.renderer = &renderer;
+    EXPECT_THROW(make_culler("om-ps"), std::invalid_argument);
     for (const std::string &n : culler_names()) {
-        auto c = make_culler(n);
+        auto c = make_culler(n, with_scene);
         EXPECT_EQ(c->name(), n);
         EXPECT_TRUE(c->conservative());
     }
