@@ -42,7 +42,7 @@ namespace {
 struct Options {
     std::string route = "dense";
     std::string scene;   // empty: the procedural city
-    std::vector<std::string> strategies = {"none", "vfc", "occu-hier", "occu-hier-shared"};
+    std::vector<std::string> strategies = {"none", "vfc", "occu-hier", "occu-hier-shared", "om-ps"};
     int frames = 60;
     int size = 512;
     std::string driver = "llvmpipe";
@@ -274,7 +274,7 @@ int main(int argc, char **argv)
             for (double x : v) t += x;
             return t / double(v.size());
         }() : 0.0;
-        std::printf("\n%-10s %10s %10s %12s %8s %8s %11s %14s %13s\n", "strategy", "mean ms", "median ms",
+        std::printf("\n%-17s %10s %10s %12s %8s %8s %11s %14s %13s\n", "strategy", "mean ms", "median ms",
                     "triangles", "passes", "vs vfc", "efficiency", "visible culled", "wrong pixels");
         for (const std::string &name : o.strategies) {
             Summary s = summary[name];
@@ -289,7 +289,7 @@ int main(int argc, char **argv)
             char wrong[32] = "-";
             if (!s.conservative)
                 std::snprintf(wrong, sizeof(wrong), "%.1f", double(s.wrong_pixels) / n);
-            std::printf("%-10s %10.2f %10.2f %12.0f %8.1f %8s %11s %14llu %13s\n", name.c_str(), mean,
+            std::printf("%-17s %10.2f %10.2f %12.0f %8.1f %8s %11s %14llu %13s\n", name.c_str(), mean,
                         s.ms[s.ms.size() / 2], s.triangles / n, s.passes / n,
                         vfc_ms > 0 ? (std::to_string(vfc_ms / mean).substr(0, 5) + "x").c_str() : "-", efficiency,
                         (unsigned long long)s.visible_culled, wrong);
