@@ -2,6 +2,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+
 namespace occu {
 
 glm::mat4 Camera::view() const
@@ -12,6 +14,23 @@ glm::mat4 Camera::view() const
 glm::mat4 Camera::projection() const
 {
     return glm::perspective(glm::radians(fovy_degrees), aspect, near_plane, far_plane);
+}
+
+std::optional<BoxProjection> project_box(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box)
+{
+    if (box.contains(eye))
+        return std::nullopt;
+    BoxProjection p{glm::vec2(1e30f), glm::vec2(-1e30f), 1.0f};
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec4 c = view_projection * glm::vec4(box.corner(i), 1.0f);
+        if (c.w <= 0.0f || c.z < -c.w)
+            return std::nullopt;
+        const glm::vec2 ndc(c.x / c.w, c.y / c.w);
+        p.ndc_min = glm::min(p.ndc_min, ndc);
+        p.ndc_max = glm::max(p.ndc_max, ndc);
+        p.window_z_near = std::min(p.window_z_near, 0.5f * (c.z / c.w) + 0.5f);
+    }
+    return p;
 }
 
 Frustum::Frustum(const glm::mat4 &m)

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include <glm/glm.hpp>
 
@@ -26,6 +27,16 @@ struct Camera {
 
 // The six planes of a view-projection matrix, normals pointing inwards
 // (Gribb and Hartmann's extraction from the matrix rows).
+// A box's footprint on screen: normalized device x and y bounds and the
+// nearest window depth of its corners. Empty when the box holds the eye or
+// reaches in front of the near plane, where its projection is not its
+// footprint (occlusion tests then take the box as visible).
+struct BoxProjection {
+    glm::vec2 ndc_min, ndc_max;
+    float window_z_near;
+};
+std::optional<BoxProjection> project_box(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box);
+
 class Frustum {
 public:
     enum class Side { outside, intersecting, inside };

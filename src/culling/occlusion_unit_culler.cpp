@@ -28,26 +28,17 @@ void OcclusionUnitCuller::begin_frame(const Camera &camera)
 {
     camera_ = camera;
     view_projection_ = camera.view_projection();
+    frustum_.emplace(view_projection_);
     glGetIntegerv(GL_VIEWPORT, viewport_);
     passes_ = 0;
 }
 
 bool OcclusionUnitCuller::screen_rect(const Aabb &box, Rect &rect) const
 {
-    if (box.contains(camera_.position))
+    const auto p = project_box(view_projection_, camera_.position, box);
+    if (!p)
         return false;
-    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
-    for (int i = 0; i < 8; ++i) {
-        const glm::vec4 c = view_projection_ * glm::vec4(box.corner(i), 1.0f);
-        // In front of the near plane (z_clip < -w) or behind the eye: the
-        // projection is not the box's screen footprint.
-        if (c.w <= 0.0f || c.z < -c.w)
-            return false;
-        x0 = std::min(x0, c.x / c.w);
-        x1 = std::max(x1, c.x / c.w);
-        y0 = std::min(y0, c.y / c.w);
-        y1 = std::max(y1, c.y / c.w);
-    }
+    const float x0 = p->ndc_min.x, y0 = p->ndc_min.y, x1 = p->ndc_max.x, y1 = p->ndc_max.y;
     // Window pixels whose centres the projection can reach, one more each
     // side for rounding; clamped to the viewport (tiles past it are legal
     // but count nothing).
@@ -77,9 +68,8 @@ void OcclusionUnitCuller::test_many(const std::vector<Aabb> &boxes, std::vector<
     results.assign(boxes.size(), Visibility::visible);
     std::vector<Rect> rects(boxes.size());
     std::vector<std::size_t> pending;
-    const Frustum frustum(view_projection_);
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (frustum.classify(boxes[i]) == Frustum::Side::outside)
+        if (frustum_->classify(boxes[i]) == Frustum::Side::outside)
             results[i] = Visibility::view_culled;
         else if (screen_rect(boxes[i], rects[i]) && area_fraction(rects[i]) <= max_test_area_)
             pending.push_back(i);

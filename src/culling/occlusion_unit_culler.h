@@ -26,6 +26,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "culling/culler.h"
 #include "gl/gl_headers.h"
@@ -62,6 +63,7 @@ private:
     double max_test_area_;
     Camera camera_;
     glm::mat4 view_projection_{1.0f};
+    std::optional<Frustum> frustum_;   // of the frame, built once in begin_frame
     GLint viewport_[4] = {0, 0, 1, 1};
     std::uint32_t passes_ = 0;
     PFNGLSCISSORSMESAXPROC ScissorsMESAX_;

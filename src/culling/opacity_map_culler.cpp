@@ -25,7 +25,8 @@ void OpacityMapCuller::begin_frame(const Camera &camera)
 
     // Occluders by projected size: the leaves in the frustum whose boxes
     // subtend the largest solid angle (extent squared over distance squared).
-    const Frustum frustum(view_projection_);
+    frustum_.emplace(view_projection_);
+    const Frustum &frustum = *frustum_;
     std::vector<std::pair<float, std::uint32_t>> candidates;
     const auto &nodes = hierarchy_.nodes();
     for (std::uint32_t n = 0; n < nodes.size(); ++n) {
@@ -71,21 +72,12 @@ void OpacityMapCuller::begin_frame(const Camera &camera)
 
 Visibility OpacityMapCuller::test(const Aabb &box)
 {
-    if (Frustum(view_projection_).classify(box) == Frustum::Side::outside)
+    if (frustum_->classify(box) == Frustum::Side::outside)
         return Visibility::view_culled;
-    if (box.contains(camera_.position) || map_width_ == 0 || map_height_ == 0)
-        return Visibility::visible;
-    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f, z_near = 1.0f;
-    for (int i = 0; i < 8; ++i) {
-        const glm::vec4 c = view_projection_ * glm::vec4(box.corner(i), 1.0f);
-        if (c.w <= 0.0f || c.z < -c.w)
-            return Visibility::visible;   // crosses the near plane
-        x0 = std::min(x0, c.x / c.w);
-        x1 = std::max(x1, c.x / c.w);
-        y0 = std::min(y0, c.y / c.w);
-        y1 = std::max(y1, c.y / c.w);
-        z_near = std::min(z_near, 0.5f * (c.z / c.w) + 0.5f);
-    }
+    const auto p = project_box(view_projection_, camera_.position, box);
+    if (!p || map_width_ == 0 || map_height_ == 0)
+        return Visibility::visible;   // holds the eye or crosses the near plane
+    const float x0 = p->ndc_min.x, y0 = p->ndc_min.y, x1 = p->ndc_max.x, y1 = p->ndc_max.y;
     // Map pixels the rectangle touches, widened by one full-resolution pixel
     // for rounding; OPF coordinates: m0 < x <= m1.
     const float k = float(options_.divisor);
@@ -101,7 +93,7 @@ Visibility OpacityMapCuller::test(const Aabb &box)
     if (!opacity_->overlaps_fully(mx0, mx1, my0, my1, options_.tolerance))
         return Visibility::visible;
     // Behind every occluder pixel, with a margin for float z.
-    const float z = z_near - 1e-6f;
+    const float z = p->window_z_near - 1e-6f;
     const bool behind = depth_->worthwhile() ? depth_->behind(z, mx0, mx1 - 1, my0, my1 - 1)
                                              : depth_->behind_pixelwise(z, mx0, mx1 - 1, my0, my1 - 1);
     return behind ? Visibility::occluded : Visibility::visible;

@@ -49,6 +49,7 @@ private:
     OpacityMapOptions options_;
     Camera camera_;
     glm::mat4 view_projection_{1.0f};
+    std::optional<Frustum> frustum_;   // of the frame, built once in begin_frame
     GLint viewport_[4] = {0, 0, 1, 1};
     int map_width_ = 0, map_height_ = 0;
     std::optional<OpacityMap> opacity_;

@@ -65,3 +65,18 @@ TEST(Frustum, HugeCoordinatesStayFinite)
     EXPECT_EQ(f.classify(Aabb::of({-1e30f, -1e30f, -1e30f}, {1e30f, 1e30f, 1e30f})), Frustum::Side::intersecting);
     EXPECT_EQ(f.classify(Aabb::of({1e20f, 1e20f, -1e20f}, {2e20f, 2e20f, -1e19f})), Frustum::Side::outside);
 }
+
+TEST(ProjectBox, FootprintOrNothingNearTheEye)
+{
+    const Camera c = looking_down_minus_z();
+    const glm::mat4 vp = c.view_projection();
+    EXPECT_FALSE(project_box(vp, c.position, Aabb::of({-1, -1, -1}, {1, 1, 1})));        // holds the eye
+    EXPECT_FALSE(project_box(vp, c.position, Aabb::of({-1, -1, -3}, {1, 1, -0.5f})));    // crosses near (1)
+    const auto p = project_box(vp, c.position, Aabb::of({-1, -1, -10}, {1, 1, -5}));
+    ASSERT_TRUE(p);
+    EXPECT_NEAR(p->ndc_max.x, -p->ndc_min.x, 1e-6f);   // centred
+    EXPECT_LT(p->ndc_max.x, 1.0f);
+    // The nearest corner's window depth: the face at z = -5.
+    const glm::vec4 clip = vp * glm::vec4(1, 1, -5, 1);
+    EXPECT_NEAR(p->window_z_near, 0.5f * clip.z / clip.w + 0.5f, 1e-7f);
+}
