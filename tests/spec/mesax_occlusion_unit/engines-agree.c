@@ -5,7 +5,10 @@
  * once per process), by 63 tiles of 37 x 29 pixels starting at (-5, -7),
  * which straddle llvmpipe's 64 x 64 bins and so its threads, one 1x1 tile
  * on a bin corner (63, 64), and verbose lists of four tiles (compared as
- * sorted sets):
+ * sorted sets); and by four tiles on bin boundaries (the whole window
+ * among them), which llvmpipe sums per bin instead of per 4x4 block, so
+ * the whole-window record must also equal the same tile's record from a
+ * pass where a 1x1 tile sends one bin back to the per-block path:
  *   rectangles  200 overlapping axis-aligned rectangles on whole pixels,
  *               each at its own depth: every configuration, softpipe
  *               included, must give identical records (no tolerance).
@@ -30,11 +33,14 @@
 #define SIZE 256
 #define TILES 64
 #define LIST_TILES 4
+#define ALIGNED_TILES 4
 #define LIST_WORDS (8 + 2 * 300000)   /* fragments, not pixels: triangles overlap */
 
 struct records {
     GLuint brief[TILES][OU_BRIEF_SIZE];
     GLuint verbose[LIST_TILES][LIST_WORDS];
+    GLuint aligned[ALIGNED_TILES][OU_BRIEF_SIZE];   /* tiles on bin boundaries */
+    GLuint mixed[2][OU_BRIEF_SIZE];                 /* the window and a 1x1 tile */
 };
 
 struct results {
@@ -87,6 +93,10 @@ measure_scene(struct records *out, void (*draw)(void))
     ou_rect(60, 40, 200, 180, 0.45f);   /* the occluder, in GL_RENDER */
 
     ou_brief_pass(TILES, tiles, out->brief, draw);
+    const GLint aligned[4 * ALIGNED_TILES] = {0, 0, SIZE, SIZE, 64, 0, 128, SIZE, 0, 64, SIZE, 64, 128, 128, 128, 128};
+    ou_brief_pass(ALIGNED_TILES, aligned, out->aligned, draw);
+    const GLint mixed[4 * 2] = {0, 0, SIZE, SIZE, 63, 64, 1, 1};
+    ou_brief_pass(2, mixed, out->mixed, draw);
 
     GLuint *buffers[LIST_TILES];
     GLsizei sizes[LIST_TILES];
@@ -161,6 +171,12 @@ same(const struct records *a, const struct records *b, const char *name)
         if (!ou_check_record(what, b->brief[t], a->brief[t], 0))
             return false;
     }
+    for (int t = 0; t < ALIGNED_TILES; ++t) {
+        char what[96];
+        snprintf(what, sizeof(what), "%s bin-aligned tile %d", name, t);
+        if (!ou_check_record(what, b->aligned[t], a->aligned[t], 0))
+            return false;
+    }
     for (int t = 0; t < LIST_TILES; ++t) {
         const GLuint n = a->verbose[t][0];
         if (b->verbose[t][0] != n || memcmp(a->verbose[t] + 8, b->verbose[t] + 8, 2 * n * sizeof(GLuint))) {
@@ -203,6 +219,10 @@ int main(int argc, char **argv)
         char what[96];
         snprintf(what, sizeof(what), "%s-rectangles-equal-softpipe", name);
         subtest(same(&softpipe.scene[0], &r->scene[0], what), what);
+        snprintf(what, sizeof(what), "%s-per-bin-equals-per-block", name);
+        subtest(ou_check_record("rectangles window", r->scene[0].mixed[0], r->scene[0].aligned[0], 0) &&
+                    ou_check_record("triangles window", r->scene[1].mixed[0], r->scene[1].aligned[0], 0),
+                what);
         if (i > 0) {
             snprintf(what, sizeof(what), "%s-triangles-equal-threads-0", name);
             subtest(same(&first.scene[1], &r->scene[1], what), what);
