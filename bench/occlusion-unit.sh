@@ -21,7 +21,7 @@ echo "## Occlusion Unit vs ARB_occlusion_query ($driver, 256x256, medians of 15)
 echo
 echo "| case | N | brief pass (ms) | ARB queries (ms) | ratio |"
 echo "|---|---|---|---|---|"
-run_on "$patched" box tiles:1 tiles:4 tiles:16 tiles:64 mesh:1 mesh:16 |
+run_on "$patched" box tiles:1 tiles:4 tiles:16 tiles:64 mesh:1 mesh:16 vmesh:1 vmesh:16 |
     awk -F, '{printf "| %s | %s | %.3f | %.3f | %.3f |\n", $1, $4, $5, $6, $7}'
 
 # Instructions of one brief pass vs one ARB query of the box (callgrind, one

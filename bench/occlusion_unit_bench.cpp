@@ -6,6 +6,9 @@
 //            (each query draws the geometry again, scissored to its tile)
 //   mesh:N   the same, with a 20k-triangle mesh over the window as the
 //            geometry: ARB queries draw it N times, the brief pass once
+//   vmesh:N  the same mesh through a 64-step vertex shader (vertex-bound
+//            geometry, as skinned or procedural meshes are): scissoring
+//            saves an ARB query its rasterization, not its vertex work
 //   shaded   a window-sized object with an expensive fragment shader: a
 //            brief pass over it vs drawing it in GL_RENDER
 //   passes   brief passes per second over the mesh (run it with several
@@ -23,6 +26,7 @@
 #include <cstring>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gl/extensions.h"
@@ -176,7 +180,7 @@ void draw_mesh(int size)
     glDisableClientState(GL_VERTEX_ARRAY);
 }
 
-GLuint build_program(const char *fragment_source)
+GLuint build_program(const char *vertex_source, const char *fragment_source)
 {
     auto CreateShader = reinterpret_cast<PFNGLCREATESHADERPROC>(get_proc_address("glCreateShader"));
     auto ShaderSource = reinterpret_cast<PFNGLSHADERSOURCEPROC>(get_proc_address("glShaderSource"));
@@ -184,12 +188,25 @@ GLuint build_program(const char *fragment_source)
     auto CreateProgram = reinterpret_cast<PFNGLCREATEPROGRAMPROC>(get_proc_address("glCreateProgram"));
     auto AttachShader = reinterpret_cast<PFNGLATTACHSHADERPROC>(get_proc_address("glAttachShader"));
     auto LinkProgram = reinterpret_cast<PFNGLLINKPROGRAMPROC>(get_proc_address("glLinkProgram"));
-    const GLuint shader = CreateShader(GL_FRAGMENT_SHADER);
-    ShaderSource(shader, 1, &fragment_source, nullptr);
-    CompileShader(shader);
+    auto GetProgramiv = reinterpret_cast<PFNGLGETPROGRAMIVPROC>(get_proc_address("glGetProgramiv"));
     const GLuint program = CreateProgram();
-    AttachShader(program, shader);
+    const std::pair<GLenum, const char *> stages[2] = {{GL_VERTEX_SHADER, vertex_source},
+                                                       {GL_FRAGMENT_SHADER, fragment_source}};
+    for (const auto &[stage, source] : stages) {
+        if (!source)
+            continue;
+        const GLuint shader = CreateShader(stage);
+        ShaderSource(shader, 1, &source, nullptr);
+        CompileShader(shader);
+        AttachShader(program, shader);
+    }
     LinkProgram(program);
+    GLint linked = GL_FALSE;
+    GetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) {
+        std::fprintf(stderr, "occu-bench-ou: a benchmark shader does not link\n");
+        std::exit(1);
+    }
     return program;
 }
 
@@ -246,6 +263,7 @@ void case_shaded(const Options &o)
     setup_frame(o.size);
     glClear(GL_DEPTH_BUFFER_BIT);
     const GLuint program = build_program(
+        nullptr,
         "#version 110\n"
         "void main() {\n"
         "  vec2 p = gl_FragCoord.xy / 64.0; float a = 0.0;\n"
@@ -340,6 +358,25 @@ void case_mesh(const Options &o, int n)
     compare_tiles(o, n, "mesh", [&] { draw_mesh(o.size); });
 }
 
+void case_vertex_bound_mesh(const Options &o, int n)
+{
+    // `k` is 0 at run time, so the shader moves nothing, but the compiler
+    // cannot know it and runs the loop for every vertex.
+    const GLuint program = build_program(
+        "#version 110\n"
+        "uniform float k;\n"
+        "void main() {\n"
+        "  float a = 0.0;\n"
+        "  for (int i = 0; i < 64; ++i) a += sin(gl_Vertex.x * float(i) + a) * k;\n"
+        "  gl_Position = gl_ModelViewProjectionMatrix * (gl_Vertex + vec4(0.0, 0.0, a, 0.0));\n"
+        "}\n",
+        "#version 110\nvoid main() { gl_FragColor = vec4(1.0); }\n");
+    auto UseProgram = reinterpret_cast<PFNGLUSEPROGRAMPROC>(get_proc_address("glUseProgram"));
+    UseProgram(program);
+    compare_tiles(o, n, "vmesh", [&] { draw_mesh(o.size); });
+    UseProgram(0);
+}
+
 // GL_RENDER frame: 4096 lit-free boxes (49k triangles) with depth test.
 void case_render(const Options &o)
 {
@@ -358,7 +395,7 @@ void case_render(const Options &o)
         std::fprintf(stderr, "occu-bench-ou: %s\n", error);
     std::fprintf(error ? stderr : stdout,
                  "usage: occu-bench-ou [--driver softpipe|llvmpipe] [--size PIXELS] [--repeat N] [--only 0|1] CASE...\n"
-                 "cases: box, tiles:N, mesh:N (N = 1..64), shaded, passes, render\n"
+                 "cases: box, tiles:N, mesh:N, vmesh:N (N = 1..64), shaded, passes, render\n"
                  "prints CSV: case,driver,size,n,ms_occlusion_unit,ms_other,ratio\n"
                  "  (passes: case,driver,size,threads,ms,passes_per_s; render: case,driver,size,boxes,ms)\n");
     std::exit(error ? 2 : 0);
@@ -398,7 +435,7 @@ int main(int argc, char **argv)
         else if (a == "--only")
             g_only = parse_int(argv[++i], "--only", 0, 1);
         else if (a == "box" || a == "render" || a == "shaded" || a == "passes" || a.rfind("tiles:", 0) == 0 ||
-                 a.rfind("mesh:", 0) == 0)
+                 a.rfind("mesh:", 0) == 0 || a.rfind("vmesh:", 0) == 0)
             o.cases.push_back(a);
         else
             usage(("unknown argument '" + a + "'").c_str());
@@ -430,6 +467,8 @@ int main(int argc, char **argv)
             case_passes(o);
         else if (c.rfind("mesh:", 0) == 0)
             case_mesh(o, parse_int(c.c_str() + 5, "mesh:N", 1, 64));
+        else if (c.rfind("vmesh:", 0) == 0)
+            case_vertex_bound_mesh(o, parse_int(c.c_str() + 6, "vmesh:N", 1, 64));
         else
             case_tiles(o, parse_int(c.c_str() + 6, "tiles:N", 1, 64));
     }
