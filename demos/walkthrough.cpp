@@ -5,7 +5,7 @@
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
 //               [--threshold T] [--max-test-area A] [--coherent on|off] [--switch-off F]
-//               [--occluders N] [--tolerance PIXELS]
+//               [--occluders N] [--tolerance PIXELS] [--occluder-db FILE]
 //               [--png-every N] [--oracle on|off] [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
@@ -24,15 +24,18 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "camera/route.h"
+#include "cli/progress.h"
 #include "culling/oracle.h"
 #include "culling/traversal.h"
 #include "gl/offscreen_context.h"
 #include "image/png.h"
+#include "mos/occluder_database.h"
 #include "render/top_view.h"
 #include "scene/city.h"
 #include "scene/scene_file.h"
@@ -58,6 +61,7 @@ struct Options {
     bool coherent = true;
     float switch_off = 0.5f;
     std::string out = "walkthrough-out";
+    std::string occluder_db;   // mos-om, pc-mos
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -68,6 +72,7 @@ struct Options {
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"
                  "                   [--coherent on|off] [--switch-off F] [--occluders N] [--tolerance PIXELS]\n"
+                 "                   [--occluder-db FILE (mos-om, pc-mos; made by occu-preprocess)]\n"
                  "                   [--png-every N] [--oracle on|off]\n"
                  "                   [--out DIR]\n",
                  error.empty() ? "" : ("walkthrough: " + error + "\n").c_str(), "");
@@ -114,6 +119,7 @@ Options parse(int argc, char **argv)
         else if (a == "--occluders") o.occluders = to_int(a, v, 1, 1 << 20);
         else if (a == "--tolerance") o.tolerance = to_int(a, v, 0, 1 << 20);
         else if (a == "--out") o.out = v;
+        else if (a == "--occluder-db") o.occluder_db = v;
         else if (a == "--switch-off") {
             char *end = nullptr;
             o.switch_off = std::strtof(v.c_str(), &end);
@@ -146,17 +152,6 @@ Options parse(int argc, char **argv)
     return o;
 }
 
-void progress(const std::string &what, int done, int total)
-{
-    if (!isatty(STDERR_FILENO))
-        return;
-    const int width = 30, filled = done * width / std::max(total, 1);
-    std::fprintf(stderr, "\r%-12s [%s%s] %d/%d", what.c_str(), std::string(filled, '#').c_str(),
-                 std::string(width - filled, ' ').c_str(), done, total);
-    if (done == total)
-        std::fprintf(stderr, "\n");
-}
-
 }  // namespace
 
 int main(int argc, char **argv)
@@ -176,6 +171,15 @@ int main(int argc, char **argv)
 
         gl::OffscreenContext ctx(o.size, o.size);
         SceneRenderer renderer(scene, hierarchy);
+        std::optional<OccluderDatabase> occluder_db;
+        if (!o.occluder_db.empty()) {
+            occluder_db = OccluderDatabase::load(o.occluder_db);
+            if (occluder_db->scene_leaves != hierarchy.leaf_count() ||
+                occluder_db->scene_triangles != scene.triangle_count())
+                throw std::runtime_error(o.occluder_db + ": made for another scene or hierarchy (" +
+                                         std::to_string(occluder_db->scene_triangles) + " triangles, " +
+                                         std::to_string(occluder_db->scene_leaves) + " leaves)");
+        }
         std::filesystem::create_directories(o.out);
         std::ofstream csv(o.out + "/frames.csv");
         if (!csv)
@@ -208,6 +212,7 @@ int main(int argc, char **argv)
             co.tolerance = std::uint32_t(o.tolerance);
             co.hierarchy = &hierarchy;
             co.renderer = &renderer;
+            co.occluder_database = occluder_db ? &*occluder_db : nullptr;
             auto culler = make_culler(name, co);
             Summary &s = summary[name];
             // Temporal coherence for the strategies that test occlusion.

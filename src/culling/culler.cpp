@@ -49,7 +49,7 @@ private:
 
 std::vector<std::string> culler_names()
 {
-    return {"none", "vfc", "occu-hier", "occu-hier-shared", "om-ps"};
+    return {"none", "vfc", "occu-hier", "occu-hier-shared", "om-ps", "om-fh", "mos-om", "pc-ps", "pc-mos"};
 }
 
 std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &options)
@@ -58,12 +58,24 @@ std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &
         return std::make_unique<OcclusionUnitCuller>(options, false);
     if (name == "occu-hier-shared")
         return std::make_unique<OcclusionUnitCuller>(options, true);
-    if (name == "om-ps") {
+    const bool opacity_map = name == "om-ps" || name == "om-fh" || name == "mos-om";
+    const bool pixelwise = name == "pc-ps" || name == "pc-mos";
+    if (opacity_map || pixelwise) {
         if (!options.hierarchy || !options.renderer)
-            throw std::invalid_argument("om-ps needs the hierarchy and renderer it draws occluders from");
+            throw std::invalid_argument(std::string(name) + " needs the hierarchy and renderer it draws occluders from");
         OpacityMapOptions om;
         om.occluders = options.occluders;
         om.tolerance = options.tolerance;
+        om.pixelwise = pixelwise;
+        om.criterion = name == "om-fh"                       ? OccluderCriterion::first_hit
+                       : name == "mos-om" || name == "pc-mos" ? OccluderCriterion::minimum_occluder_set
+                                                              : OccluderCriterion::projected_size;
+        if (om.criterion == OccluderCriterion::minimum_occluder_set) {
+            if (!options.occluder_database)
+                throw std::invalid_argument(std::string(name) +
+                                            " needs an occluder database (made by occu-preprocess; --occluder-db FILE)");
+            om.database = options.occluder_database;
+        }
         return std::make_unique<OpacityMapCuller>(*options.hierarchy, *options.renderer, om);
     }
     if (name == "none")

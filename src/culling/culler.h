@@ -51,6 +51,7 @@ public:
 
 class Hierarchy;
 class SceneRenderer;
+class OccluderDatabase;
 
 // The knobs of the occlusion strategies (occlusion_unit_culler.h,
 // opacity_map_culler.h).
@@ -59,13 +60,15 @@ struct CullerOptions {
     double max_test_area = 0.25;       // occu-hier: boxes covering more of the viewport are not tested
     std::size_t occluders = 64;        // om-ps: leaves rendered as occluders
     std::uint32_t tolerance = 0;       // om-ps: hole pixels the overlap test ignores; 0: exact
-    const Hierarchy *hierarchy = nullptr;         // om-ps draws occluders from these
+    const Hierarchy *hierarchy = nullptr;         // om-*, pc-*, mos-om draw occluders from these
     const SceneRenderer *renderer = nullptr;
+    const OccluderDatabase *occluder_database = nullptr;   // mos-om, pc-mos
 };
 
 // Strategies by name: "none", "vfc", and with a current GL context that
 // advertises GL_MESAX_occlusion_unit, "occu-hier" and "occu-hier-shared";
-// with a context and options.hierarchy/renderer, "om-ps".
+// with a context and options.hierarchy/renderer, "om-ps", "om-fh", "pc-ps",
+// and with an occluder database too, "mos-om" and "pc-mos".
 // Throws std::invalid_argument naming the unknown strategy and the known ones.
 std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &options = {});
 std::vector<std::string> culler_names();

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "culling/occluder_selection.h"
 #include "culling/traversal.h"
+#include "mos/occluder_database.h"
 
 namespace occu {
 
@@ -23,28 +25,14 @@ void OpacityMapCuller::begin_frame(const Camera &camera)
     map_width_ = w / k;
     map_height_ = h / k;
 
-    // Occluders by projected size: the leaves in the frustum whose boxes
-    // subtend the largest solid angle (extent squared over distance squared).
     frustum_.emplace(view_projection_);
-    const Frustum &frustum = *frustum_;
-    std::vector<std::pair<float, std::uint32_t>> candidates;
-    const auto &nodes = hierarchy_.nodes();
-    for (std::uint32_t n = 0; n < nodes.size(); ++n) {
-        if (!nodes[n].leaf() || frustum.classify(nodes[n].bounds) == Frustum::Side::outside)
-            continue;
-        const glm::vec3 e = nodes[n].bounds.extent();
-        const glm::vec3 nearest = glm::clamp(camera.position, nodes[n].bounds.min, nodes[n].bounds.max);
-        const float d2 = std::max(glm::dot(nearest - camera.position, nearest - camera.position), 1e-4f);
-        candidates.push_back({-glm::dot(e, e) / d2, n});
-    }
-    const std::size_t count = std::min(options_.occluders, candidates.size());
-    std::partial_sort(candidates.begin(), candidates.begin() + std::ptrdiff_t(count), candidates.end());
+    const std::vector<std::uint32_t> occluders = choose_occluders(camera);
 
     // Their depth only: no colour, lighting or materials (section 3).
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glClear(GL_DEPTH_BUFFER_BIT);
-    for (std::size_t i = 0; i < count; ++i)
-        renderer_.draw_leaf_flat(candidates[i].second);
+    for (std::uint32_t n : occluders)
+        renderer_.draw_leaf_flat(n);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     std::vector<float> full(std::size_t(w) * std::size_t(h));
     glReadPixels(viewport_[0], viewport_[1], w, h, GL_DEPTH_COMPONENT, GL_FLOAT, full.data());
@@ -67,7 +55,45 @@ void OpacityMapCuller::begin_frame(const Camera &camera)
             depth[i] = covered[i] ? farthest : 0.0f;
         }
     opacity_.emplace(map_width_, map_height_, covered);
+    if (options_.pixelwise)
+        covered_ = std::move(covered);
     depth_.emplace(map_width_, map_height_, std::move(depth));
+}
+
+std::string_view OpacityMapCuller::name() const
+{
+    switch (options_.criterion) {
+    case OccluderCriterion::projected_size: return options_.pixelwise ? "pc-ps" : "om-ps";
+    case OccluderCriterion::first_hit: return options_.pixelwise ? "pc-fh" : "om-fh";
+    case OccluderCriterion::minimum_occluder_set: break;
+    }
+    return options_.pixelwise ? "pc-mos" : "mos-om";
+}
+
+std::vector<std::uint32_t> OpacityMapCuller::choose_occluders(const Camera &camera)
+{
+    switch (options_.criterion) {
+    case OccluderCriterion::projected_size:
+        return occluders_by_projected_size(hierarchy_, camera, *frustum_, options_.occluders);
+    case OccluderCriterion::first_hit:
+        // The ID buffer at the maps' resolution: a first-hit count needs no more.
+    {
+        auto chosen = occluders_by_first_hit(renderer_, hierarchy_, camera, *frustum_, map_width_, map_height_,
+                                             options_.occluders);
+        glClear(GL_COLOR_BUFFER_BIT);   // the ID buffer was drawn over the caller's cleared frame
+        return chosen;
+    }
+    case OccluderCriterion::minimum_occluder_set: break;
+    }
+    std::vector<std::uint32_t> chosen;
+    const auto &nodes = hierarchy_.nodes();
+    for (std::uint32_t n : options_.database->occluders_for(camera)) {
+        if (chosen.size() >= options_.occluders)
+            break;
+        if (n < nodes.size() && nodes[n].leaf() && frustum_->classify(nodes[n].bounds) != Frustum::Side::outside)
+            chosen.push_back(n);
+    }
+    return chosen;
 }
 
 Visibility OpacityMapCuller::test(const Aabb &box)
@@ -90,10 +116,20 @@ Visibility OpacityMapCuller::test(const Aabb &box)
     const int my1 = std::clamp(int(std::ceil(map_y(y1) + pad)), 0, map_height_);
     if (mx0 >= mx1 || my0 >= my1)
         return Visibility::visible;
-    if (!opacity_->overlaps_fully(mx0, mx1, my0, my1, options_.tolerance))
-        return Visibility::visible;
     // Behind every occluder pixel, with a margin for float z.
     const float z = p->window_z_near - 1e-6f;
+    if (options_.pixelwise) {
+        std::uint32_t holes = 0;
+        for (int y = my0; y < my1; ++y)
+            for (int x = mx0; x < mx1; ++x)
+                holes += !covered_[std::size_t(y) * std::size_t(map_width_) + std::size_t(x)];
+        if (holes > options_.tolerance)
+            return Visibility::visible;
+        return depth_->behind_pixelwise(z, mx0, mx1 - 1, my0, my1 - 1) ? Visibility::occluded
+                                                                       : Visibility::visible;
+    }
+    if (!opacity_->overlaps_fully(mx0, mx1, my0, my1, options_.tolerance))
+        return Visibility::visible;
     const bool behind = depth_->worthwhile() ? depth_->behind(z, mx0, mx1 - 1, my0, my1 - 1)
                                              : depth_->behind_pixelwise(z, mx0, mx1 - 1, my0, my1 - 1);
     return behind ? Visibility::occluded : Visibility::visible;

@@ -1,7 +1,11 @@
-// "om-ps": occlusion culling with the opacity map and the sparse depth map
-// (Poon and Wang, section 5), with occluders chosen by projected size (the
-// paper's PS criterion; minimum occluder sets from preprocessing replace it
-// in "mos-om", still to come).
+// Occlusion culling with the opacity map and the sparse depth map (Poon and
+// Wang, section 5), by occluder selection (section 6.1, occluder_selection.h):
+//   om-ps    occluders by projected size
+//   om-fh    occluders by first hit (an ID buffer of the frame)
+//   mos-om   occluders from the minimum-occluder-set database of the nearest
+//            grid point and heading (preprocessing, occluder_database.h)
+//   pc-mos   as mos-om, but the overlap test and depth comparison pixel by
+//            pixel (the paper's PC, figure 8), for comparison
 //
 // begin_frame renders the chosen occluders' depth at full resolution, reads
 // it back and reduces it by `divisor` in each direction to the maps'
@@ -26,10 +30,17 @@
 
 namespace occu {
 
+class OccluderDatabase;
+
+enum class OccluderCriterion { projected_size, first_hit, minimum_occluder_set };
+
 struct OpacityMapOptions {
     int divisor = 4;                 // full-resolution pixels per map pixel, each way
     std::size_t occluders = 64;      // leaves rendered as occluders
     std::uint32_t tolerance = 0;     // approximate overlap test: hole pixels ignored
+    OccluderCriterion criterion = OccluderCriterion::projected_size;
+    const OccluderDatabase *database = nullptr;   // minimum_occluder_set: required
+    bool pixelwise = false;          // PC: compare pixel by pixel instead of OM + SDM
 };
 
 class OpacityMapCuller final : public Culler {
@@ -37,7 +48,7 @@ public:
     // Draws with `renderer` into the current context (needs GL).
     OpacityMapCuller(const Hierarchy &hierarchy, const SceneRenderer &renderer, const OpacityMapOptions &options = {});
 
-    std::string_view name() const override { return "om-ps"; }
+    std::string_view name() const override;
     bool conservative() const override { return options_.tolerance == 0; }
     void begin_frame(const Camera &camera) override;
     Visibility test(const Aabb &box) override;
@@ -54,6 +65,8 @@ private:
     int map_width_ = 0, map_height_ = 0;
     std::optional<OpacityMap> opacity_;
     std::optional<SparseDepthMap> depth_;
+    std::vector<std::uint8_t> covered_;   // PC: the map's pixels, row by row
+    std::vector<std::uint32_t> choose_occluders(const Camera &camera);
 };
 
 }  // namespace occu

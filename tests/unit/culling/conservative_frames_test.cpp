@@ -14,6 +14,8 @@
 #include "camera/route.h"
 #include "culling/traversal.h"
 #include "gl/offscreen_context.h"
+#include "mos/occluder_database.h"
+#include "mos/occluder_preprocessing.h"
 #include "scene/city.h"
 
 using namespace occu;
@@ -114,4 +116,59 @@ TEST(ConservativeCulling, FramesEqualUnculledFramesFarAway)
         drawn_occu += culled.triangles;
     }
     EXPECT_LT(drawn_occu, drawn_none) << "occu-hier culled nothing";
+}
+
+// The other opacity-map strategies (Poon and Wang): occluders by first hit,
+// from a minimum-occluder-set database preprocessed here for the small city,
+// and the pixel-wise comparison (PC); at zero tolerance no frame may lose a
+// pixel, and mos-om must cull something.
+TEST(ConservativeCulling, OpacityMapStrategiesEqualUnculledFrames)
+{
+    gl::OffscreenContext ctx(128, 128);
+    CityOptions city;
+    city.blocks_x = city.blocks_z = 4;
+    const Scene scene = generate_city(city);
+    HierarchyOptions ho;
+    ho.max_leaf_triangles = 128;
+    const Hierarchy h = Hierarchy::build(scene, ho);
+    SceneRenderer renderer(scene, h);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_CULL_FACE);
+
+    OccluderDatabase db;
+    db.grid.points = {5, 1, 5};
+    db.grid.directions = 4;
+    db.grid.origin = scene.bounds.min + glm::vec3(0.0f, 1.7f, 0.0f);
+    db.grid.spacing = scene.bounds.extent() / 4.0f;
+    db.grid.spacing.y = 0.0f;
+    PreprocessOptions pre;
+    pre.resolution = 32;   // the maps' resolution for a 128 x 128 frame
+    Camera lens;
+    lens.far_plane = 2.0f * glm::length(scene.bounds.extent());
+    for (std::uint32_t v = 0; v < db.grid.view_count(); ++v)
+        db.views[v] = select_occluders_for_view(renderer, h, db.grid.view_camera(v, lens), pre);
+    glClearColor(0, 0, 0, 0);
+
+    CullerOptions with_scene;
+    with_scene.hierarchy = &h;
+    with_scene.renderer = &renderer;
+    with_scene.occluder_database = &db;
+    auto none = make_culler("none");
+    std::uint64_t drawn_none = 0, drawn_mos = 0;
+    for (const char *name : {"om-fh", "mos-om", "pc-mos"}) {
+        auto culler = make_culler(name, with_scene);
+        for (const char *route : {"dense", "medium"}) {
+            const auto cameras = make_route(route, scene.bounds, city, 5, 1.0f);
+            for (std::size_t f = 0; f < cameras.size(); ++f) {
+                const Frame reference = draw(ctx, renderer, h, *none, cameras[f], 16);
+                const Frame culled = draw(ctx, renderer, h, *culler, cameras[f], 16);
+                EXPECT_TRUE(reference.pixels == culled.pixels) << route << " frame " << f << ": " << name;
+                if (std::string(name) == "mos-om") {
+                    drawn_none += reference.triangles;
+                    drawn_mos += culled.triangles;
+                }
+            }
+        }
+    }
+    EXPECT_LT(drawn_mos, drawn_none) << "mos-om culled nothing";
 }

@@ -1,0 +1,204 @@
+// occu-preprocess: builds the minimum-occluder-set database that the
+// walkthrough's mos-om strategy reads (Poon and Wang, section 4; the steps
+// are in src/mos/occluder_preprocessing.h).
+//
+//   occu-preprocess build --out FILE [--scene FILE] [--city-copies N]
+//                   [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D]
+//                   [--eye-height H] [--max-occluders N] [--resolution R]
+//                   [--shard I/N] [--driver llvmpipe|softpipe]
+//   occu-preprocess merge --out FILE SHARD...
+//
+// Grid points span the scene's ground rectangle corner to corner at eye
+// height (for the default city, 8 x 8 points are its street crossings);
+// each has D headings. --shard I/N processes the views v with v % N == I - 1, so N
+// machines (under any job scheduler) each write a shard; merge joins them.
+// The scene options must match the walkthrough's (the database records the
+// scene's triangle and leaf counts, and the walkthrough checks them).
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/progress.h"
+#include "gl/extensions.h"
+#include "gl/offscreen_context.h"
+#include "mos/occluder_database.h"
+#include "mos/occluder_preprocessing.h"
+#include "render/scene_renderer.h"
+#include "scene/city.h"
+#include "scene/scene_file.h"
+#include "spatial/hierarchy.h"
+
+namespace {
+
+[[noreturn]] void usage(const std::string &error)
+{
+    std::fprintf(error.empty() ? stdout : stderr,
+                 "%s%susage: occu-preprocess build --out FILE [--scene FILE] [--city-copies N] [--leaf-triangles N]\n"
+                 "                       [--grid NX,NY,NZ] [--directions D] [--eye-height H] [--max-occluders N]\n"
+                 "                       [--resolution R] [--shard I/N] [--driver llvmpipe|softpipe]\n"
+                 "       occu-preprocess merge --out FILE SHARD...\n",
+                 error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
+    std::exit(error.empty() ? 0 : 2);
+}
+
+long to_long(const std::string &option, const std::string &v, long lo, long hi)
+{
+    char *end = nullptr;
+    const long x = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end || x < lo || x > hi)
+        usage(option + " wants an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + v + "'");
+    return x;
+}
+
+struct Options {
+    std::string out, scene, driver = "llvmpipe";
+    int city_copies = 1, leaf_triangles = 256, directions = 8, shard = 1, shards = 1;
+    glm::ivec3 grid{8, 1, 8};
+    float eye_height = 1.7f;
+    occu::PreprocessOptions pre;
+    std::vector<std::string> inputs;   // merge
+};
+
+int merge(const Options &o)
+{
+    std::vector<occu::OccluderDatabase> shards;
+    for (const auto &path : o.inputs)
+        shards.push_back(occu::OccluderDatabase::load(path));
+    const auto db = occu::OccluderDatabase::merge(shards);
+    db.save(o.out);
+    std::printf("%s: %zu of %u views from %zu shards\n", o.out.c_str(), db.views.size(), db.grid.view_count(),
+                shards.size());
+    return db.views.size() == db.grid.view_count() ? 0 : (std::fprintf(stderr, "occu-preprocess: views missing\n"), 1);
+}
+
+int build(const Options &o)
+{
+    using namespace occu;
+    gl::select_driver(gl::parse_driver(o.driver));
+    CityOptions city;
+    city.copies = o.city_copies;
+    const Scene scene = o.scene.empty() ? generate_city(city) : load_scene(o.scene);
+    HierarchyOptions ho;
+    ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
+    const Hierarchy hierarchy = Hierarchy::build(scene, ho);
+    gl::OffscreenContext ctx(o.pre.resolution, o.pre.resolution);
+    if (!gl::has_extension("GL_MESAX_occlusion_unit"))
+        throw std::runtime_error(ctx.renderer() + " lacks GL_MESAX_occlusion_unit (run on occu's patched Mesa)");
+    SceneRenderer renderer(scene, hierarchy);
+
+    OccluderDatabase db;
+    db.scene_leaves = std::uint32_t(hierarchy.leaf_count());
+    db.scene_triangles = std::uint32_t(scene.triangle_count());
+    OccluderGrid &g = db.grid;
+    g.points = o.grid;
+    g.directions = o.directions;
+    const glm::vec3 lo = scene.bounds.min, size = scene.bounds.extent();
+    auto step = [](float extent, int n) { return n > 1 ? extent / float(n - 1) : 0.0f; };
+    g.spacing = {step(size.x, o.grid.x), step(size.y, o.grid.y), step(size.z, o.grid.z)};
+    g.origin = {lo.x, lo.y + o.eye_height, lo.z};
+    // The walkthrough's street-level lens (camera/route.cpp).
+    Camera lens;
+    lens.far_plane = 2.0f * glm::length(size);
+
+    std::vector<std::uint32_t> views;
+    for (std::uint32_t v = 0; v < g.view_count(); ++v)
+        if (int(v % std::uint32_t(o.shards)) == o.shard - 1)
+            views.push_back(v);
+    std::printf("scene: %zu triangles, %zu leaves; %u views (%d x %d x %d points, %d headings), shard %d/%d: %zu views\n",
+                scene.triangle_count(), hierarchy.leaf_count(), g.view_count(), g.points.x, g.points.y, g.points.z,
+                g.directions, o.shard, o.shards, views.size());
+    const auto start = std::chrono::steady_clock::now();
+    PreprocessStats total;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        PreprocessStats st;
+        const Camera camera = g.view_camera(views[i], lens);
+        db.views[views[i]] = select_occluders_for_view(renderer, hierarchy, camera, o.pre, &st);
+        total.occludees += st.occludees;
+        total.coverable += st.coverable;
+        total.passes += st.passes;
+        total.sets += st.sets;
+        total.searches_cut += st.searches_cut;
+        progress("preprocess", long(i + 1), long(views.size()));
+    }
+    db.save(o.out);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::size_t occluders = 0;
+    for (const auto &[v, list] : db.views)
+        occluders += list.size();
+    std::printf("%s: %zu views in %.1f s; per view %.1f occluders, %.0f occludees (%.0f coverable), "
+                "%.0f verbose passes, %.0f distinct sets; %u searches cut by the budget\n",
+                o.out.c_str(), views.size(), s, double(occluders) / double(std::max<std::size_t>(views.size(), 1)),
+                double(total.occludees) / double(std::max<std::size_t>(views.size(), 1)),
+                double(total.coverable) / double(std::max<std::size_t>(views.size(), 1)),
+                double(total.passes) / double(std::max<std::size_t>(views.size(), 1)),
+                double(total.sets) / double(std::max<std::size_t>(views.size(), 1)), total.searches_cut);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    if (argc < 2)
+        usage("give a command: build or merge");
+    const std::string command = argv[1];
+    if (command == "-h" || command == "--help")
+        usage("");
+    if (command != "build" && command != "merge")
+        usage("unknown command '" + command + "' (build or merge)");
+    Options o;
+    for (int i = 2; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a.rfind("--", 0) != 0) {
+            if (command != "merge")
+                usage("unexpected argument '" + a + "'");
+            o.inputs.push_back(a);
+            continue;
+        }
+        if (i + 1 >= argc)
+            usage(a + " needs a value");
+        const std::string v = argv[++i];
+        if (a == "--out") o.out = v;
+        else if (command == "merge") usage("merge takes only --out and shard files, not " + a);
+        else if (a == "--scene") o.scene = v;
+        else if (a == "--driver") o.driver = v;
+        else if (a == "--city-copies") o.city_copies = int(to_long(a, v, 1, 64));
+        else if (a == "--leaf-triangles") o.leaf_triangles = int(to_long(a, v, 1, 1 << 20));
+        else if (a == "--directions") o.directions = int(to_long(a, v, 1, 360));
+        else if (a == "--max-occluders") o.pre.max_occluders = std::size_t(to_long(a, v, 1, 1 << 20));
+        else if (a == "--resolution") o.pre.resolution = int(to_long(a, v, 16, 1024));
+        else if (a == "--eye-height") {
+            char *end = nullptr;
+            o.eye_height = std::strtof(v.c_str(), &end);
+            if (v.empty() || *end)
+                usage("--eye-height wants a number, got '" + v + "'");
+        } else if (a == "--grid") {
+            std::istringstream in(v);
+            char c1 = 0, c2 = 0;
+            if (!(in >> o.grid.x >> c1 >> o.grid.y >> c2 >> o.grid.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+                o.grid.x < 1 || o.grid.y < 1 || o.grid.z < 1 || o.grid.x * o.grid.y * o.grid.z > 100000)
+                usage("--grid wants NX,NY,NZ (positive, product at most 100000), got '" + v + "'");
+        } else if (a == "--shard") {
+            const auto slash = v.find('/');
+            if (slash == std::string::npos)
+                usage("--shard wants I/N, got '" + v + "'");
+            o.shards = int(to_long("--shard N", v.substr(slash + 1), 1, 1 << 20));
+            o.shard = int(to_long("--shard I", v.substr(0, slash), 1, o.shards));
+        } else
+            usage("unknown option '" + a + "'");
+    }
+    if (o.out.empty())
+        usage("--out FILE is required");
+    if (command == "merge" && o.inputs.empty())
+        usage("merge needs shard files");
+    try {
+        return command == "merge" ? merge(o) : build(o);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "occu-preprocess: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,60 @@
+// Minimum-occluder-set preprocessing for one view (Poon and Wang, section
+// 4): which leaves to render as occluders from there, best first.
+//   1. An ID buffer of the leaves in the frustum (render/id_buffer.h) at
+//      the opacity map's resolution: what is visible, and each leaf's
+//      first-hit pixel count.
+//   2. Occludees: nodes with more than `min_occludee_triangles` triangles
+//      (the paper's 20) none of whose leaves is visible; their screen
+//      rectangles as the run-time test sees them.
+//   3. Occluder stacks (4.1): for each candidate occluder (a visible leaf
+//      of at least `min_occluder_pixels` pixels) one verbose pass of
+//      GL_MESAX_occlusion_unit draws it alone with one tile per occludee
+//      rectangle (64 occludees a pass); the pixel lists say which of each
+//      occludee's pixels it covers. It joins an occludee's stack only if
+//      its box lies wholly in front of the occludee's box (the paper's
+//      depth sorting, by box). The unit returns exactly the pixel sets,
+//      without reading back a frame per occluder.
+//   4. Per occludee, the combination table (pixels grouped by the set of
+//      occluders covering them) and its cheapest minimum occluder sets
+//      (4.2, minimum_occluder_set.h); occludees with an uncovered pixel
+//      have none.
+//   5. Scores (4.3): gain = occludees the set occludes, plus the gain of
+//      every set it is a superset of; cost = occluders + their pixels /
+//      `pixels_per_occluder`; score = gain / cost.
+//   6. Selection (4.3): sets by score, their occluders added in batches;
+//      after each batch an ID rendering of the selection keeps only the
+//      occluders that show (redundant or hidden ones drop out), until
+//      `max_occluders`.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "camera/camera.h"
+#include "render/scene_renderer.h"
+#include "spatial/hierarchy.h"
+
+namespace occu {
+
+struct PreprocessOptions {
+    int resolution = 128;                    // of ID buffers and stacks (the opacity map's)
+    std::size_t max_occluders = 256;
+    std::uint32_t min_occludee_triangles = 20;
+    std::uint32_t min_occluder_pixels = 4;
+    std::size_t sets_per_occludee = 4;       // the cheapest MOSs kept per occludee
+    std::uint64_t step_budget = 20000;       // MOS search steps per occludee
+    double pixels_per_occluder = 256.0;      // cost weight of projected size
+};
+
+struct PreprocessStats {
+    std::uint32_t occludees = 0, coverable = 0, candidates = 0, passes = 0, sets = 0;
+    std::uint32_t searches_cut = 0;          // occludees whose MOS search hit the budget
+};
+
+// Needs a current context with GL_MESAX_occlusion_unit and a framebuffer of
+// at least resolution x resolution; clobbers it.
+std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &renderer, const Hierarchy &hierarchy,
+                                                     const Camera &camera, const PreprocessOptions &options,
+                                                     PreprocessStats *stats = nullptr);
+
+}  // namespace occu

@@ -1,0 +1,114 @@
+// The occluder database file: what save writes, load reads back; shards
+// merge; malformed files are refused with the file and line named; views
+// are found by nearest point and heading.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include "mos/occluder_database.h"
+
+using namespace occu;
+
+namespace {
+
+std::string temp_file(const std::string &name, const std::string &text)
+{
+    const std::string path = ::testing::TempDir() + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+OccluderDatabase sample()
+{
+    OccluderDatabase db;
+    db.grid.origin = {-10.0f, 1.7f, -10.0f};
+    db.grid.spacing = {10.0f, 0.0f, 10.0f};
+    db.grid.points = {3, 1, 3};
+    db.grid.directions = 4;
+    db.scene_leaves = 100;
+    db.scene_triangles = 12345;
+    db.views[0] = {5, 3, 9};
+    db.views[7] = {};
+    db.views[35] = {1};
+    return db;
+}
+
+std::string error_of(const std::string &path)
+{
+    try {
+        OccluderDatabase::load(path);
+    } catch (const std::runtime_error &e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(OccluderDatabase, SaveThenLoadGivesTheSameDatabase)
+{
+    const auto db = sample();
+    const std::string path = ::testing::TempDir() + "occu-db-roundtrip.txt";
+    db.save(path);
+    const auto back = OccluderDatabase::load(path);
+    EXPECT_TRUE(back.grid == db.grid);
+    EXPECT_EQ(back.scene_leaves, 100u);
+    EXPECT_EQ(back.scene_triangles, 12345u);
+    EXPECT_EQ(back.views, db.views);
+}
+
+TEST(OccluderDatabase, ShardsMergeAndConflictsAreRefused)
+{
+    auto a = sample(), b = sample();
+    a.views.erase(35);
+    b.views.erase(0);
+    b.views.erase(7);
+    const auto merged = OccluderDatabase::merge({a, b});
+    EXPECT_EQ(merged.views, sample().views);
+    EXPECT_THROW(OccluderDatabase::merge({a, a}), std::runtime_error);   // view 0 twice
+    b.scene_triangles = 1;
+    EXPECT_THROW(OccluderDatabase::merge({a, b}), std::runtime_error);   // another scene
+}
+
+TEST(OccluderDatabase, MalformedFilesNameFileAndLine)
+{
+    const std::string header = "occu-occluder-database 1\ngrid 0 0 0 1 1 1 2 1 2 4\nscene 10 100\n";
+    EXPECT_NE(error_of(temp_file("db-empty.txt", "")).find("empty"), std::string::npos);
+    EXPECT_NE(error_of(temp_file("db-magic.txt", "hello\n")).find("db-magic.txt:1"), std::string::npos);
+    EXPECT_NE(error_of(temp_file("db-range.txt", header + "view 99 1 2\n")).find("db-range.txt:4"), std::string::npos);
+    EXPECT_NE(error_of(temp_file("db-id.txt", header + "view 1 1 x\n")).find("db-id.txt:4"), std::string::npos);
+    EXPECT_NE(error_of(temp_file("db-twice.txt", header + "view 1 1\nview 1 2\n")).find("repeats"), std::string::npos);
+    EXPECT_NE(error_of(temp_file("db-grid.txt", "occu-occluder-database 1\ngrid 0 0 0 1 1 1 0 1 1 4\n")).find(":2"),
+              std::string::npos);
+    EXPECT_NE(error_of(::testing::TempDir() + "no-such-db.txt").find("cannot open"), std::string::npos);
+    EXPECT_EQ(error_of(temp_file("db-ok.txt", header + "# a comment\nview 3 1 2 3\n")), "");
+}
+
+TEST(OccluderDatabase, NearestViewByPointAndHeading)
+{
+    const auto db = sample();
+    Camera c;
+    c.position = {-9.0f, 1.7f, -11.0f};            // nearest point (0, 0, 0): view 0..3
+    c.target = c.position + glm::vec3(1, 0, 0.1f);  // heading 0 (+x)
+    EXPECT_EQ(db.grid.nearest_view(c), 0u);
+    c.target = c.position + glm::vec3(0, 0, 1);     // heading 1 (+z)
+    EXPECT_EQ(db.grid.nearest_view(c), 1u);
+    c.target = c.position + glm::vec3(0.1f, 0, -1); // heading 3 (-z)
+    EXPECT_EQ(db.grid.nearest_view(c), 3u);
+    c.position = {100.0f, 1.7f, 100.0f};            // clamped to the last point (2, 0, 2): views 32..35
+    c.target = c.position + glm::vec3(0.1f, 0, -1);
+    EXPECT_EQ(db.grid.nearest_view(c), 35u);
+    EXPECT_EQ(db.occluders_for(c), (std::vector<std::uint32_t>{1}));
+    // A view never processed (point 8, heading 0): the nearest processed
+    // point of that heading, point 0 (view 0).
+    c.target = c.position + glm::vec3(1, 0, 0);
+    EXPECT_EQ(db.occluders_for(c), (std::vector<std::uint32_t>{5, 3, 9}));
+    // The view camera looks along its heading from its point.
+    const Camera v = db.grid.view_camera(7, c);
+    EXPECT_FLOAT_EQ(v.position.x, 0.0f);
+    EXPECT_NEAR(v.target.x - v.position.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(v.target.z - v.position.z, -1.0f, 1e-6f);
+}
