@@ -1,4 +1,5 @@
 #include "culling/culler.h"
+#include "mos/occluder_database.h"
 
 #include <gtest/gtest.h>
 
@@ -22,6 +23,9 @@ TEST(MakeCuller, KnownNamesAndAnErrorNamingTheUnknownOne)
     with_scene.hierarchy = &h;
     with_scene.renderer = &renderer;
     EXPECT_THROW(make_culler("om-ps"), std::invalid_argument);
+    EXPECT_THROW(make_culler("mos-om", with_scene), std::invalid_argument);   // no database
+    const OccluderDatabase database;
+    with_scene.occluder_database = &database;
     for (const std::string &n : culler_names()) {
         auto c = make_culler(n, with_scene);
         EXPECT_EQ(c->name(), n);
