@@ -13,10 +13,12 @@ build=$OCCU_ROOT/build
 export PATH=/usr/bin:$PATH   # Debian's meson and python, whatever is first on PATH
 if [ ! -f "$build/build.ninja" ] || [ "$(cat "$build/.occu-mesa-prefix" 2>/dev/null)" != "$prefix" ]; then
     say "configuring occu against $prefix"
+    # pkg_config_path as an option: meson keeps the PKG_CONFIG_PATH of the first
+    # setup across --reconfigure, which would leave the old Mesa's rpath behind.
     if [ -f "$build/build.ninja" ]; then
-        meson setup --reconfigure "$build" "$OCCU_ROOT" >/dev/null
+        meson setup --reconfigure "$build" "$OCCU_ROOT" -Dpkg_config_path="$prefix/lib/pkgconfig" >/dev/null
     else
-        meson setup "$build" "$OCCU_ROOT" >/dev/null
+        meson setup "$build" "$OCCU_ROOT" -Dpkg_config_path="$prefix/lib/pkgconfig" >/dev/null
     fi
     echo "$prefix" > "$build/.occu-mesa-prefix"
 fi
