@@ -5,7 +5,7 @@
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
 //               [--threshold T] [--max-test-area A] [--coherent on|off] [--switch-off F]
-//               [--occluders N] [--tolerance PIXELS] [--occluder-db FILE]
+//               [--occluders N] [--tolerance PIXELS] [--coverage-ratio R] [--occluder-db FILE]
 //               [--png-every N] [--oracle on|off] [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
@@ -56,6 +56,7 @@ struct Options {
     double max_test_area = 0.25;
     int occluders = 64;
     int tolerance = 0;
+    double coverage_ratio = 0.2;
     int png_every = 20;
     bool oracle = true;
     bool coherent = true;
@@ -72,6 +73,7 @@ struct Options {
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"
                  "                   [--coherent on|off] [--switch-off F] [--occluders N] [--tolerance PIXELS]\n"
+                 "                   [--coverage-ratio R (om-*, pc-*: adaptive overlap test, 0 off)]\n"
                  "                   [--occluder-db FILE (mos-om, pc-mos; made by occu-preprocess)]\n"
                  "                   [--png-every N] [--oracle on|off]\n"
                  "                   [--out DIR]\n",
@@ -118,6 +120,12 @@ Options parse(int argc, char **argv)
         else if (a == "--png-every") o.png_every = to_int(a, v, 0, 100000);
         else if (a == "--occluders") o.occluders = to_int(a, v, 1, 1 << 20);
         else if (a == "--tolerance") o.tolerance = to_int(a, v, 0, 1 << 20);
+        else if (a == "--coverage-ratio") {
+            char *end = nullptr;
+            o.coverage_ratio = std::strtod(v.c_str(), &end);
+            if (v.empty() || *end || !(o.coverage_ratio >= 0.0 && o.coverage_ratio <= 1.0))
+                usage("--coverage-ratio wants a number in [0, 1], got '" + v + "'");
+        }
         else if (a == "--out") o.out = v;
         else if (a == "--occluder-db") o.occluder_db = v;
         else if (a == "--switch-off") {
@@ -210,6 +218,7 @@ int main(int argc, char **argv)
             co.max_test_area = o.max_test_area;
             co.occluders = std::size_t(o.occluders);
             co.tolerance = std::uint32_t(o.tolerance);
+            co.coverage_ratio = o.coverage_ratio;
             co.hierarchy = &hierarchy;
             co.renderer = &renderer;
             co.occluder_database = occluder_db ? &*occluder_db : nullptr;

@@ -14,6 +14,7 @@ const char *visibility_name(Visibility v)
     case Visibility::visible: return "visible";
     case Visibility::occluded: return "occluded";
     case Visibility::view_culled: return "view_culled";
+    case Visibility::visible_subtree: return "visible_subtree";
     }
     return "?";
 }
@@ -66,6 +67,7 @@ std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &
         OpacityMapOptions om;
         om.occluders = options.occluders;
         om.tolerance = options.tolerance;
+        om.coverage_ratio = options.coverage_ratio;
         om.pixelwise = pixelwise;
         om.criterion = name == "om-fh"                       ? OccluderCriterion::first_hit
                        : name == "mos-om" || name == "pc-mos" ? OccluderCriterion::minimum_occluder_set

@@ -7,6 +7,9 @@
 // and tells the strategy what it drew with rendered(), which occlusion
 // strategies use as occluders. Results:
 //   visible      the box may contribute pixels: draw or descend into it;
+//   visible_subtree  as visible, and its descendants are not worth testing
+//                (the adaptive overlap test): draw them, culling only
+//                against the view frustum;
 //   occluded     nothing in the box can be seen (conservative strategies)
 //                or contributes too little (approximate ones);
 //   view_culled  the box lies outside the view frustum.
@@ -23,7 +26,7 @@
 
 namespace occu {
 
-enum class Visibility { visible, occluded, view_culled };
+enum class Visibility { visible, occluded, view_culled, visible_subtree };
 
 const char *visibility_name(Visibility v);
 
@@ -59,7 +62,8 @@ struct CullerOptions {
     float adaptive_threshold = 0.0f;   // occu-hier: occluded when NOHC <= t * PHC; 0: exact
     double max_test_area = 0.25;       // occu-hier: boxes covering more of the viewport are not tested
     std::size_t occluders = 64;        // om-ps: leaves rendered as occluders
-    std::uint32_t tolerance = 0;       // om-ps: hole pixels the overlap test ignores; 0: exact
+    std::uint32_t tolerance = 0;       // om-*, pc-*: hole pixels the overlap test ignores; 0: exact
+    double coverage_ratio = 0.2;       // om-*, pc-*: adaptive overlap test; below it, descendants go untested
     const Hierarchy *hierarchy = nullptr;         // om-*, pc-*, mos-om draw occluders from these
     const SceneRenderer *renderer = nullptr;
     const OccluderDatabase *occluder_database = nullptr;   // mos-om, pc-mos

@@ -123,13 +123,16 @@ Visibility OpacityMapCuller::test(const Aabb &box)
         for (int y = my0; y < my1; ++y)
             for (int x = mx0; x < mx1; ++x)
                 holes += !covered_[std::size_t(y) * std::size_t(map_width_) + std::size_t(x)];
-        if (holes > options_.tolerance)
-            return Visibility::visible;
+        if (holes > options_.tolerance) {
+            const double ratio = 1.0 - double(holes) / double((mx1 - mx0) * (my1 - my0));
+            return ratio < options_.coverage_ratio ? Visibility::visible_subtree : Visibility::visible;
+        }
         return depth_->behind_pixelwise(z, mx0, mx1 - 1, my0, my1 - 1) ? Visibility::occluded
                                                                        : Visibility::visible;
     }
     if (!opacity_->overlaps_fully(mx0, mx1, my0, my1, options_.tolerance))
-        return Visibility::visible;
+        return opacity_->coverage_ratio(mx0, mx1, my0, my1) < options_.coverage_ratio ? Visibility::visible_subtree
+                                                                                      : Visibility::visible;
     const bool behind = depth_->worthwhile() ? depth_->behind(z, mx0, mx1 - 1, my0, my1 - 1)
                                              : depth_->behind_pixelwise(z, mx0, mx1 - 1, my0, my1 - 1);
     return behind ? Visibility::occluded : Visibility::visible;

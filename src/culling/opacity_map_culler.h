@@ -38,6 +38,10 @@ struct OpacityMapOptions {
     int divisor = 4;                 // full-resolution pixels per map pixel, each way
     std::size_t occluders = 64;      // leaves rendered as occluders
     std::uint32_t tolerance = 0;     // approximate overlap test: hole pixels ignored
+    // Adaptive overlap test (section 5.2): a box whose rectangle the
+    // occluders cover less than this fraction of is visible and its
+    // descendants are not tested (they are drawn). 0: off.
+    double coverage_ratio = 0.2;
     OccluderCriterion criterion = OccluderCriterion::projected_size;
     const OccluderDatabase *database = nullptr;   // minimum_occluder_set: required
     bool pixelwise = false;          // PC: compare pixel by pixel instead of OM + SDM

@@ -51,6 +51,8 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     front.push({distance_to(nodes[0].bounds, camera.position), 0});
     culler.begin_frame(camera);
 
+    // Below a visible_subtree answer nodes are drawn without occlusion tests.
+    std::vector<std::uint8_t> untested(nodes.size(), 0);
     std::vector<std::uint32_t> batch;
     std::vector<Aabb> boxes;
     std::vector<Visibility> results;
@@ -61,7 +63,7 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
         while (!front.empty() && batch.size() < std::max<std::size_t>(1, options.batch)) {
             const std::uint32_t n = front.top().second;
             front.pop();
-            if (assumed_visible(n) && frustum.classify(nodes[n].bounds) != Frustum::Side::outside) {
+            if ((assumed_visible(n) || untested[n]) && frustum.classify(nodes[n].bounds) != Frustum::Side::outside) {
                 assumed.push_back(n);
                 continue;
             }
@@ -73,11 +75,12 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
         // Assumed-visible nodes join the batch's results as visible.
         for (std::uint32_t n : assumed) {
             batch.push_back(n);
-            results.push_back(Visibility::visible);
+            results.push_back(untested[n] ? Visibility::visible_subtree : Visibility::visible);
         }
         for (std::size_t i = 0; i < batch.size(); ++i) {
             const HierarchyNode &n = nodes[batch[i]];
-            if (coherence && results[i] == Visibility::visible)
+            const bool subtree = results[i] == Visibility::visible_subtree;
+            if (coherence && (results[i] == Visibility::visible || subtree))
                 visible_now[batch[i]] = 1;
             if (results[i] == Visibility::view_culled) {
                 ++stats.nodes_view_culled;
@@ -90,8 +93,10 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
                 stats.drawn.push_back(batch[i]);
                 culler.rendered(n.bounds);
             } else {
-                for (std::uint32_t c = 0; c < n.child_count; ++c)
+                for (std::uint32_t c = 0; c < n.child_count; ++c) {
+                    untested[n.first_child + c] = subtree;
                     front.push({distance_to(nodes[n.first_child + c].bounds, camera.position), n.first_child + c});
+                }
             }
         }
     }

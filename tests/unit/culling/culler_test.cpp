@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <stdexcept>
 
 #include "gl/offscreen_context.h"
+#include "culling/traversal.h"
 #include "render/scene_renderer.h"
 
 using namespace occu;
@@ -64,4 +66,59 @@ TEST(Vfc, CullsOnlyWhatTheFrustumExcludes)
     EXPECT_EQ(vfc->test(behind), Visibility::view_culled);
     EXPECT_EQ(none->test(behind), Visibility::visible);
     EXPECT_STREQ(visibility_name(Visibility::occluded), "occluded");
+}
+
+namespace {
+
+// Answers visible_subtree for the root (the adaptive overlap test giving
+// up on it), visible otherwise, and counts the boxes it is asked about.
+class GiveUpAtTheRoot final : public Culler {
+public:
+    explicit GiveUpAtTheRoot(const Aabb &root) : root_(root) {}
+    std::string_view name() const override { return "give-up-at-the-root"; }
+    bool conservative() const override { return true; }
+    void begin_frame(const Camera &camera) override { frustum_.emplace(camera.view_projection()); }
+    Visibility test(const Aabb &box) override
+    {
+        ++tested;
+        if (frustum_->classify(box) == Frustum::Side::outside)
+            return Visibility::view_culled;
+        return box.min == root_.min && box.max == root_.max ? Visibility::visible_subtree : Visibility::visible;
+    }
+    std::uint32_t tested = 0;
+
+private:
+    Aabb root_;
+    std::optional<Frustum> frustum_;
+};
+
+}  // namespace
+
+// Below a visible_subtree answer the traversal asks the culler nothing more
+// about nodes in the frustum, and still draws exactly what vfc draws.
+TEST(Traversal, VisibleSubtreeStopsOcclusionTestsBelowIt)
+{
+    gl::OffscreenContext ctx(32, 32);
+    Scene scene;
+    scene.meshes.emplace_back();
+    for (int i = 0; i < 40; ++i)
+        append_box(scene.meshes[0], Aabb::of({float(i) * 3.0f, 0, -5}, {float(i) * 3.0f + 1, 1, -4}));
+    scene.update_bounds();
+    HierarchyOptions ho;
+    ho.max_leaf_triangles = 12;
+    const Hierarchy h = Hierarchy::build(scene, ho);
+    const SceneRenderer renderer(scene, h);
+    ASSERT_GT(h.leaf_count(), 8u);
+    Camera c;
+    c.position = {10, 0.5f, 20};
+    c.target = {10, 0.5f, -5};
+    GiveUpAtTheRoot give_up(h.nodes()[0].bounds);
+    auto vfc = make_culler("vfc");
+    const FrameStats s = render_hierarchy(renderer, h, give_up, c, TraversalOptions{});
+    const FrameStats v = render_hierarchy(renderer, h, *vfc, c, TraversalOptions{});
+    EXPECT_EQ(s.leaves_drawn, v.leaves_drawn);
+    EXPECT_GT(v.leaves_drawn, 0u);
+    EXPECT_LT(v.leaves_drawn, h.leaf_count()) << "the frustum should leave some leaves out";
+    // The root, then only nodes outside the frustum.
+    EXPECT_EQ(give_up.tested, 1 + s.nodes_view_culled);
 }
