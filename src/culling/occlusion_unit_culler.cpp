@@ -98,8 +98,23 @@ void OcclusionUnitCuller::run_pass(const std::vector<Aabb> &boxes, const std::ve
     GLint tiles[64 * 4];
     GLuint *buffers[64];
     GLsizei sizes[64];
+    // Each tile grows outwards to whole 64 x 64 blocks of the window where
+    // that takes in no other member's rectangle: its counts cannot change
+    // (only its own box's fragments fall in it), and llvmpipe sums bins that
+    // tiles cover whole without sorting fragments into tiles (its bins are
+    // 64 x 64; patch 0004). Growing past the window's edge is clamped.
+    constexpr GLint bin = 64;
+    const GLint wx0 = viewport_[0], wy0 = viewport_[1], wx1 = wx0 + viewport_[2], wy1 = wy0 + viewport_[3];
     for (GLsizei k = 0; k < n; ++k) {
-        const Rect &r = rects[members[k]];
+        Rect r = rects[members[k]];
+        Rect grown{std::max(wx0, r.x0 / bin * bin), std::max(wy0, r.y0 / bin * bin),
+                   std::min(wx1, (r.x1 + bin - 1) / bin * bin), std::min(wy1, (r.y1 + bin - 1) / bin * bin)};
+        const bool alone = std::none_of(members.begin(), members.end(), [&](std::size_t j) {
+            const Rect &q = rects[j];
+            return j != members[k] && grown.x0 < q.x1 && q.x0 < grown.x1 && grown.y0 < q.y1 && q.y0 < grown.y1;
+        });
+        if (alone && grown.x0 < grown.x1 && grown.y0 < grown.y1)
+            r = grown;
         tiles[4 * k] = r.x0;
         tiles[4 * k + 1] = r.y0;
         tiles[4 * k + 2] = r.x1 - r.x0;
