@@ -24,6 +24,7 @@ TEST_PACKAGES=(
 # To count instructions in benchmarks (wall time on shared machines is noisy).
 BENCH_PACKAGES=(
     valgrind
+    gnuplot-nox
 )
 
 what=${1:-all}
