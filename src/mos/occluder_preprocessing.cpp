@@ -44,19 +44,6 @@ bool occludee_rect(const glm::mat4 &vp, const Camera &camera, const Aabb &box, i
     return r.x0 < r.x1 && r.y0 < r.y1;
 }
 
-// The farthest window depth of a box's corners; 1 if a corner is behind the eye.
-float box_z_far(const glm::mat4 &vp, const Aabb &box)
-{
-    float far = 0.0f;
-    for (int i = 0; i < 8; ++i) {
-        const glm::vec4 c = vp * glm::vec4(box.corner(i), 1.0f);
-        if (c.w <= 0.0f)
-            return 1.0f;
-        far = std::max(far, 0.5f * (c.z / c.w) + 0.5f);
-    }
-    return far;
-}
-
 }  // namespace
 
 std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &renderer, const Hierarchy &hierarchy,
@@ -104,60 +91,110 @@ std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &render
     }
     st.occludees = std::uint32_t(occludees.size());
 
-    // 3. Occluder stacks, one verbose pass per candidate and 64 occludees.
+    // 3. Occluder stacks. Occludees go in groups of up to 64 with disjoint
+    // rectangles; the depth buffer gets each one's nearest depth over its
+    // rectangle (0 elsewhere), then one verbose pass per candidate, depth
+    // tested (LESS) without depth writes, lists exactly the pixels where the
+    // candidate lies in front of the occludee: the paper's depth sorting,
+    // per pixel.
     std::vector<std::uint32_t> candidates;
-    std::vector<float> far_z(nodes.size(), 1.0f);
+    std::vector<float> near_z(nodes.size(), 0.0f);
+    std::vector<Rect> footprint(nodes.size(), Rect{0, 0, res, res});
     for (std::uint32_t n : leaves)
         if (pixels[n] >= options.min_occluder_pixels) {
             candidates.push_back(n);
-            far_z[n] = box_z_far(vp, nodes[n].bounds);
+            float z = 0.0f;   // a box that crosses the near plane: in front, anywhere on screen
+            if (occludee_rect(vp, camera, nodes[n].bounds, res, footprint[n], z))
+                near_z[n] = z;
         }
     st.candidates = std::uint32_t(candidates.size());
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
     glViewport(0, 0, res, res);
-    glPushAttrib(GL_ENABLE_BIT | GL_DEPTH_BUFFER_BIT);
-    glDisable(GL_DEPTH_TEST);   // the stack wants every covered pixel, not the nearest
-    glDisable(GL_CULL_FACE);
-    load_camera(camera);
-    constexpr std::size_t group = 64;
-    std::vector<std::vector<GLuint>> lists(group);
-    for (std::size_t g0 = 0; g0 < occludees.size(); g0 += group) {
-        const std::size_t count = std::min(group, occludees.size() - g0);
+    glPushAttrib(GL_ENABLE_BIT | GL_DEPTH_BUFFER_BIT | GL_COLOR_BUFFER_BIT | GL_POLYGON_BIT);
+    glDisable(GL_CULL_FACE);   // the stack wants every covered pixel, back faces too
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_DEPTH_TEST);
+    constexpr std::size_t group_limit = 64;
+    std::vector<std::vector<GLuint>> lists(group_limit);
+    std::vector<std::size_t> pending(occludees.size());
+    for (std::size_t i = 0; i < pending.size(); ++i)
+        pending[i] = i;
+    while (!pending.empty()) {
+        std::vector<std::size_t> group, later;
+        for (std::size_t i : pending) {
+            const Rect &r = occludees[i].rect;
+            const bool disjoint = group.size() < group_limit && std::all_of(group.begin(), group.end(), [&](std::size_t j) {
+                const Rect &q = occludees[j].rect;
+                return r.x1 <= q.x0 || q.x1 <= r.x0 || r.y1 <= q.y0 || q.y1 <= r.y0;
+            });
+            (disjoint ? group : later).push_back(i);
+        }
+        pending.swap(later);
+
+        // Each occludee's nearest depth over its rectangle, drawn as a
+        // window-aligned quad (identity matrices: NDC in, window depth out).
+        glClearDepth(0.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glClearDepth(1.0);
+        glDepthFunc(GL_ALWAYS);
+        glDepthMask(GL_TRUE);
+        glMatrixMode(GL_PROJECTION);
+        glLoadIdentity();
+        glMatrixMode(GL_MODELVIEW);
+        glLoadIdentity();
+        glBegin(GL_QUADS);
+        for (std::size_t i : group) {
+            const Rect &r = occludees[i].rect;
+            auto ndc = [res](int p) { return 2.0f * float(p) / float(res) - 1.0f; };
+            const float z = 2.0f * occludees[i].z_near - 1.0f;
+            glVertex3f(ndc(r.x0), ndc(r.y0), z);
+            glVertex3f(ndc(r.x1), ndc(r.y0), z);
+            glVertex3f(ndc(r.x1), ndc(r.y1), z);
+            glVertex3f(ndc(r.x0), ndc(r.y1), z);
+        }
+        glEnd();
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_FALSE);
+        load_camera(camera);
+
+        const std::size_t count = group.size();
         std::vector<GLint> tiles(4 * count);
         std::vector<GLsizei> sizes(count);
         std::vector<GLuint *> buffers(count);
         float z_far_group = 0.0f;
-        for (std::size_t i = 0; i < count; ++i) {
-            const Occludee &o = occludees[g0 + i];
-            tiles[4 * i] = o.rect.x0;
-            tiles[4 * i + 1] = o.rect.y0;
-            tiles[4 * i + 2] = o.rect.x1 - o.rect.x0;
-            tiles[4 * i + 3] = o.rect.y1 - o.rect.y0;
+        for (std::size_t k = 0; k < count; ++k) {
+            const Occludee &o = occludees[group[k]];
+            tiles[4 * k] = o.rect.x0;
+            tiles[4 * k + 1] = o.rect.y0;
+            tiles[4 * k + 2] = o.rect.x1 - o.rect.x0;
+            tiles[4 * k + 3] = o.rect.y1 - o.rect.y0;
             // A leaf's front and back faces both cover a pixel: room for 4 each.
-            lists[i].resize(8 + 2 * 4 * std::size_t(o.rect.area()));
-            sizes[i] = GLsizei(lists[i].size());
-            buffers[i] = lists[i].data();
+            lists[k].resize(8 + 2 * 4 * std::size_t(o.rect.area()));
+            sizes[k] = GLsizei(lists[k].size());
+            buffers[k] = lists[k].data();
             z_far_group = std::max(z_far_group, o.z_near);
         }
         for (std::uint32_t c : candidates) {
-            if (far_z[c] >= z_far_group)
-                continue;   // behind every occludee of the group
+            const Rect &f = footprint[c];
+            if (near_z[c] >= z_far_group || std::none_of(group.begin(), group.end(), [&](std::size_t j) {
+                    const Rect &q = occludees[j].rect;
+                    return f.x0 < q.x1 && q.x0 < f.x1 && f.y0 < q.y1 && q.y0 < f.y1;
+                }))
+                continue;   // behind every occludee of the group, or beside them all
             OcclusionBuffersMESAX(GLsizei(count), sizes.data(), buffers.data());
             ScissorsMESAX(GLsizei(count), tiles.data());
             glRenderMode(GL_VERBOSE_OCCLUSION_MESAX);
             renderer.draw_leaf_flat(c);
             glRenderMode(GL_RENDER);
             ++st.passes;
-            for (std::size_t i = 0; i < count; ++i) {
-                Occludee &o = occludees[g0 + i];
-                if (far_z[c] >= o.z_near)
-                    continue;
-                const GLuint n = lists[i][0];
-                const std::size_t listed = std::min<std::size_t>(n, (lists[i].size() - 8) / 2);
+            for (std::size_t k = 0; k < count; ++k) {
+                Occludee &o = occludees[group[k]];
+                const GLuint n = lists[k][0];
+                const std::size_t listed = std::min<std::size_t>(n, (lists[k].size() - 8) / 2);
                 const int w = o.rect.x1 - o.rect.x0;
-                for (std::size_t k = 0; k < listed; ++k) {
-                    const GLuint x = lists[i][8 + 2 * k], y = lists[i][9 + 2 * k];
+                for (std::size_t i = 0; i < listed; ++i) {
+                    const GLuint x = lists[k][8 + 2 * i], y = lists[k][9 + 2 * i];
                     if (x == 0xffffffffu)
                         break;   // overflow terminator: the stack misses some of c (fewer sets, never wrong ones)
                     auto &s = o.stack[std::size_t(int(y) - o.rect.y0) * std::size_t(w) + std::size_t(int(x) - o.rect.x0)];

@@ -6,14 +6,14 @@
 //   2. Occludees: nodes with more than `min_occludee_triangles` triangles
 //      (the paper's 20) none of whose leaves is visible; their screen
 //      rectangles as the run-time test sees them.
-//   3. Occluder stacks (4.1): for each candidate occluder (a visible leaf
-//      of at least `min_occluder_pixels` pixels) one verbose pass of
-//      GL_MESAX_occlusion_unit draws it alone with one tile per occludee
-//      rectangle (64 occludees a pass); the pixel lists say which of each
-//      occludee's pixels it covers. It joins an occludee's stack only if
-//      its box lies wholly in front of the occludee's box (the paper's
-//      depth sorting, by box). The unit returns exactly the pixel sets,
-//      without reading back a frame per occluder.
+//   3. Occluder stacks (4.1): occludees in groups of up to 64 with disjoint
+//      rectangles; the depth buffer holds each one's nearest depth over its
+//      rectangle; for each candidate occluder (a visible leaf of at least
+//      `min_occluder_pixels` pixels) one verbose pass of
+//      GL_MESAX_occlusion_unit draws it alone, depth tested, with one tile
+//      per occludee: the pixel lists are exactly the pixels where it lies in
+//      front of each occludee (the paper's depth sorting, per pixel), with
+//      no frame read back per occluder.
 //   4. Per occludee, the combination table (pixels grouped by the set of
 //      occluders covering them) and its cheapest minimum occluder sets
 //      (4.2, minimum_occluder_set.h); occludees with an uncovered pixel
