@@ -34,11 +34,14 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     }
     const Frustum frustum(camera.view_projection());
     // Occlusion switched off: this frame tests the frustum only, unless it probes.
-    // A probe frame tests everything afresh, so that it measures what
-    // occlusion culling would gain now.
+    // A probe frame tests afresh (up to its pass budget), so that it
+    // measures what occlusion culling would gain now.
     const bool off = coherence && coherence->occlusion_off;
-    const bool probe = off && coherence->frame % std::max<std::uint32_t>(1, coherence->probe_period) == 0;
-    const bool switched_off = off && !probe;
+    // The first frame is a probe too: it only has to decide whether to test.
+    const bool probe = coherence && (off ? coherence->frames_to_probe <= 1 : coherence->frame == 0);
+    if (off && !probe)
+        --coherence->frames_to_probe;
+    bool switched_off = off && !probe;
     stats.occlusion_tested = !switched_off;
     // Taken as visible without a test: visible last frame and not due.
     auto assumed_visible = [&](std::uint32_t n) {
@@ -72,6 +75,8 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
         }
         culler.test_many(boxes, results);
         stats.nodes_tested += std::uint32_t(batch.size());
+        if (probe && culler.passes() >= coherence->probe_pass_budget)
+            switched_off = true;   // the probe has seen enough; the rest as when off
         // Assumed-visible nodes join the batch's results as visible.
         for (std::uint32_t n : assumed) {
             batch.push_back(n);
@@ -103,9 +108,20 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     stats.passes = culler.passes();
     if (coherence) {
         coherence->visible_last_frame.swap(visible_now);
-        if (stats.occlusion_tested)
+        if (stats.occlusion_tested) {
+            const bool was_off = coherence->occlusion_off;
             coherence->occlusion_off = double(stats.triangles_occluded) <
                                        double(coherence->switch_off_fraction) * double(stats.triangles);
+            if (coherence->occlusion_off) {
+                // Switching off waits the base period; a probe that finds
+                // occlusion still not worth it waits twice as long as before.
+                const std::uint32_t base = std::max<std::uint32_t>(1, coherence->probe_period);
+                coherence->probe_wait = was_off ? std::min(std::max(base, coherence->max_probe_period),
+                                                           2 * std::max(base, coherence->probe_wait))
+                                                : base;
+                coherence->frames_to_probe = coherence->probe_wait;
+            }
+        }
         ++coherence->frame;
     }
     return stats;

@@ -31,15 +31,27 @@ struct TraversalOptions {
 // Adaptive switch-off (Bartz et al. 1998, section 5; Poon and Wang lost 30%
 // on their open route without one): when occlusion tests culled fewer than
 // `switch_off_fraction` of the triangles drawn in a frame, the next frames
-// test no occlusion (view-frustum culling only) except one probe frame
-// every `probe_period`, whose result switches the tests back on.
+// test no occlusion (view-frustum culling only) except probe frames, whose
+// result can switch the tests back on. The first probe comes
+// `probe_period` frames after switching off; each probe that finds the
+// tests still not worth it doubles the wait, up to `max_probe_period`
+// (a probe tests everything and costs several frames' worth where there
+// is little occlusion, so a long stretch of open views probes rarely).
 struct Coherence {
     std::vector<std::uint8_t> visible_last_frame;   // by node
     std::uint32_t frame = 0;
     std::uint32_t retest_period = 8;
     float switch_off_fraction = 0.0f;   // 0: never switch off
     std::uint32_t probe_period = 8;
+    std::uint32_t max_probe_period = 64;
+    // A probe frame stops testing after this many occlusion passes (the
+    // rest of its nodes are taken as visible): front to back, the first
+    // passes find most of what occlusion would gain, and an unbounded probe
+    // of an open view costs several frames.
+    std::uint32_t probe_pass_budget = 32;
     bool occlusion_off = false;
+    std::uint32_t probe_wait = 0;        // frames between probes now
+    std::uint32_t frames_to_probe = 0;   // until the next probe
 };
 
 struct FrameStats {

@@ -122,3 +122,32 @@ TEST(Traversal, VisibleSubtreeStopsOcclusionTestsBelowIt)
     // The root, then only nodes outside the frustum.
     EXPECT_EQ(give_up.tested, 1 + s.nodes_view_culled);
 }
+
+// Adaptive switch-off: where occlusion tests cull nothing, they stop after
+// the first frame and come back only in probe frames, 8 frames later, then
+// twice as long after each probe that finds them still not worth it, up to
+// 64.
+TEST(Traversal, SwitchedOffProbesBackOff)
+{
+    gl::OffscreenContext ctx(32, 32);
+    Scene scene;
+    scene.meshes.emplace_back();
+    for (int i = 0; i < 8; ++i)
+        append_box(scene.meshes[0], Aabb::of({float(i) * 3.0f, 0, -5}, {float(i) * 3.0f + 1, 1, -4}));
+    scene.update_bounds();
+    HierarchyOptions ho;
+    ho.max_leaf_triangles = 12;
+    const Hierarchy h = Hierarchy::build(scene, ho);
+    const SceneRenderer renderer(scene, h);
+    Camera c;
+    c.position = {10, 0.5f, 20};
+    c.target = {10, 0.5f, -5};
+    auto none = make_culler("none");   // tests, but never finds anything occluded
+    Coherence coherence;
+    coherence.switch_off_fraction = 0.5f;
+    std::vector<std::uint32_t> tested;
+    for (std::uint32_t f = 0; f < 200; ++f)
+        if (render_hierarchy(renderer, h, *none, c, TraversalOptions{}, &coherence).occlusion_tested)
+            tested.push_back(f);
+    EXPECT_EQ(tested, (std::vector<std::uint32_t>{0, 8, 24, 56, 120, 184}));
+}
