@@ -37,11 +37,14 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     // A probe frame tests afresh (up to its pass budget), so that it
     // measures what occlusion culling would gain now.
     const bool off = coherence && coherence->occlusion_off;
-    // The first frame is a probe too: it only has to decide whether to test.
-    const bool probe = coherence && (off ? coherence->frames_to_probe <= 1 : coherence->frame == 0);
+    const bool probe = off && coherence->frames_to_probe <= 1;
     if (off && !probe)
         --coherence->frames_to_probe;
     bool switched_off = off && !probe;
+    // A probe cut short by its budget judges by what it saw before the cut:
+    // triangles occluded against triangles drawn up to then.
+    bool budget_spent = false, cut_pending = false;
+    std::uint64_t triangles_at_cut = 0, occluded_at_cut = 0;
     stats.occlusion_tested = !switched_off;
     // Taken as visible without a test: visible last frame and not due.
     auto assumed_visible = [&](std::uint32_t n) {
@@ -75,8 +78,11 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
         }
         culler.test_many(boxes, results);
         stats.nodes_tested += std::uint32_t(batch.size());
-        if (probe && culler.passes() >= coherence->probe_pass_budget)
+        if (probe && !switched_off && culler.passes() >= coherence->probe_pass_budget) {
             switched_off = true;   // the probe has seen enough; the rest as when off
+            budget_spent = true;
+            cut_pending = true;
+        }
         // Assumed-visible nodes join the batch's results as visible.
         for (std::uint32_t n : assumed) {
             batch.push_back(n);
@@ -104,14 +110,20 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
                 }
             }
         }
+        if (cut_pending) {   // this batch's results are in: the probe's view ends here
+            triangles_at_cut = stats.triangles;
+            occluded_at_cut = stats.triangles_occluded;
+            cut_pending = false;
+        }
     }
     stats.passes = culler.passes();
     if (coherence) {
         coherence->visible_last_frame.swap(visible_now);
         if (stats.occlusion_tested) {
             const bool was_off = coherence->occlusion_off;
-            coherence->occlusion_off = double(stats.triangles_occluded) <
-                                       double(coherence->switch_off_fraction) * double(stats.triangles);
+            const double drawn = double(budget_spent ? triangles_at_cut : stats.triangles);
+            const double occluded = double(budget_spent ? occluded_at_cut : stats.triangles_occluded);
+            coherence->occlusion_off = occluded < double(coherence->switch_off_fraction) * drawn;
             if (coherence->occlusion_off) {
                 // Switching off waits the base period; a probe that finds
                 // occlusion still not worth it waits twice as long as before.
