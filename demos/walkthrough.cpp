@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -212,6 +213,15 @@ int main(int argc, char **argv)
         glEnable(GL_DEPTH_TEST);
         glEnable(GL_CULL_FACE);
         glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
+        // Every strategy renders frame f before any renders frame f + 1, so
+        // that the machine's load, which drifts, weighs on all of them alike.
+        struct Run {
+            std::string name;
+            std::unique_ptr<Culler> culler;
+            Coherence coherence;   // temporal coherence, for the strategies that test occlusion
+            bool coherent = false;
+        };
+        std::vector<Run> runs;
         for (const std::string &name : o.strategies) {
             CullerOptions co;
             co.adaptive_threshold = o.threshold;
@@ -222,13 +232,19 @@ int main(int argc, char **argv)
             co.hierarchy = &hierarchy;
             co.renderer = &renderer;
             co.occluder_database = occluder_db ? &*occluder_db : nullptr;
-            auto culler = make_culler(name, co);
-            Summary &s = summary[name];
-            // Temporal coherence for the strategies that test occlusion.
-            Coherence coherence;
-            coherence.switch_off_fraction = o.switch_off;
-            Coherence *use_coherence = o.coherent && name.rfind("occu-", 0) == 0 ? &coherence : nullptr;
-            for (std::size_t f = 0; f < route.size(); ++f) {
+            Run r;
+            r.name = name;
+            r.culler = make_culler(name, co);
+            r.coherence.switch_off_fraction = o.switch_off;
+            r.coherent = o.coherent && name.rfind("occu-", 0) == 0;
+            runs.push_back(std::move(r));
+        }
+        for (std::size_t f = 0; f < route.size(); ++f) {
+            for (Run &run : runs) {
+                const std::string &name = run.name;
+                Culler *culler = run.culler.get();
+                Summary &s = summary[name];
+                Coherence *use_coherence = run.coherent ? &run.coherence : nullptr;
                 const auto start = std::chrono::steady_clock::now();
                 glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
                 load_camera(route[f]);
@@ -278,8 +294,8 @@ int main(int argc, char **argv)
                     << q.visible_culled << ',' << wrong << '\n';
                 glEnable(GL_DEPTH_TEST);
                 glEnable(GL_CULL_FACE);
-                progress(name, int(f + 1), int(route.size()));
             }
+            progress("frames", long(f + 1), long(route.size()));
         }
 
         const double vfc_ms = summary.count("vfc") ? [&] {
