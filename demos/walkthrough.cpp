@@ -6,6 +6,7 @@
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
 //               [--threshold T] [--max-test-area A] [--coherent on|off] [--switch-off F]
 //               [--occluders N] [--tolerance PIXELS] [--coverage-ratio R] [--occluder-db FILE]
+//               [--leaf-geometry on|off]
 //               [--png-every N] [--oracle on|off] [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
@@ -58,6 +59,7 @@ struct Options {
     int occluders = 64;
     int tolerance = 0;
     double coverage_ratio = 0.2;
+    bool leaf_geometry = false;
     int png_every = 20;
     bool oracle = true;
     bool coherent = true;
@@ -75,6 +77,7 @@ struct Options {
                  "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"
                  "                   [--coherent on|off] [--switch-off F] [--occluders N] [--tolerance PIXELS]\n"
                  "                   [--coverage-ratio R (om-*, pc-*: adaptive overlap test, 0 off)]\n"
+                 "                   [--leaf-geometry on|off (occu-hier*: test leaves by their triangles)]\n"
                  "                   [--occluder-db FILE (mos-om, pc-mos; made by occu-preprocess)]\n"
                  "                   [--png-every N] [--oracle on|off]\n"
                  "                   [--out DIR]\n",
@@ -135,7 +138,11 @@ Options parse(int argc, char **argv)
             if (v.empty() || *end || !(o.switch_off >= 0.0f && o.switch_off <= 1.0f))
                 usage("--switch-off wants a number in [0, 1], got '" + v + "'");
         }
-        else if (a == "--coherent") {
+        else if (a == "--leaf-geometry") {
+            if (v != "on" && v != "off")
+                usage("--leaf-geometry wants on or off, got '" + v + "'");
+            o.leaf_geometry = v == "on";
+        } else if (a == "--coherent") {
             if (v != "on" && v != "off")
                 usage("--coherent wants on or off, got '" + v + "'");
             o.coherent = v == "on";
@@ -229,6 +236,7 @@ int main(int argc, char **argv)
             co.occluders = std::size_t(o.occluders);
             co.tolerance = std::uint32_t(o.tolerance);
             co.coverage_ratio = o.coverage_ratio;
+            co.leaf_geometry = o.leaf_geometry;
             co.hierarchy = &hierarchy;
             co.renderer = &renderer;
             co.occluder_database = occluder_db ? &*occluder_db : nullptr;

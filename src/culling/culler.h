@@ -30,6 +30,8 @@ enum class Visibility { visible, occluded, view_culled, visible_subtree };
 
 const char *visibility_name(Visibility v);
 
+class Hierarchy;
+
 class Culler {
 public:
     virtual ~Culler() = default;
@@ -46,13 +48,22 @@ public:
         for (std::size_t i = 0; i < boxes.size(); ++i)
             results[i] = test(boxes[i]);
     }
+    // Tests nodes of `hierarchy` whose boxes are `boxes` (the traversal
+    // calls this; strategies that can test a leaf by its own geometry
+    // override it, the others test the boxes).
+    virtual void test_nodes(const Hierarchy &hierarchy, const std::vector<std::uint32_t> &nodes,
+                            const std::vector<Aabb> &boxes, std::vector<Visibility> &results)
+    {
+        (void)hierarchy;
+        (void)nodes;
+        test_many(boxes, results);
+    }
     // The caller drew the contents of `box`.
     virtual void rendered(const Aabb &box) { (void)box; }
     // Occlusion passes (or queries) issued since begin_frame.
     virtual std::uint32_t passes() const { return 0; }
 };
 
-class Hierarchy;
 class SceneRenderer;
 class OccluderDatabase;
 
@@ -61,6 +72,7 @@ class OccluderDatabase;
 struct CullerOptions {
     float adaptive_threshold = 0.0f;   // occu-hier: occluded when NOHC <= t * PHC; 0: exact
     double max_test_area = 0.25;       // occu-hier: boxes covering more of the viewport are not tested
+    bool leaf_geometry = false;        // occu-hier: test leaves by their triangles, not their boxes (needs renderer)
     std::size_t occluders = 64;        // om-ps: leaves rendered as occluders
     std::uint32_t tolerance = 0;       // om-*, pc-*: hole pixels the overlap test ignores; 0: exact
     double coverage_ratio = 0.2;       // om-*, pc-*: adaptive overlap test; below it, descendants go untested

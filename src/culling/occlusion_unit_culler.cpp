@@ -7,12 +7,16 @@
 
 #include "gl/extensions.h"
 #include "render/scene_renderer.h"
+#include "spatial/hierarchy.h"
 
 namespace occu {
 
 OcclusionUnitCuller::OcclusionUnitCuller(const CullerOptions &options, bool shared_passes)
-    : threshold_(options.adaptive_threshold), shared_passes_(shared_passes), max_test_area_(options.max_test_area)
+    : renderer_(options.renderer), leaf_geometry_(options.leaf_geometry), threshold_(options.adaptive_threshold),
+      shared_passes_(shared_passes), max_test_area_(options.max_test_area)
 {
+    if (leaf_geometry_ && !renderer_)
+        throw std::invalid_argument("leaf geometry tests need the scene renderer");
     if (!(threshold_ >= 0.0f && threshold_ < 1.0f))
         throw std::invalid_argument("adaptive threshold " + std::to_string(threshold_) + " is outside [0, 1)");
     if (!(max_test_area_ > 0.0 && max_test_area_ <= 1.0))
@@ -61,6 +65,16 @@ Visibility OcclusionUnitCuller::test(const Aabb &box)
     std::vector<Visibility> r;
     test_many({box}, r);
     return r[0];
+}
+
+void OcclusionUnitCuller::test_nodes(const Hierarchy &hierarchy, const std::vector<std::uint32_t> &nodes,
+                                     const std::vector<Aabb> &boxes, std::vector<Visibility> &results)
+{
+    hierarchy_ = &hierarchy;
+    nodes_ = &nodes;
+    test_many(boxes, results);
+    hierarchy_ = nullptr;
+    nodes_ = nullptr;
 }
 
 void OcclusionUnitCuller::test_many(const std::vector<Aabb> &boxes, std::vector<Visibility> &results)
@@ -141,6 +155,10 @@ void OcclusionUnitCuller::run_pass(const std::vector<Aabb> &boxes, const std::ve
     const float pixel_per_metre =
         2.0f * std::tan(glm::radians(camera_.fovy_degrees) * 0.5f) / float(std::max(viewport_[3], 1));
     for (std::size_t i : members) {
+        if (leaf_geometry_ && nodes_ && hierarchy_ && hierarchy_->nodes()[(*nodes_)[i]].leaf()) {
+            renderer_->draw_leaf_flat((*nodes_)[i]);
+            continue;
+        }
         Aabb grown = boxes[i];
         const glm::vec3 nearest = glm::clamp(camera_.position, grown.min, grown.max);
         const float margin = 0.01f + 1.5f * pixel_per_metre * glm::length(nearest - camera_.position);

@@ -23,6 +23,12 @@
 // than max_test_area of the viewport: testing them costs most (the unit
 // counts every fragment of the box) and they are rarely hidden; their
 // children are tested instead. 1 tests every box.
+//
+// Leaf geometry (options.leaf_geometry): a leaf is tested by drawing its own
+// triangles in the pass instead of its box. Boxes show above and beside
+// occluders where what they hold does not; the triangles are exact (the
+// same rasterization that would draw them, tested with LEQUAL and an offset
+// towards the eye), at the price of the leaf's vertex work in the pass.
 #pragma once
 
 #include <array>
@@ -46,6 +52,8 @@ public:
     void begin_frame(const Camera &camera) override;
     Visibility test(const Aabb &box) override;
     void test_many(const std::vector<Aabb> &boxes, std::vector<Visibility> &results) override;
+    void test_nodes(const Hierarchy &hierarchy, const std::vector<std::uint32_t> &nodes,
+                    const std::vector<Aabb> &boxes, std::vector<Visibility> &results) override;
     std::uint32_t passes() const override { return passes_; }
 
 private:
@@ -58,6 +66,12 @@ private:
     void run_pass(const std::vector<Aabb> &boxes, const std::vector<std::size_t> &members,
                   const std::vector<Rect> &rects, std::vector<Visibility> &results);
 
+    // Set by test_nodes for the batch under test: leaves among `boxes` are
+    // drawn as their triangles.
+    const Hierarchy *hierarchy_ = nullptr;
+    const std::vector<std::uint32_t> *nodes_ = nullptr;
+    const SceneRenderer *renderer_ = nullptr;   // leaf geometry only
+    bool leaf_geometry_ = false;
     float threshold_;
     bool shared_passes_;
     double max_test_area_;

@@ -76,7 +76,7 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
             batch.push_back(n);
             boxes.push_back(nodes[n].bounds);
         }
-        culler.test_many(boxes, results);
+        culler.test_nodes(hierarchy, batch, boxes, results);
         stats.nodes_tested += std::uint32_t(batch.size());
         if (probe && !switched_off && culler.passes() >= coherence->probe_pass_budget) {
             switched_off = true;   // the probe has seen enough; the rest as when off

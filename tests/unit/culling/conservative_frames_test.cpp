@@ -1,7 +1,8 @@
 // Conservative strategies never remove a visible pixel: on short routes of
 // a small city, every frame drawn with vfc, with occu-hier (batched and
 // strictly front to back, testing every box), with om-ps (opacity and
-// sparse depth maps) and with occu-hier-shared
+// sparse depth maps), with occu-hier testing leaves by their triangles,
+// and with occu-hier-shared
 // (overlapping boxes share passes), also with temporal coherence across the
 // route's frames, equals the unculled frame byte for byte, while
 // occu-hier draws fewer triangles (so the comparison can fail).
@@ -63,7 +64,11 @@ TEST(ConservativeCulling, FramesEqualUnculledFrames)
     with_scene.hierarchy = &h;
     with_scene.renderer = &renderer;
     auto om = make_culler("om-ps", with_scene);
-    std::uint64_t drawn_none = 0, drawn_occu = 0, drawn_om = 0;
+    CullerOptions by_geometry = with_scene;   // leaves tested by their own triangles
+    by_geometry.leaf_geometry = true;
+    by_geometry.max_test_area = 1.0;
+    auto occu_geometry = make_culler("occu-hier", by_geometry);
+    std::uint64_t drawn_none = 0, drawn_occu = 0, drawn_om = 0, drawn_geometry = 0;
     for (const char *route : {"dense", "medium", "open"}) {
         const auto cameras = make_route(route, scene.bounds, city, 5, 1.0f);
         Coherence coherence;
@@ -76,6 +81,7 @@ TEST(ConservativeCulling, FramesEqualUnculledFrames)
             const Frame culled_shared = draw(ctx, renderer, h, *shared, cameras[f], 32);
             const Frame culled_coherent = draw(ctx, renderer, h, *shared, cameras[f], 32, &coherence);
             const Frame culled_om = draw(ctx, renderer, h, *om, cameras[f], 16);
+            const Frame culled_geometry = draw(ctx, renderer, h, *occu_geometry, cameras[f], 16);
             EXPECT_TRUE(reference.pixels == culled_vfc.pixels) << route << " frame " << f << ": vfc";
             EXPECT_TRUE(reference.pixels == culled_one.pixels) << route << " frame " << f << ": occu-hier, batch 1";
             EXPECT_TRUE(reference.pixels == culled_batch.pixels) << route << " frame " << f << ": occu-hier, batch 16";
@@ -83,6 +89,9 @@ TEST(ConservativeCulling, FramesEqualUnculledFrames)
             EXPECT_TRUE(reference.pixels == culled_coherent.pixels)
                 << route << " frame " << f << ": occu-hier-shared with temporal coherence";
             EXPECT_TRUE(reference.pixels == culled_om.pixels) << route << " frame " << f << ": om-ps";
+            EXPECT_TRUE(reference.pixels == culled_geometry.pixels)
+                << route << " frame " << f << ": occu-hier, leaves tested by their triangles";
+            drawn_geometry += culled_geometry.triangles;
             drawn_om += culled_om.triangles;
             drawn_none += reference.triangles;
             drawn_occu += culled_batch.triangles;
@@ -90,6 +99,7 @@ TEST(ConservativeCulling, FramesEqualUnculledFrames)
     }
     EXPECT_LT(drawn_occu, drawn_none / 2) << "occu-hier culled too little for the comparison to mean anything";
     EXPECT_LT(drawn_om, drawn_none) << "om-ps culled nothing";
+    EXPECT_LE(drawn_geometry, drawn_occu) << "triangles as proxies should cull at least what boxes do";
 }
 
 // The same at a distance: the default city seen from the open route, where
