@@ -87,7 +87,8 @@ std::vector<std::uint32_t> OpacityMapCuller::choose_occluders(const Camera &came
     }
     std::vector<std::uint32_t> chosen;
     const auto &nodes = hierarchy_.nodes();
-    for (std::uint32_t n : options_.database->occluders_for(camera)) {
+    const std::vector<std::uint32_t> listed = options_.database->occluders_for(camera);
+    for (std::uint32_t n : listed) {
         if (chosen.size() >= options_.occluders)
             break;
         if (n < nodes.size() && nodes[n].leaf() && frustum_->classify(nodes[n].bounds) != Frustum::Side::outside)

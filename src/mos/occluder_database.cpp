@@ -57,26 +57,46 @@ bool OccluderGrid::operator==(const OccluderGrid &o) const
     return origin == o.origin && spacing == o.spacing && points == o.points && directions == o.directions;
 }
 
-const std::vector<std::uint32_t> &OccluderDatabase::occluders_for(const Camera &camera) const
+std::vector<std::uint32_t> OccluderDatabase::occluders_for(const Camera &camera) const
 {
-    static const std::vector<std::uint32_t> none;
     const std::uint32_t v = grid.nearest_view(camera);
-    if (auto it = views.find(v); it != views.end())
-        return it->second;
-    // A partial database: the processed view of the same heading nearest the eye.
     const std::uint32_t dirs = std::uint32_t(grid.directions);
-    const std::vector<std::uint32_t> *best = &none;
-    float best_d2 = std::numeric_limits<float>::max();
-    for (const auto &[view, list] : views) {
-        if (view % dirs != v % dirs)
-            continue;
-        const glm::vec3 p = grid.view_camera(view, camera).position - camera.position;
-        if (glm::dot(p, p) < best_d2) {
-            best_d2 = glm::dot(p, p);
-            best = &list;
+    const std::vector<std::uint32_t> *first = nullptr;
+    if (auto it = views.find(v); it != views.end()) {
+        first = &it->second;
+    } else {
+        // A partial database: the processed view of the same heading nearest the eye.
+        float best_d2 = std::numeric_limits<float>::max();
+        for (const auto &[view, list] : views) {
+            if (view % dirs != v % dirs)
+                continue;
+            const glm::vec3 p = grid.view_camera(view, camera).position - camera.position;
+            if (glm::dot(p, p) < best_d2) {
+                best_d2 = glm::dot(p, p);
+                first = &list;
+            }
         }
     }
-    return *best;
+    if (!first)
+        return {};
+    // The neighbouring heading on the side the camera turns to.
+    const glm::vec3 f = camera.target - camera.position;
+    float angle = std::atan2(f.z, f.x);
+    if (angle < 0.0f)
+        angle += two_pi;
+    const float t = angle / two_pi * float(dirs) - float(v % dirs);
+    const float wrapped = t > float(dirs) / 2.0f ? t - float(dirs) : t;   // heading 0 seen from just below 2 pi
+    const std::uint32_t d1 = (v % dirs + (wrapped >= 0.0f ? 1 : dirs - 1)) % dirs;
+    const auto second = dirs > 1 ? views.find(v - v % dirs + d1) : views.end();
+    if (second == views.end())
+        return *first;
+    std::vector<std::uint32_t> merged;
+    const auto &a = *first, &b = second->second;
+    for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i)
+        for (const auto *list : {&a, &b})
+            if (i < list->size() && std::find(merged.begin(), merged.end(), (*list)[i]) == merged.end())
+                merged.push_back((*list)[i]);
+    return merged;
 }
 
 void OccluderDatabase::save(const std::string &path) const

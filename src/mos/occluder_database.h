@@ -48,9 +48,12 @@ public:
     std::uint32_t scene_leaves = 0, scene_triangles = 0;
     std::map<std::uint32_t, std::vector<std::uint32_t>> views;   // view -> occluders, best first
 
-    // The occluders for `camera`: the nearest view's list, or, if that view
-    // was never processed, the nearest processed point's view; empty if none.
-    const std::vector<std::uint32_t> &occluders_for(const Camera &camera) const;
+    // The occluders for `camera`: the nearest view's list (or, if that view
+    // was never processed, the nearest processed point's view of that
+    // heading), interleaved with the list of the next heading on the
+    // camera's side at the same point, if processed: a frustum turned
+    // between two headings sees what both were chosen for. Best first.
+    std::vector<std::uint32_t> occluders_for(const Camera &camera) const;
 
     void save(const std::string &path) const;
     // Throws std::runtime_error naming the file and line of what is wrong.

@@ -3,6 +3,7 @@
 // are found by nearest point and heading.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -106,6 +107,15 @@ TEST(OccluderDatabase, NearestViewByPointAndHeading)
     // point of that heading, point 0 (view 0).
     c.target = c.position + glm::vec3(1, 0, 0);
     EXPECT_EQ(db.occluders_for(c), (std::vector<std::uint32_t>{5, 3, 9}));
+    // Between two headings: the nearest heading's list interleaved with the
+    // next one's at the same point, duplicates dropped.
+    auto db2 = sample();
+    db2.views[1] = {3, 4};
+    c.position = {-10.0f, 1.7f, -10.0f};   // point 0
+    c.target = c.position + glm::vec3(std::cos(glm::radians(30.0f)), 0, std::sin(glm::radians(30.0f)));
+    EXPECT_EQ(db2.occluders_for(c), (std::vector<std::uint32_t>{5, 3, 4, 9}));   // ranks 0, 0, 1, 2
+    c.target = c.position + glm::vec3(std::cos(glm::radians(-30.0f)), 0, std::sin(glm::radians(-30.0f)));
+    EXPECT_EQ(db2.occluders_for(c), (std::vector<std::uint32_t>{5, 3, 9}));   // heading 3 never processed
     // The view camera looks along its heading from its point.
     const Camera v = db.grid.view_camera(7, c);
     EXPECT_FLOAT_EQ(v.position.x, 0.0f);
