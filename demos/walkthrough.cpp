@@ -114,6 +114,14 @@ Options parse(int argc, char **argv)
                     o.strategies.push_back(s);
             if (o.strategies.empty())
                 usage("--strategies is empty");
+            const auto known = occu::culler_names();
+            for (const std::string &name : o.strategies)
+                if (std::find(known.begin(), known.end(), name) == known.end()) {
+                    std::string list;
+                    for (const std::string &k : known)
+                        list += (list.empty() ? "" : ", ") + k;
+                    usage("unknown strategy '" + name + "' (known: " + list + ")");
+                }
         }
         else if (a == "--frames") o.frames = to_int(a, v, 1, 100000);
         else if (a == "--size") o.size = to_int(a, v, 16, 8192);
@@ -165,6 +173,9 @@ Options parse(int argc, char **argv)
         } else
             usage("unknown argument '" + a + "'");
     }
+    for (const std::string &name : o.strategies)
+        if ((name == "mos-om" || name == "pc-mos") && o.occluder_db.empty())
+            usage(name + " needs --occluder-db FILE (made by occu-preprocess)");
     return o;
 }
 
