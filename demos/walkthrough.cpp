@@ -6,7 +6,7 @@
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
 //               [--threshold T] [--max-test-area A] [--coherent on|off] [--switch-off F]
 //               [--occluders N] [--tolerance PIXELS] [--coverage-ratio R] [--occluder-db FILE]
-//               [--leaf-geometry on|off]
+//               [--leaf-geometry on|off] [--map-divisor N]
 //               [--png-every N] [--oracle on|off] [--out DIR]
 //
 // Writes DIR/frames.csv (one row per strategy and frame), DIR/<strategy>-NNNN.png
@@ -60,6 +60,7 @@ struct Options {
     int tolerance = 0;
     double coverage_ratio = 0.2;
     bool leaf_geometry = false;
+    int map_divisor = 4;
     int png_every = 20;
     bool oracle = true;
     bool coherent = true;
@@ -78,6 +79,7 @@ struct Options {
                  "                   [--coherent on|off] [--switch-off F] [--occluders N] [--tolerance PIXELS]\n"
                  "                   [--coverage-ratio R (om-*, pc-*: adaptive overlap test, 0 off)]\n"
                  "                   [--leaf-geometry on|off (occu-hier*: test leaves by their triangles)]\n"
+                 "                   [--map-divisor N (om-*, pc-*: frame pixels per map pixel, each way; 4)]\n"
                  "                   [--occluder-db FILE (mos-om, pc-mos; made by occu-preprocess)]\n"
                  "                   [--png-every N] [--oracle on|off]\n"
                  "                   [--out DIR]\n",
@@ -132,6 +134,7 @@ Options parse(int argc, char **argv)
         else if (a == "--png-every") o.png_every = to_int(a, v, 0, 100000);
         else if (a == "--occluders") o.occluders = to_int(a, v, 1, 1 << 20);
         else if (a == "--tolerance") o.tolerance = to_int(a, v, 0, 1 << 20);
+        else if (a == "--map-divisor") o.map_divisor = to_int(a, v, 1, 64);
         else if (a == "--coverage-ratio") {
             char *end = nullptr;
             o.coverage_ratio = std::strtod(v.c_str(), &end);
@@ -248,6 +251,7 @@ int main(int argc, char **argv)
             co.tolerance = std::uint32_t(o.tolerance);
             co.coverage_ratio = o.coverage_ratio;
             co.leaf_geometry = o.leaf_geometry;
+            co.map_divisor = o.map_divisor;
             co.hierarchy = &hierarchy;
             co.renderer = &renderer;
             co.occluder_database = occluder_db ? &*occluder_db : nullptr;

@@ -68,6 +68,9 @@ std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &
         om.occluders = options.occluders;
         om.tolerance = options.tolerance;
         om.coverage_ratio = options.coverage_ratio;
+        if (options.map_divisor < 1)
+            throw std::invalid_argument("map divisor " + std::to_string(options.map_divisor) + " is below 1");
+        om.divisor = options.map_divisor;
         om.pixelwise = pixelwise;
         om.criterion = name == "om-fh"                       ? OccluderCriterion::first_hit
                        : name == "mos-om" || name == "pc-mos" ? OccluderCriterion::minimum_occluder_set

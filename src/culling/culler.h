@@ -76,6 +76,7 @@ struct CullerOptions {
     std::size_t occluders = 64;        // om-ps: leaves rendered as occluders
     std::uint32_t tolerance = 0;       // om-*, pc-*: hole pixels the overlap test ignores; 0: exact
     double coverage_ratio = 0.2;       // om-*, pc-*: adaptive overlap test; below it, descendants go untested
+    int map_divisor = 4;               // om-*, pc-*: frame pixels per map pixel, each way (512 -> 128)
     const Hierarchy *hierarchy = nullptr;         // om-*, pc-*, mos-om draw occluders from these
     const SceneRenderer *renderer = nullptr;
     const OccluderDatabase *occluder_database = nullptr;   // mos-om, pc-mos
