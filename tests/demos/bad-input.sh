@@ -42,6 +42,7 @@ expect_error "broken.obj" "$walkthrough" --frames 1 --scene "$dir/broken.obj"
 expect_error "garbage.gltf" "$walkthrough" --frames 1 --scene "$dir/garbage.gltf"
 expect_error "no-such-scene.obj" "$walkthrough" --frames 1 --scene "$dir/no-such-scene.obj"
 expect_error "short.route" "$walkthrough" --frames 1 --route "$dir/short.route"
+expect_error "--map-divisor" "$walkthrough" --map-divisor 0
 expect_error "--nonsense" "$walkthrough" --nonsense 1
 expect_error "--grid" "$preprocess" build --out "$dir/x.db" --grid 3,0,3
 expect_error "--shard" "$preprocess" build --out "$dir/x.db" --shard 0/2

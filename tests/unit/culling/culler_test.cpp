@@ -26,6 +26,9 @@ TEST(MakeCuller, KnownNamesAndAnErrorNamingTheUnknownOne)
     with_scene.renderer = &renderer;
     EXPECT_THROW(make_culler("om-ps"), std::invalid_argument);
     EXPECT_THROW(make_culler("mos-om", with_scene), std::invalid_argument);   // no database
+    CullerOptions no_map = with_scene;
+    no_map.map_divisor = 0;
+    EXPECT_THROW(make_culler("om-ps", no_map), std::invalid_argument);
     const OccluderDatabase database;
     with_scene.occluder_database = &database;
     for (const std::string &n : culler_names()) {
