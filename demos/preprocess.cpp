@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/arguments.h"
 #include "cli/progress.h"
 #include "gl/extensions.h"
 #include "gl/offscreen_context.h"
@@ -43,15 +44,6 @@ namespace {
                  "       occu-preprocess merge --out FILE SHARD...\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
     std::exit(error.empty() ? 0 : 2);
-}
-
-long to_long(const std::string &option, const std::string &v, long lo, long hi)
-{
-    char *end = nullptr;
-    const long x = std::strtol(v.c_str(), &end, 10);
-    if (v.empty() || *end || x < lo || x > hi)
-        usage(option + " wants an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + v + "'");
-    return x;
 }
 
 struct Options {
@@ -162,34 +154,34 @@ int main(int argc, char **argv)
         if (i + 1 >= argc)
             usage(a + " needs a value");
         const std::string v = argv[++i];
-        if (a == "--out") o.out = v;
-        else if (command == "merge") usage("merge takes only --out and shard files, not " + a);
-        else if (a == "--scene") o.scene = v;
-        else if (a == "--driver") o.driver = v;
-        else if (a == "--city-copies") o.city_copies = int(to_long(a, v, 1, 64));
-        else if (a == "--leaf-triangles") o.leaf_triangles = int(to_long(a, v, 1, 1 << 20));
-        else if (a == "--directions") o.directions = int(to_long(a, v, 1, 360));
-        else if (a == "--max-occluders") o.pre.max_occluders = std::size_t(to_long(a, v, 1, 1 << 20));
-        else if (a == "--resolution") o.pre.resolution = int(to_long(a, v, 16, 1024));
-        else if (a == "--eye-height") {
-            char *end = nullptr;
-            o.eye_height = std::strtof(v.c_str(), &end);
-            if (v.empty() || *end)
-                usage("--eye-height wants a number, got '" + v + "'");
-        } else if (a == "--grid") {
-            std::istringstream in(v);
-            char c1 = 0, c2 = 0;
-            if (!(in >> o.grid.x >> c1 >> o.grid.y >> c2 >> o.grid.z) || c1 != ',' || c2 != ',' || !in.eof() ||
-                o.grid.x < 1 || o.grid.y < 1 || o.grid.z < 1 || o.grid.x * o.grid.y * o.grid.z > 100000)
-                usage("--grid wants NX,NY,NZ (positive, product at most 100000), got '" + v + "'");
-        } else if (a == "--shard") {
-            const auto slash = v.find('/');
-            if (slash == std::string::npos)
-                usage("--shard wants I/N, got '" + v + "'");
-            o.shards = int(to_long("--shard N", v.substr(slash + 1), 1, 1 << 20));
-            o.shard = int(to_long("--shard I", v.substr(0, slash), 1, o.shards));
-        } else
-            usage("unknown option '" + a + "'");
+        try {
+            if (a == "--out") o.out = v;
+            else if (command == "merge") usage("merge takes only --out and shard files, not " + a);
+            else if (a == "--scene") o.scene = v;
+            else if (a == "--driver") o.driver = v;
+            else if (a == "--city-copies") o.city_copies = int(occu::integer_option(a, v, 1, 64));
+            else if (a == "--leaf-triangles") o.leaf_triangles = int(occu::integer_option(a, v, 1, 1 << 20));
+            else if (a == "--directions") o.directions = int(occu::integer_option(a, v, 1, 360));
+            else if (a == "--max-occluders") o.pre.max_occluders = std::size_t(occu::integer_option(a, v, 1, 1 << 20));
+            else if (a == "--resolution") o.pre.resolution = int(occu::integer_option(a, v, 16, 1024));
+            else if (a == "--eye-height") o.eye_height = float(occu::number_option(a, v, -1e6, 1e6));
+            else if (a == "--grid") {
+                std::istringstream in(v);
+                char c1 = 0, c2 = 0;
+                if (!(in >> o.grid.x >> c1 >> o.grid.y >> c2 >> o.grid.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+                    o.grid.x < 1 || o.grid.y < 1 || o.grid.z < 1 || o.grid.x * o.grid.y * o.grid.z > 100000)
+                    usage("--grid wants NX,NY,NZ (positive, product at most 100000), got '" + v + "'");
+            } else if (a == "--shard") {
+                const auto slash = v.find('/');
+                if (slash == std::string::npos)
+                    usage("--shard wants I/N, got '" + v + "'");
+                o.shards = int(occu::integer_option("--shard N", v.substr(slash + 1), 1, 1 << 20));
+                o.shard = int(occu::integer_option("--shard I", v.substr(0, slash), 1, o.shards));
+            } else
+                usage("unknown option '" + a + "'");
+        } catch (const std::invalid_argument &e) {
+            usage(e.what());
+        }
     }
     if (o.out.empty())
         usage("--out FILE is required");

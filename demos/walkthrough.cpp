@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "camera/route.h"
+#include "cli/arguments.h"
 #include "cli/progress.h"
 #include "culling/oracle.h"
 #include "culling/traversal.h"
@@ -87,15 +88,6 @@ struct Options {
     std::exit(error.empty() ? 0 : 2);
 }
 
-int to_int(const std::string &flag, const std::string &v, int lo, int hi)
-{
-    char *end = nullptr;
-    const long x = std::strtol(v.c_str(), &end, 10);
-    if (v.empty() || *end || x < lo || x > hi)
-        usage(flag + " wants an integer in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + v + "'");
-    return int(x);
-}
-
 Options parse(int argc, char **argv)
 {
     Options o;
@@ -106,75 +98,50 @@ Options parse(int argc, char **argv)
         if (i + 1 >= argc)
             usage("unknown argument or missing value: '" + a + "'");
         const std::string v = argv[++i];
-        if (a == "--route") o.route = v;
-        else if (a == "--scene") o.scene = v;
-        else if (a == "--strategies") {
-            o.strategies.clear();
-            std::stringstream ss(v);
-            for (std::string s; std::getline(ss, s, ',');)
-                if (!s.empty())
-                    o.strategies.push_back(s);
-            if (o.strategies.empty())
-                usage("--strategies is empty");
-            const auto known = occu::culler_names();
-            for (const std::string &name : o.strategies)
-                if (std::find(known.begin(), known.end(), name) == known.end()) {
-                    std::string list;
-                    for (const std::string &k : known)
-                        list += (list.empty() ? "" : ", ") + k;
-                    usage("unknown strategy '" + name + "' (known: " + list + ")");
-                }
+        try {
+            if (a == "--route") o.route = v;
+            else if (a == "--scene") o.scene = v;
+            else if (a == "--strategies") {
+                o.strategies.clear();
+                std::stringstream ss(v);
+                for (std::string s; std::getline(ss, s, ',');)
+                    if (!s.empty())
+                        o.strategies.push_back(s);
+                if (o.strategies.empty())
+                    usage("--strategies is empty");
+                const auto known = occu::culler_names();
+                for (const std::string &name : o.strategies)
+                    if (std::find(known.begin(), known.end(), name) == known.end()) {
+                        std::string list;
+                        for (const std::string &k : known)
+                            list += (list.empty() ? "" : ", ") + k;
+                        usage("unknown strategy '" + name + "' (known: " + list + ")");
+                    }
+            }
+            else if (a == "--frames") o.frames = int(occu::integer_option(a, v, 1, 100000));
+            else if (a == "--size") o.size = int(occu::integer_option(a, v, 16, 8192));
+            else if (a == "--driver") o.driver = v;
+            else if (a == "--city-copies") o.city_copies = int(occu::integer_option(a, v, 1, 64));
+            else if (a == "--leaf-triangles") o.leaf_triangles = int(occu::integer_option(a, v, 1, 1 << 20));
+            else if (a == "--batch") o.batch = int(occu::integer_option(a, v, 1, 4096));
+            else if (a == "--png-every") o.png_every = int(occu::integer_option(a, v, 0, 100000));
+            else if (a == "--occluders") o.occluders = int(occu::integer_option(a, v, 1, 1 << 20));
+            else if (a == "--tolerance") o.tolerance = int(occu::integer_option(a, v, 0, 1 << 20));
+            else if (a == "--map-divisor") o.map_divisor = int(occu::integer_option(a, v, 1, 64));
+            else if (a == "--coverage-ratio") o.coverage_ratio = occu::number_option(a, v, 0.0, 1.0);
+            else if (a == "--out") o.out = v;
+            else if (a == "--occluder-db") o.occluder_db = v;
+            else if (a == "--switch-off") o.switch_off = float(occu::number_option(a, v, 0.0, 1.0));
+            else if (a == "--leaf-geometry") o.leaf_geometry = occu::switch_option(a, v);
+            else if (a == "--coherent") o.coherent = occu::switch_option(a, v);
+            else if (a == "--oracle") o.oracle = occu::switch_option(a, v);
+            else if (a == "--threshold") o.threshold = float(occu::number_option(a, v, 0.0, 1.0, false, true));
+            else if (a == "--max-test-area") o.max_test_area = occu::number_option(a, v, 0.0, 1.0, true, false);
+            else
+                usage("unknown argument '" + a + "'");
+        } catch (const std::invalid_argument &e) {
+            usage(e.what());
         }
-        else if (a == "--frames") o.frames = to_int(a, v, 1, 100000);
-        else if (a == "--size") o.size = to_int(a, v, 16, 8192);
-        else if (a == "--driver") o.driver = v;
-        else if (a == "--city-copies") o.city_copies = to_int(a, v, 1, 64);
-        else if (a == "--leaf-triangles") o.leaf_triangles = to_int(a, v, 1, 1 << 20);
-        else if (a == "--batch") o.batch = to_int(a, v, 1, 4096);
-        else if (a == "--png-every") o.png_every = to_int(a, v, 0, 100000);
-        else if (a == "--occluders") o.occluders = to_int(a, v, 1, 1 << 20);
-        else if (a == "--tolerance") o.tolerance = to_int(a, v, 0, 1 << 20);
-        else if (a == "--map-divisor") o.map_divisor = to_int(a, v, 1, 64);
-        else if (a == "--coverage-ratio") {
-            char *end = nullptr;
-            o.coverage_ratio = std::strtod(v.c_str(), &end);
-            if (v.empty() || *end || !(o.coverage_ratio >= 0.0 && o.coverage_ratio <= 1.0))
-                usage("--coverage-ratio wants a number in [0, 1], got '" + v + "'");
-        }
-        else if (a == "--out") o.out = v;
-        else if (a == "--occluder-db") o.occluder_db = v;
-        else if (a == "--switch-off") {
-            char *end = nullptr;
-            o.switch_off = std::strtof(v.c_str(), &end);
-            if (v.empty() || *end || !(o.switch_off >= 0.0f && o.switch_off <= 1.0f))
-                usage("--switch-off wants a number in [0, 1], got '" + v + "'");
-        }
-        else if (a == "--leaf-geometry") {
-            if (v != "on" && v != "off")
-                usage("--leaf-geometry wants on or off, got '" + v + "'");
-            o.leaf_geometry = v == "on";
-        } else if (a == "--coherent") {
-            if (v != "on" && v != "off")
-                usage("--coherent wants on or off, got '" + v + "'");
-            o.coherent = v == "on";
-        }
-        else if (a == "--oracle") {
-            if (v != "on" && v != "off")
-                usage("--oracle wants on or off, got '" + v + "'");
-            o.oracle = v == "on";
-        }
-        else if (a == "--threshold") {
-            char *end = nullptr;
-            o.threshold = std::strtof(v.c_str(), &end);
-            if (v.empty() || *end || !(o.threshold >= 0.0f && o.threshold < 1.0f))
-                usage("--threshold wants a number in [0, 1), got '" + v + "'");
-        } else if (a == "--max-test-area") {
-            char *end = nullptr;
-            o.max_test_area = std::strtod(v.c_str(), &end);
-            if (v.empty() || *end || !(o.max_test_area > 0.0 && o.max_test_area <= 1.0))
-                usage("--max-test-area wants a number in (0, 1], got '" + v + "'");
-        } else
-            usage("unknown argument '" + a + "'");
     }
     for (const std::string &name : o.strategies)
         if ((name == "mos-om" || name == "pc-mos") && o.occluder_db.empty())
