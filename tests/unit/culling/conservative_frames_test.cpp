@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "camera/route.h"
@@ -41,20 +42,38 @@ Frame draw(const gl::OffscreenContext &ctx, const SceneRenderer &renderer, const
     return {std::vector<std::uint8_t>(ctx.pixels(), ctx.pixels() + n), s.triangles};
 }
 
+// A city of 4x4 blocks in leaves of at most 128 triangles, drawn into a
+// 128x128 context with depth test and back-face culling: the scene of the
+// short-route tests.
+struct SmallCity {
+    SmallCity()
+    {
+        city.blocks_x = city.blocks_z = 4;
+        scene = generate_city(city);
+        HierarchyOptions ho;
+        ho.max_leaf_triangles = 128;
+        h.emplace(Hierarchy::build(scene, ho));
+        renderer.emplace(scene, *h);
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_CULL_FACE);
+    }
+    gl::OffscreenContext ctx{128, 128};
+    CityOptions city;
+    Scene scene;
+    std::optional<Hierarchy> h;
+    std::optional<SceneRenderer> renderer;
+};
+
 }  // namespace
 
 TEST(ConservativeCulling, FramesEqualUnculledFrames)
 {
-    gl::OffscreenContext ctx(128, 128);
-    CityOptions city;
-    city.blocks_x = city.blocks_z = 4;
-    const Scene scene = generate_city(city);
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = 128;
-    const Hierarchy h = Hierarchy::build(scene, ho);
-    SceneRenderer renderer(scene, h);
-    glEnable(GL_DEPTH_TEST);
-    glEnable(GL_CULL_FACE);
+    const SmallCity small;
+    const gl::OffscreenContext &ctx = small.ctx;
+    const CityOptions &city = small.city;
+    const Scene &scene = small.scene;
+    const Hierarchy &h = *small.h;
+    const SceneRenderer &renderer = *small.renderer;
 
     CullerOptions test_everything;
     test_everything.max_test_area = 1.0;
@@ -134,16 +153,12 @@ TEST(ConservativeCulling, FramesEqualUnculledFramesFarAway)
 // pixel, and mos-om must cull something.
 TEST(ConservativeCulling, OpacityMapStrategiesEqualUnculledFrames)
 {
-    gl::OffscreenContext ctx(128, 128);
-    CityOptions city;
-    city.blocks_x = city.blocks_z = 4;
-    const Scene scene = generate_city(city);
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = 128;
-    const Hierarchy h = Hierarchy::build(scene, ho);
-    SceneRenderer renderer(scene, h);
-    glEnable(GL_DEPTH_TEST);
-    glEnable(GL_CULL_FACE);
+    const SmallCity small;
+    const gl::OffscreenContext &ctx = small.ctx;
+    const CityOptions &city = small.city;
+    const Scene &scene = small.scene;
+    const Hierarchy &h = *small.h;
+    const SceneRenderer &renderer = *small.renderer;
 
     OccluderDatabase db;
     db.grid.points = {5, 1, 5};

@@ -95,26 +95,40 @@ private:
     std::optional<Frustum> frustum_;
 };
 
+// A row of `n` unit boxes along x at z = -5, one leaf each (12 triangles),
+// in a 32x32 context, and a camera at z = 20 that sees part of the row.
+struct BoxRow {
+    explicit BoxRow(int n)
+    {
+        scene.meshes.emplace_back();
+        for (int i = 0; i < n; ++i)
+            append_box(scene.meshes[0], Aabb::of({float(i) * 3.0f, 0, -5}, {float(i) * 3.0f + 1, 1, -4}));
+        scene.update_bounds();
+        HierarchyOptions ho;
+        ho.max_leaf_triangles = 12;
+        h.emplace(Hierarchy::build(scene, ho));
+        renderer.emplace(scene, *h);
+        camera.position = {10, 0.5f, 20};
+        camera.target = {10, 0.5f, -5};
+    }
+    gl::OffscreenContext ctx{32, 32};
+    Scene scene;
+    std::optional<Hierarchy> h;
+    std::optional<SceneRenderer> renderer;
+    Camera camera;
+};
+
 }  // namespace
 
 // Below a visible_subtree answer the traversal asks the culler nothing more
 // about nodes in the frustum, and still draws exactly what vfc draws.
 TEST(Traversal, VisibleSubtreeStopsOcclusionTestsBelowIt)
 {
-    gl::OffscreenContext ctx(32, 32);
-    Scene scene;
-    scene.meshes.emplace_back();
-    for (int i = 0; i < 40; ++i)
-        append_box(scene.meshes[0], Aabb::of({float(i) * 3.0f, 0, -5}, {float(i) * 3.0f + 1, 1, -4}));
-    scene.update_bounds();
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = 12;
-    const Hierarchy h = Hierarchy::build(scene, ho);
-    const SceneRenderer renderer(scene, h);
+    const BoxRow row(40);
+    const Hierarchy &h = *row.h;
+    const SceneRenderer &renderer = *row.renderer;
+    const Camera &c = row.camera;
     ASSERT_GT(h.leaf_count(), 8u);
-    Camera c;
-    c.position = {10, 0.5f, 20};
-    c.target = {10, 0.5f, -5};
     GiveUpAtTheRoot give_up(h.nodes()[0].bounds);
     auto vfc = make_culler("vfc");
     const FrameStats s = render_hierarchy(renderer, h, give_up, c, TraversalOptions{});
@@ -132,25 +146,13 @@ TEST(Traversal, VisibleSubtreeStopsOcclusionTestsBelowIt)
 // 64.
 TEST(Traversal, SwitchedOffProbesBackOff)
 {
-    gl::OffscreenContext ctx(32, 32);
-    Scene scene;
-    scene.meshes.emplace_back();
-    for (int i = 0; i < 8; ++i)
-        append_box(scene.meshes[0], Aabb::of({float(i) * 3.0f, 0, -5}, {float(i) * 3.0f + 1, 1, -4}));
-    scene.update_bounds();
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = 12;
-    const Hierarchy h = Hierarchy::build(scene, ho);
-    const SceneRenderer renderer(scene, h);
-    Camera c;
-    c.position = {10, 0.5f, 20};
-    c.target = {10, 0.5f, -5};
+    const BoxRow row(8);
     auto none = make_culler("none");   // tests, but never finds anything occluded
     Coherence coherence;
     coherence.switch_off_fraction = 0.5f;
     std::vector<std::uint32_t> tested;
     for (std::uint32_t f = 0; f < 200; ++f)
-        if (render_hierarchy(renderer, h, *none, c, TraversalOptions{}, &coherence).occlusion_tested)
+        if (render_hierarchy(*row.renderer, *row.h, *none, row.camera, TraversalOptions{}, &coherence).occlusion_tested)
             tested.push_back(f);
     EXPECT_EQ(tested, (std::vector<std::uint32_t>{0, 8, 24, 56, 120, 184}));
 }
