@@ -58,7 +58,9 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     culler.begin_frame(camera);
 
     // Below a visible_subtree answer nodes are drawn without occlusion tests.
-    std::vector<std::uint8_t> untested(nodes.size(), 0);
+    // Sized on the first such answer: strategies that never give one pay nothing.
+    std::vector<std::uint8_t> untested;
+    auto is_untested = [&untested](std::uint32_t n) { return !untested.empty() && untested[n]; };
     std::vector<std::uint32_t> batch;
     std::vector<Aabb> boxes;
     std::vector<Visibility> results;
@@ -69,7 +71,7 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
         while (!front.empty() && batch.size() < std::max<std::size_t>(1, options.batch)) {
             const std::uint32_t n = front.top().second;
             front.pop();
-            if ((assumed_visible(n) || untested[n]) && frustum.classify(nodes[n].bounds) != Frustum::Side::outside) {
+            if ((assumed_visible(n) || is_untested(n)) && frustum.classify(nodes[n].bounds) != Frustum::Side::outside) {
                 assumed.push_back(n);
                 continue;
             }
@@ -86,7 +88,7 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
         // Assumed-visible nodes join the batch's results as visible.
         for (std::uint32_t n : assumed) {
             batch.push_back(n);
-            results.push_back(untested[n] ? Visibility::visible_subtree : Visibility::visible);
+            results.push_back(is_untested(n) ? Visibility::visible_subtree : Visibility::visible);
         }
         for (std::size_t i = 0; i < batch.size(); ++i) {
             const HierarchyNode &n = nodes[batch[i]];
@@ -104,8 +106,11 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
                 stats.drawn.push_back(batch[i]);
                 culler.rendered(n.bounds);
             } else {
+                if (subtree && untested.empty())
+                    untested.assign(nodes.size(), 0);
                 for (std::uint32_t c = 0; c < n.child_count; ++c) {
-                    untested[n.first_child + c] = subtree;
+                    if (!untested.empty())
+                        untested[n.first_child + c] = subtree;
                     front.push({distance_to(nodes[n.first_child + c].bounds, camera.position), n.first_child + c});
                 }
             }
