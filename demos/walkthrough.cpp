@@ -54,7 +54,7 @@ struct Options {
     std::string driver = "llvmpipe";
     int city_copies = 1;
     int leaf_triangles = 256;
-    int batch = 16;
+    int batch = 32;
     float threshold = 0.0f;
     double max_test_area = 0.25;
     int occluders = 64;

@@ -61,18 +61,48 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     // Sized on the first such answer: strategies that never give one pay nothing.
     std::vector<std::uint8_t> untested;
     auto is_untested = [&untested](std::uint32_t n) { return !untested.empty() && untested[n]; };
+    // What a node's visibility leads to: a visible leaf is drawn, a visible
+    // inner node's children join the front.
+    auto settle = [&](std::uint32_t node, Visibility visibility) {
+        const HierarchyNode &n = nodes[node];
+        const bool subtree = visibility == Visibility::visible_subtree;
+        if (coherence && (visibility == Visibility::visible || subtree))
+            visible_now[node] = 1;
+        if (visibility == Visibility::view_culled) {
+            ++stats.nodes_view_culled;
+        } else if (visibility == Visibility::occluded) {
+            ++stats.nodes_occluded;
+            stats.triangles_occluded += n.subtree_triangles;
+        } else if (n.leaf()) {
+            stats.triangles += renderer.draw_leaf(node);
+            ++stats.leaves_drawn;
+            stats.drawn.push_back(node);
+            culler.rendered(n.bounds);
+        } else {
+            if (subtree && untested.empty())
+                untested.assign(nodes.size(), 0);
+            for (std::uint32_t c = 0; c < n.child_count; ++c) {
+                if (!untested.empty())
+                    untested[n.first_child + c] = subtree;
+                front.push({distance_to(nodes[n.first_child + c].bounds, camera.position), n.first_child + c});
+            }
+        }
+    };
     std::vector<std::uint32_t> batch;
     std::vector<Aabb> boxes;
     std::vector<Visibility> results;
     while (!front.empty()) {
         batch.clear();
         boxes.clear();
-        std::vector<std::uint32_t> assumed;
+        // Nodes taken as visible without a test are drawn (or opened) at
+        // once, before the batch is tested: with temporal coherence the
+        // previous frame's visible leaves are then in the depth buffer
+        // when the nodes behind them are tested, whatever the batch size.
         while (!front.empty() && batch.size() < std::max<std::size_t>(1, options.batch)) {
             const std::uint32_t n = front.top().second;
             front.pop();
             if ((assumed_visible(n) || is_untested(n)) && frustum.classify(nodes[n].bounds) != Frustum::Side::outside) {
-                assumed.push_back(n);
+                settle(n, is_untested(n) ? Visibility::visible_subtree : Visibility::visible);
                 continue;
             }
             batch.push_back(n);
@@ -85,36 +115,8 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
             budget_spent = true;
             cut_pending = true;
         }
-        // Assumed-visible nodes join the batch's results as visible.
-        for (std::uint32_t n : assumed) {
-            batch.push_back(n);
-            results.push_back(is_untested(n) ? Visibility::visible_subtree : Visibility::visible);
-        }
-        for (std::size_t i = 0; i < batch.size(); ++i) {
-            const HierarchyNode &n = nodes[batch[i]];
-            const bool subtree = results[i] == Visibility::visible_subtree;
-            if (coherence && (results[i] == Visibility::visible || subtree))
-                visible_now[batch[i]] = 1;
-            if (results[i] == Visibility::view_culled) {
-                ++stats.nodes_view_culled;
-            } else if (results[i] == Visibility::occluded) {
-                ++stats.nodes_occluded;
-                stats.triangles_occluded += n.subtree_triangles;
-            } else if (n.leaf()) {
-                stats.triangles += renderer.draw_leaf(batch[i]);
-                ++stats.leaves_drawn;
-                stats.drawn.push_back(batch[i]);
-                culler.rendered(n.bounds);
-            } else {
-                if (subtree && untested.empty())
-                    untested.assign(nodes.size(), 0);
-                for (std::uint32_t c = 0; c < n.child_count; ++c) {
-                    if (!untested.empty())
-                        untested[n.first_child + c] = subtree;
-                    front.push({distance_to(nodes[n.first_child + c].bounds, camera.position), n.first_child + c});
-                }
-            }
-        }
+        for (std::size_t i = 0; i < batch.size(); ++i)
+            settle(batch[i], results[i]);
         if (cut_pending) {   // this batch's results are in: the probe's view ends here
             triangles_at_cut = stats.triangles;
             occluded_at_cut = stats.triangles_occluded;

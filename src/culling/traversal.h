@@ -16,7 +16,7 @@ namespace occu {
 struct TraversalOptions {
     // Nodes tested together (in one occlusion pass where the strategy can).
     // 1: strictly front to back, the most culling; more: fewer passes.
-    std::size_t batch = 16;
+    std::size_t batch = 32;
 };
 
 // Temporal coherence (Greene et al.'s visible node list, as in Moeller and
