@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Frame time of the culling strategies against vfc on the three routes
+# Frame time of the culling strategies against vfc on the four built-in routes
 # (issue 5's table), llvmpipe 512x512, each route one run with every
 # strategy side by side. The MOS database is the one bench/occluders.sh or
 # tools/demo preprocessed (build/city-occluders.db), made here if missing.
@@ -17,7 +17,7 @@ echo "## Routes ($frames frames, llvmpipe, 512x512): mean ms (speed-up over vfc)
 echo
 echo "| route | none | vfc | occu-hier | occu-hier-shared | om-ps | mos-om |"
 echo "|---|---|---|---|---|---|---|"
-for route in dense medium open; do
+for route in dense street medium open; do
     "$OCCU_ROOT/build/demos/walkthrough" --route "$route" --frames "$frames" --png-every 0 \
         --strategies "$strategies" --occluder-db "$db" --out "$out" |
         awk -v route="$route" '$1 ~ /^(none|vfc|occu-hier|occu-hier-shared|om-ps|mos-om)$/ {

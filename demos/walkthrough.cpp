@@ -1,7 +1,7 @@
 // walkthrough: renders a route through a scene with several culling
 // strategies and reports what each drew and how long it took.
 //
-//   walkthrough [--scene FILE] [--route dense|medium|open|FILE] [--strategies none,vfc,occu-hier]
+//   walkthrough [--scene FILE] [--route dense|street|medium|open|FILE] [--strategies none,vfc,occu-hier]
 //               [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe]
 //               [--city-copies N] [--leaf-triangles N] [--batch N]
 //               [--threshold T] [--max-test-area A] [--coherent on|off] [--switch-off F]
@@ -73,7 +73,7 @@ struct Options {
 [[noreturn]] void usage(const std::string &error)
 {
     std::fprintf(stderr,
-                 "%s%susage: walkthrough [--scene FILE] [--route dense|medium|open|FILE]\n"
+                 "%s%susage: walkthrough [--scene FILE] [--route dense|street|medium|open|FILE]\n"
                  "                   [--strategies none,vfc,occu-hier,occu-hier-shared]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--threshold T] [--max-test-area A]\n"

@@ -41,7 +41,7 @@ std::vector<Camera> read_route_file(const std::string &path, float aspect)
 std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, const CityOptions &city, int frames,
                                float aspect)
 {
-    if (name != "dense" && name != "medium" && name != "open")
+    if (name != "dense" && name != "street" && name != "medium" && name != "open")
         return read_route_file(name, aspect);
     if (frames < 1)
         throw std::invalid_argument("a route needs at least one frame");
@@ -49,6 +49,10 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
     const glm::vec3 size = bounds.extent();
     // The street between the two middle rows of blocks.
     const float street_z = bounds.min.z + std::round(size.z / city.block_size / 2.0f) * city.block_size;
+    // The city's street grid: streets run along multiples of the block size
+    // from its origin, the lower left corner.
+    const glm::vec2 grid_origin = glm::floor(glm::vec2(bounds.min.x, bounds.min.z) / city.block_size) * city.block_size;
+    const glm::vec3 centre = bounds.center();
     std::vector<Camera> route;
     for (int f = 0; f < frames; ++f) {
         const float t = frames == 1 ? 0.0f : float(f) / float(frames - 1);
@@ -61,9 +65,21 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
             // Nothing is nearer than 100 m up here; a far near plane keeps the
             // depth buffer fine enough that distant ledges do not z-fight.
             c.near_plane = 20.0f;
+        } else if (name == "dense") {
+            // Poon and Wang's best case (section 6): "starts at the lower left
+            // corner of the environment, and heads towards the center part".
+            // At eye height along the first street inside the lower left
+            // edge, from the corner crossing two and a half blocks on,
+            // looking at the centre: diagonally across the blocks, so the
+            // nearest buildings hide most of the city in the frustum.
+            c.position = {grid_origin.x + 2.5f * city.block_size * t, 1.7f, grid_origin.y + city.block_size};
+            c.target = {centre.x, 1.7f, centre.z};
+            c.far_plane = 2.0f * glm::length(size);
         } else {
+            // Along the middle street: "street" looks down it (a long open
+            // sight line between facades), "medium" 35 degrees across it.
             c.position = {bounds.min.x + size.x * (0.1f + 0.8f * t), 1.7f, street_z};
-            const float angle = name == "dense" ? 0.0f : glm::radians(35.0f);
+            const float angle = name == "street" ? 0.0f : glm::radians(35.0f);
             c.target = c.position + glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
             c.far_plane = 2.0f * glm::length(size);
         }

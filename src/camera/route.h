@@ -2,12 +2,15 @@
 // (Poon and Wang, section 6: best, average and worst routes).
 //
 // Built-in routes for the default city (see scene/city.h):
-//   dense   street level along a street, looking down it: near buildings
-//           hide almost all of the city;
+//   dense   the paper's best case: street level from the lower left corner,
+//           looking diagonally across the blocks towards the centre: the
+//           nearest buildings hide almost all of the city in the frustum;
+//   street  street level along the middle street, looking down it: a long
+//           sight line between facades (the "dense" route before 2026-11-22);
 //   medium  the same walk, looking 35 degrees aside, into crossings and
 //           courtyards;
 //   open    150 m up outside the city, looking across its roofs: little
-//           is hidden.
+//           is hidden (the paper's worst case).
 // A route file has one camera per line, "px py pz tx ty tz" (position and
 // target); '#' starts a comment.
 #pragma once
@@ -20,7 +23,7 @@
 
 namespace occu {
 
-// `name`: dense, medium, open, or a route file's path. Throws
+// `name`: dense, street, medium, open, or a route file's path. Throws
 // std::invalid_argument (unknown name) or std::runtime_error (a file it
 // cannot read or parse, naming the file and line).
 std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds, const CityOptions &city,

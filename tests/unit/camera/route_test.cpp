@@ -12,13 +12,29 @@ using namespace occu;
 TEST(Route, BuiltInRoutesHaveTheFramesAsked)
 {
     const Aabb city = Aabb::of({0, -1, 0}, {560, 60, 560});
-    for (const char *name : {"dense", "medium", "open"}) {
+    for (const char *name : {"dense", "street", "medium", "open"}) {
         const auto r = make_route(name, city, CityOptions{}, 7, 1.5f);
         ASSERT_EQ(r.size(), 7u) << name;
         EXPECT_FLOAT_EQ(r[0].aspect, 1.5f);
         EXPECT_NE(r.front().position, r.back().position) << name;
     }
     EXPECT_FLOAT_EQ(make_route("dense", city, CityOptions{}, 2, 1)[0].position.y, 1.7f);
+}
+
+TEST(Route, DenseRouteWalksTheFirstStreetTowardsTheCentre)
+{
+    // Buildings start 8.5 m or more from the grid's origin (half a street
+    // plus an inset), as in the default city.
+    const Aabb city = Aabb::of({8.5f, 0, 8.7f}, {551.5f, 60, 551.3f});
+    const CityOptions options;
+    for (const Camera &c : make_route("dense", city, options, 5, 1)) {
+        EXPECT_FLOAT_EQ(c.position.z, options.block_size);   // on the street's centre line
+        EXPECT_GE(c.position.x, 0.0f);
+        EXPECT_LE(c.position.x, 2.5f * options.block_size);
+        const glm::vec3 heading = c.target - c.position;
+        EXPECT_GT(heading.x, 0.0f);   // towards the centre: across the blocks
+        EXPECT_GT(heading.z, 0.0f);
+    }
 }
 
 TEST(Route, FileRoutesAndErrorsNamingFileAndLine)
