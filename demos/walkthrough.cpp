@@ -14,6 +14,7 @@
 // prints a summary table. With the oracle (default), each frame is also
 // drawn as an ID buffer to find the leaves that are really visible; the
 // summary's culling efficiency is occluded leaves culled / occluded leaves.
+// Setup and test ms: time in the culler (traversal.h, FrameStats).
 #include <unistd.h>
 
 #include <algorithm>
@@ -182,7 +183,7 @@ int main(int argc, char **argv)
         if (!csv)
             throw std::runtime_error("cannot write '" + o.out + "/frames.csv'");
         csv << "strategy,route,frame,ms,triangles,leaves_drawn,nodes_tested,passes,view_culled,occluded,culled_percent,"
-               "oracle_visible_leaves,oracle_occluded_leaves,occluded_leaves_culled,visible_leaves_culled,wrong_pixels\n";
+               "oracle_visible_leaves,oracle_occluded_leaves,occluded_leaves_culled,visible_leaves_culled,wrong_pixels,setup_ms,test_ms\n";
         std::vector<VisibilityTruth> truths(route.size());
         auto reference_culler = make_culler("none");
         std::vector<std::uint8_t> reference;
@@ -191,7 +192,7 @@ int main(int argc, char **argv)
 
         struct Summary {
             std::vector<double> ms;
-            double triangles = 0, passes = 0;
+            double triangles = 0, passes = 0, setup_ms = 0, test_ms = 0;
             std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0, wrong_pixels = 0;
             bool conservative = true;
         };
@@ -244,6 +245,8 @@ int main(int argc, char **argv)
                 s.ms.push_back(ms);
                 s.triangles += double(st.triangles);
                 s.passes += st.passes;
+                s.setup_ms += st.setup_ms;
+                s.test_ms += st.test_ms;
                 // Approximate strategies: count the pixels that differ from the
                 // unculled frame (drawn untimed, after the measured one).
                 std::uint64_t wrong = 0;
@@ -281,7 +284,8 @@ int main(int argc, char **argv)
                     << ',' << st.nodes_tested << ',' << st.passes << ',' << st.nodes_view_culled << ','
                     << st.nodes_occluded << ',' << 100.0 * (1.0 - double(st.triangles) / double(scene.triangle_count()))
                     << ',' << truths[f].visible.size() << ',' << q.occluded << ',' << q.occluded_culled << ','
-                    << q.visible_culled << ',' << wrong << '\n';
+                    << q.visible_culled << ',' << wrong << ',' << st.setup_ms << ','
+                    << st.test_ms << '\n';
                 glEnable(GL_DEPTH_TEST);
                 glEnable(GL_CULL_FACE);
             }
@@ -294,8 +298,8 @@ int main(int argc, char **argv)
             for (double x : v) t += x;
             return t / double(v.size());
         }() : 0.0;
-        std::printf("\n%-17s %10s %10s %12s %8s %8s %11s %14s %13s\n", "strategy", "mean ms", "median ms",
-                    "triangles", "passes", "vs vfc", "efficiency", "visible culled", "wrong pixels");
+        std::printf("\n%-17s %10s %10s %12s %8s %8s %11s %14s %13s %8s %8s\n", "strategy", "mean ms", "median ms",
+                    "triangles", "passes", "vs vfc", "efficiency", "visible culled", "wrong pixels", "setup ms", "test ms");
         for (const std::string &name : o.strategies) {
             Summary s = summary[name];
             double total = 0;
@@ -309,10 +313,10 @@ int main(int argc, char **argv)
             char wrong[32] = "-";
             if (!s.conservative)
                 std::snprintf(wrong, sizeof(wrong), "%.1f", double(s.wrong_pixels) / n);
-            std::printf("%-17s %10.2f %10.2f %12.0f %8.1f %8s %11s %14llu %13s\n", name.c_str(), mean,
+            std::printf("%-17s %10.2f %10.2f %12.0f %8.1f %8s %11s %14llu %13s %8.2f %8.2f\n", name.c_str(), mean,
                         s.ms[s.ms.size() / 2], s.triangles / n, s.passes / n,
                         vfc_ms > 0 ? (std::to_string(vfc_ms / mean).substr(0, 5) + "x").c_str() : "-", efficiency,
-                        (unsigned long long)s.visible_culled, wrong);
+                        (unsigned long long)s.visible_culled, wrong, s.setup_ms / n, s.test_ms / n);
         }
         std::printf("\nframes: %s/<strategy>-NNNN.png; top views: %s/<strategy>-top-NNNN.png; per-frame data: "
                     "%s/frames.csv\n",

@@ -1,5 +1,6 @@
 #include "culling/traversal.h"
 
+#include <chrono>
 #include <queue>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -55,7 +56,13 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
     using Entry = std::pair<float, std::uint32_t>;   // distance, node
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front;
     front.push({distance_to(nodes[0].bounds, camera.position), 0});
-    culler.begin_frame(camera);
+    using Clock = std::chrono::steady_clock;
+    auto timed = [](double &ms, auto &&work) {
+        const auto start = Clock::now();
+        work();
+        ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    };
+    timed(stats.setup_ms, [&] { culler.begin_frame(camera); });
 
     // Below a visible_subtree answer nodes are drawn without occlusion tests.
     // Sized on the first such answer: strategies that never give one pay nothing.
@@ -108,7 +115,7 @@ FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hier
             batch.push_back(n);
             boxes.push_back(nodes[n].bounds);
         }
-        culler.test_nodes(hierarchy, batch, boxes, results);
+        timed(stats.test_ms, [&] { culler.test_nodes(hierarchy, batch, boxes, results); });
         stats.nodes_tested += std::uint32_t(batch.size());
         if (probe && !switched_off && culler.passes() >= coherence->probe_pass_budget) {
             switched_off = true;   // the probe has seen enough; the rest as when off
