@@ -90,12 +90,20 @@ std::vector<std::uint32_t> OccluderDatabase::occluders_for(const Camera &camera)
     const auto second = dirs > 1 ? views.find(v - v % dirs + d1) : views.end();
     if (second == views.end())
         return *first;
+    // In proportion to the turn: a camera on the heading takes its own
+    // view's list first, one halfway between takes from both alike.
+    const double share_b = std::min(0.5, double(std::fabs(wrapped)));
     std::vector<std::uint32_t> merged;
     const auto &a = *first, &b = second->second;
-    for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i)
-        for (const auto *list : {&a, &b})
-            if (i < list->size() && std::find(merged.begin(), merged.end(), (*list)[i]) == merged.end())
-                merged.push_back((*list)[i]);
+    std::size_t ia = 0, ib = 0;
+    auto take = [&merged](std::uint32_t id) {
+        if (std::find(merged.begin(), merged.end(), id) == merged.end())
+            merged.push_back(id);
+    };
+    while (ia < a.size() || ib < b.size()) {
+        const bool from_b = ia == a.size() || (ib < b.size() && double(ib + 1) <= share_b * double(ia + ib + 1));
+        take(from_b ? b[ib++] : a[ia++]);
+    }
     return merged;
 }
 

@@ -52,7 +52,9 @@ public:
     // was never processed, the nearest processed point's view of that
     // heading), interleaved with the list of the next heading on the
     // camera's side at the same point, if processed: a frustum turned
-    // between two headings sees what both were chosen for. Best first.
+    // between two headings sees what both were chosen for. The share of
+    // the second list grows with the turn, from none on the nearest
+    // heading to half midway between the two. Best first.
     std::vector<std::uint32_t> occluders_for(const Camera &camera) const;
 
     void save(const std::string &path) const;

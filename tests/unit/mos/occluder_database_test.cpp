@@ -108,14 +108,23 @@ TEST(OccluderDatabase, NearestViewByPointAndHeading)
     c.target = c.position + glm::vec3(1, 0, 0);
     EXPECT_EQ(db.occluders_for(c), (std::vector<std::uint32_t>{5, 3, 9}));
     // Between two headings: the nearest heading's list interleaved with the
-    // next one's at the same point, duplicates dropped.
+    // next one's at the same point, duplicates dropped, the next one's share
+    // growing with the turn.
     auto db2 = sample();
     db2.views[1] = {3, 4};
     c.position = {-10.0f, 1.7f, -10.0f};   // point 0
     c.target = c.position + glm::vec3(std::cos(glm::radians(30.0f)), 0, std::sin(glm::radians(30.0f)));
-    EXPECT_EQ(db2.occluders_for(c), (std::vector<std::uint32_t>{5, 3, 4, 9}));   // ranks 0, 0, 1, 2
+    EXPECT_EQ(db2.occluders_for(c), (std::vector<std::uint32_t>{5, 3, 9, 4}));
     c.target = c.position + glm::vec3(std::cos(glm::radians(-30.0f)), 0, std::sin(glm::radians(-30.0f)));
     EXPECT_EQ(db2.occluders_for(c), (std::vector<std::uint32_t>{5, 3, 9}));   // heading 3 never processed
+    db2.views[0] = {10, 11, 12, 13, 14, 15};
+    db2.views[1] = {20, 21, 22};
+    c.target = c.position + glm::vec3(std::cos(glm::radians(44.0f)), 0, std::sin(glm::radians(44.0f)));
+    EXPECT_EQ(db2.occluders_for(c), (std::vector<std::uint32_t>{10, 11, 20, 12, 21, 13, 22, 14, 15}));   // about 1:1
+    c.target = c.position + glm::vec3(std::cos(glm::radians(10.0f)), 0, std::sin(glm::radians(10.0f)));
+    EXPECT_EQ(db2.occluders_for(c), (std::vector<std::uint32_t>{10, 11, 12, 13, 14, 15, 20, 21, 22}));   // 1:8
+    c.target = c.position + glm::vec3(1, 0, 0);
+    EXPECT_EQ(db2.occluders_for(c), (std::vector<std::uint32_t>{10, 11, 12, 13, 14, 15, 20, 21, 22}));   // on heading 0
     // The view camera looks along its heading from its point.
     const Camera v = db.grid.view_camera(7, c);
     EXPECT_FLOAT_EQ(v.position.x, 0.0f);
