@@ -5,8 +5,11 @@
 //   occu-preprocess build --out FILE [--scene FILE] [--city-copies N]
 //                   [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D]
 //                   [--eye-height H] [--max-occluders N] [--resolution R]
-//                   [--shard I/N] [--driver llvmpipe|softpipe]
+//                   [--selection marginal|static] [--shard I/N] [--driver llvmpipe|softpipe]
 //   occu-preprocess merge --out FILE SHARD...
+//
+// --selection static keeps the paper's fixed scores (section 4.3) instead of the
+// greedy marginal order (occluder_preprocessing.h).
 //
 // Grid points span the scene's ground rectangle corner to corner at eye
 // height (for the default city, 8 x 8 points are its street crossings);
@@ -40,7 +43,8 @@ namespace {
     std::fprintf(error.empty() ? stdout : stderr,
                  "%s%susage: occu-preprocess build --out FILE [--scene FILE] [--city-copies N] [--leaf-triangles N]\n"
                  "                       [--grid NX,NY,NZ] [--directions D] [--eye-height H] [--max-occluders N]\n"
-                 "                       [--resolution R] [--shard I/N] [--driver llvmpipe|softpipe]\n"
+                 "                       [--resolution R] [--selection marginal|static] [--shard I/N]\n"
+                 "                       [--driver llvmpipe|softpipe]\n"
                  "       occu-preprocess merge --out FILE SHARD...\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
     std::exit(error.empty() ? 0 : 2);
@@ -163,6 +167,11 @@ int main(int argc, char **argv)
             else if (a == "--leaf-triangles") o.leaf_triangles = int(occu::integer_option(a, v, 1, 1 << 20));
             else if (a == "--directions") o.directions = int(occu::integer_option(a, v, 1, 360));
             else if (a == "--max-occluders") o.pre.max_occluders = std::size_t(occu::integer_option(a, v, 1, 1 << 20));
+            else if (a == "--selection") {
+                if (v != "marginal" && v != "static")
+                    usage("--selection wants marginal or static, got '" + v + "'");
+                o.pre.marginal_scores = v == "marginal";
+            }
             else if (a == "--resolution") o.pre.resolution = int(occu::integer_option(a, v, 16, 1024));
             else if (a == "--eye-height") o.eye_height = float(occu::number_option(a, v, -1e6, 1e6));
             else if (a == "--grid") {

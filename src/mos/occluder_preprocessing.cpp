@@ -46,6 +46,61 @@ bool occludee_rect(const glm::mat4 &vp, const Camera &camera, const Aabb &box, i
 
 }  // namespace
 
+std::vector<std::size_t> order_by_marginal_score(const std::vector<std::vector<std::uint32_t>> &sets,
+                                                 const std::vector<std::vector<std::vector<std::uint32_t>>> &sets_of,
+                                                 const std::vector<double> &cost)
+{
+    const std::size_t count = sets.size();
+    auto is_subset = [](const std::vector<std::uint32_t> &t, const std::vector<std::uint32_t> &s) {
+        return t.size() <= s.size() && std::includes(s.begin(), s.end(), t.begin(), t.end());
+    };
+    // covers[i]: occludees one of whose sets is a subset of set i.
+    std::vector<std::vector<std::uint32_t>> covers(count);
+    for (std::uint32_t o = 0; o < sets_of.size(); ++o)
+        for (std::size_t i = 0; i < count; ++i)
+            if (std::any_of(sets_of[o].begin(), sets_of[o].end(), [&](const auto &t) { return is_subset(t, sets[i]); }))
+                covers[i].push_back(o);
+    std::vector<bool> hidden(sets_of.size(), false), used(count, false), chosen;
+    auto is_chosen = [&chosen](std::uint32_t id) { return id < chosen.size() && chosen[id]; };
+    auto cost_of = [&cost](std::uint32_t id) { return id < cost.size() ? cost[id] : 1.0; };
+    std::vector<std::size_t> order;
+    for (;;) {
+        std::size_t best = count;
+        double best_score = 0.0;
+        for (std::size_t i = 0; i < count; ++i) {
+            if (used[i])
+                continue;
+            double g = 0.0, c = 0.0;
+            for (std::uint32_t o : covers[i])
+                g += !hidden[o];
+            for (std::uint32_t id : sets[i])
+                c += is_chosen(id) ? 0.0 : cost_of(id);
+            const double score = g / std::max(c, 1e-9);
+            if (g > 0.0 && score > best_score) {
+                best_score = score;
+                best = i;
+            }
+        }
+        if (best == count)
+            break;
+        used[best] = true;
+        order.push_back(best);
+        for (std::uint32_t id : sets[best]) {
+            if (id >= chosen.size())
+                chosen.resize(std::size_t(id) + 1, false);
+            chosen[id] = true;
+        }
+        for (std::uint32_t o = 0; o < sets_of.size(); ++o)
+            hidden[o] = hidden[o] || std::any_of(sets_of[o].begin(), sets_of[o].end(), [&](const auto &t) {
+                            return std::all_of(t.begin(), t.end(), is_chosen);
+                        });
+    }
+    for (std::size_t i = 0; i < count; ++i)
+        if (!used[i])
+            order.push_back(i);
+    return order;
+}
+
 std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &renderer, const Hierarchy &hierarchy,
                                                      const Camera &camera, const PreprocessOptions &options,
                                                      PreprocessStats *stats)
@@ -216,6 +271,7 @@ std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &render
     search.keep_cheapest = options.sets_per_occludee;
     search.step_budget = options.step_budget;
     std::map<std::vector<std::uint32_t>, double> gain;
+    std::vector<std::vector<std::vector<std::uint32_t>>> sets_of;   // per coverable occludee
     for (Occludee &o : occludees) {
         std::vector<std::vector<std::uint32_t>> slots;
         bool covered = true;
@@ -240,6 +296,7 @@ std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &render
         ++st.coverable;
         for (const auto &set : r.sets)
             gain[set] += 1.0;
+        sets_of.push_back(r.sets);
     }
     st.sets = std::uint32_t(gain.size());
 
@@ -259,6 +316,15 @@ std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &render
         scored.push_back({total / cost, &set});
     }
     std::stable_sort(scored.begin(), scored.end(), [](const Scored &a, const Scored &b) { return a.score > b.score; });
+    if (options.marginal_scores) {
+        std::vector<std::vector<std::uint32_t>> sets;
+        for (const Scored &x : scored)
+            sets.push_back(*x.set);
+        std::vector<Scored> reordered;
+        for (std::size_t i : order_by_marginal_score(sets, sets_of, search.cost))
+            reordered.push_back(scored[i]);
+        scored.swap(reordered);
+    }
 
     // 6. Selection with redundancy removal by ID rendering.
     std::vector<std::uint32_t> selected;

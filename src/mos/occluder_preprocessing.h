@@ -21,7 +21,9 @@
 //   5. Scores (4.3): gain = occludees the set occludes, plus the gain of
 //      every set it is a superset of; cost = occluders + their pixels /
 //      `pixels_per_occluder`; score = gain / cost.
-//   6. Selection (4.3): sets by score, their occluders added in batches;
+//   6. Selection (4.3): sets by score (by default re-scored greedily: gain
+//      and cost counting only what the sets chosen before do not already
+//      hide and hold), their occluders added in batches;
 //      after each batch an ID rendering of the selection keeps only the
 //      occluders that show (redundant or hidden ones drop out), until
 //      `max_occluders`.
@@ -44,12 +46,28 @@ struct PreprocessOptions {
     std::size_t sets_per_occludee = 4;       // the cheapest MOSs kept per occludee
     std::uint64_t step_budget = 20000;       // MOS search steps per occludee
     double pixels_per_occluder = 256.0;      // cost weight of projected size
+    bool marginal_scores = true;             // 6.: greedy by marginal gain / cost; false: the paper's fixed scores
 };
 
 struct PreprocessStats {
     std::uint32_t occludees = 0, coverable = 0, candidates = 0, passes = 0, sets = 0;
     std::uint32_t searches_cut = 0;          // occludees whose MOS search hit the budget
 };
+
+// Step 6's greedy order (PreprocessOptions::marginal_scores). Section 4.3's
+// scores are fixed before selection; once some sets are chosen, a set
+// sharing their occluders costs less and one whose occludees they already
+// hide gains less. Repeatedly takes the set of highest gain / cost, where
+// gain counts occludees not yet hidden (hidden: one of their sets is a
+// subset of the occluders chosen so far, the superset rule) that one of
+// the set's subsets hides, and cost sums `cost` (by occluder ID; 1 beyond
+// it) over occluders not yet chosen: the usual greedy rule for covering
+// most with a budget. Sets that add nothing follow in their given order.
+// `sets`: sorted ID lists in static score order; `sets_of`: per occludee,
+// its minimum occluder sets (sorted). Returns indices into `sets`.
+std::vector<std::size_t> order_by_marginal_score(const std::vector<std::vector<std::uint32_t>> &sets,
+                                                 const std::vector<std::vector<std::vector<std::uint32_t>>> &sets_of,
+                                                 const std::vector<double> &cost);
 
 // Needs a current context with GL_MESAX_occlusion_unit and a framebuffer of
 // at least resolution x resolution; clobbers it.
