@@ -9,7 +9,8 @@
 #   2. figure 9: PS, FH and MOS with 64 occluders on the dense route;
 #   3. figure 8: none, vfc, mos-om (OM + SDM) and pc-mos (pixel-wise) on
 #      three routes, with the time spent building maps and testing.
-# The MOS databases are preprocessed once into build/ (occu-preprocess).
+# The MOS databases are preprocessed once into build/ (occu-preprocess),
+# named by what they depend on (tools/lib.sh, occluder_db_key).
 # Usage: bench/occluders.sh [FRAMES] [LEAF]
 # Prints markdown tables; writes build/bench-occluders/{viewpoints,route,methods}.csv
 # and, with gnuplot, viewpoints.png (figure 6: culling and time against the
@@ -23,9 +24,10 @@ leaf=${2:-16}
 out=$OCCU_ROOT/build/bench-occluders
 mkdir -p "$out"
 preprocess() { "$OCCU_ROOT/build/demos/occu-preprocess" build --max-occluders 512 "$@"; }
-db=$out/city.db
+key=$(occluder_db_key)
+db=$out/city-$key.db
 [ -s "$db" ] || preprocess --out "$db"
-fine_db=$out/city-leaf$leaf.db
+fine_db=$out/city-leaf$leaf-$key.db
 [ -s "$fine_db" ] || preprocess --out "$fine_db" --leaf-triangles "$leaf"
 walk() { "$OCCU_ROOT/build/demos/walkthrough" --png-every 0 "$@"; }
 

@@ -2,13 +2,13 @@
 # Frame time of the culling strategies against vfc on the four built-in routes
 # (issue 5's table), llvmpipe 512x512, each route one run with every
 # strategy side by side. The MOS database is the one bench/occluders.sh or
-# tools/demo preprocessed (build/city-occluders.db), made here if missing.
+# tools/demo preprocessed (build/city-occluders-KEY.db, tools/lib.sh), made here if missing.
 # Usage: bench/routes.sh [FRAMES]     Prints a markdown table.
 set -euo pipefail
 source "$(dirname "$0")/../tools/lib.sh"
 frames=${1:-120}
 "$OCCU_ROOT/tools/build.sh" bench >/dev/null
-db=$OCCU_ROOT/build/city-occluders.db
+db=$OCCU_ROOT/build/city-occluders-$(occluder_db_key).db
 [ -s "$db" ] || "$OCCU_ROOT/build/demos/occu-preprocess" build --out "$db" >/dev/null
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
