@@ -5,11 +5,14 @@
 //   occu-preprocess build --out FILE [--scene FILE] [--city-copies N]
 //                   [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D]
 //                   [--eye-height H] [--max-occluders N] [--resolution R]
-//                   [--selection marginal|static] [--shard I/N] [--driver llvmpipe|softpipe]
+//                   [--selection marginal|static] [--pixels-per-occluder P]
+//                   [--shard I/N] [--driver llvmpipe|softpipe]
 //   occu-preprocess merge --out FILE SHARD...
 //
 // --selection static keeps the paper's fixed scores (section 4.3) instead of the
-// greedy marginal order (occluder_preprocessing.h).
+// greedy marginal order (occluder_preprocessing.h). --pixels-per-occluder P
+// weighs an occluder's cost: 1 + its pixels (at --resolution) / P (16384); a
+// large P counts occluders, a small one their rasterization.
 //
 // Grid points span the scene's ground rectangle corner to corner at eye
 // height (for the default city, 8 x 8 points are its street crossings);
@@ -43,7 +46,8 @@ namespace {
     std::fprintf(error.empty() ? stdout : stderr,
                  "%s%susage: occu-preprocess build --out FILE [--scene FILE] [--city-copies N] [--leaf-triangles N]\n"
                  "                       [--grid NX,NY,NZ] [--directions D] [--eye-height H] [--max-occluders N]\n"
-                 "                       [--resolution R] [--selection marginal|static] [--shard I/N]\n"
+                 "                       [--resolution R] [--selection marginal|static] [--pixels-per-occluder P]\n"
+                 "                       [--shard I/N]\n"
                  "                       [--driver llvmpipe|softpipe]\n"
                  "       occu-preprocess merge --out FILE SHARD...\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
@@ -167,6 +171,8 @@ int main(int argc, char **argv)
             else if (a == "--leaf-triangles") o.leaf_triangles = int(occu::integer_option(a, v, 1, 1 << 20));
             else if (a == "--directions") o.directions = int(occu::integer_option(a, v, 1, 360));
             else if (a == "--max-occluders") o.pre.max_occluders = std::size_t(occu::integer_option(a, v, 1, 1 << 20));
+            else if (a == "--pixels-per-occluder")
+                o.pre.pixels_per_occluder = occu::number_option(a, v, 1.0, 1e12);
             else if (a == "--selection") {
                 if (v != "marginal" && v != "static")
                     usage("--selection wants marginal or static, got '" + v + "'");
