@@ -23,7 +23,7 @@ leaf=${2:-16}
 "$OCCU_ROOT/tools/build.sh" bench >/dev/null
 out=$OCCU_ROOT/build/bench-occluders
 mkdir -p "$out"
-preprocess() { "$OCCU_ROOT/build/demos/occu-preprocess" build --max-occluders 512 "$@"; }
+preprocess() { "$OCCU_ROOT/build/demos/occu-preprocess" build --max-occluders 512 "$@" >&2; }
 key=$(occluder_db_key)
 db=$out/city-$key.db
 [ -s "$db" ] || preprocess --out "$db"
