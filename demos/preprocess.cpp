@@ -47,8 +47,7 @@ namespace {
                  "%s%susage: occu-preprocess build --out FILE [--scene FILE] [--city-copies N] [--leaf-triangles N]\n"
                  "                       [--grid NX,NY,NZ] [--directions D] [--eye-height H] [--max-occluders N]\n"
                  "                       [--resolution R] [--selection marginal|static] [--pixels-per-occluder P]\n"
-                 "                       [--shard I/N]\n"
-                 "                       [--driver llvmpipe|softpipe]\n"
+                 "                       [--shard I/N] [--driver llvmpipe|softpipe]\n"
                  "       occu-preprocess merge --out FILE SHARD...\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
     std::exit(error.empty() ? 0 : 2);

@@ -46,6 +46,8 @@ expect_error "--map-divisor" "$walkthrough" --map-divisor 0
 expect_error "--nonsense" "$walkthrough" --nonsense 1
 expect_error "--grid" "$preprocess" build --out "$dir/x.db" --grid 3,0,3
 expect_error "--shard" "$preprocess" build --out "$dir/x.db" --shard 0/2
+expect_error "--selection" "$preprocess" build --out "$dir/x.db" --selection best
+expect_error "--pixels-per-occluder" "$preprocess" build --out "$dir/x.db" --pixels-per-occluder 0
 expect_error "bad.db" "$preprocess" merge --out "$dir/x.db" "$dir/bad.db"
 expect_error "frob" "$preprocess" frob
 
