@@ -31,17 +31,10 @@ fine_db=$out/city-leaf$leaf-$key.db
 [ -s "$fine_db" ] || preprocess --out "$fine_db" --leaf-triangles "$leaf"
 walk() { "$OCCU_ROOT/build/demos/walkthrough" --png-every 0 "$@"; }
 
-# The viewpoints: every 6th view at the grid's inner points (the outer ones
-# look out of the city or along its edge) whose list is not empty, each
-# camera exactly as preprocessing placed it (occluder_database.h).
+# The viewpoints: every 6th view with occluders at the grid's inner points,
+# each camera exactly as preprocessing placed it.
 views=$out/viewpoints.route
-awk '$1 == "grid" { ox = $2; oy = $3; oz = $4; sx = $5; sy = $6; sz = $7; nx = $8; ny = $9; nz = $10; dirs = $11 }
-     $1 == "view" && NF > 2 {
-         v = $2; d = v % dirs; p = int(v / dirs); i = p % nx; j = int(p / nx) % ny; k = int(p / (nx * ny))
-         if (i == 0 || k == 0 || i == nx - 1 || k == nz - 1 || (n++ % 6) != 0) next
-         a = 2 * 3.14159265358979 * d / dirs; x = ox + i * sx; y = oy + j * sy; z = oz + k * sz
-         printf "%.6f %.6f %.6f %.6f %.6f %.6f  # view %d\n", x, y, z, x + cos(a), y, z + sin(a), v
-     }' "$fine_db" > "$views"
+"$OCCU_ROOT/build/demos/occu-preprocess" views --out "$views" --every 6 "$fine_db" >/dev/null
 nviews=$(grep -c . "$views")
 
 echo "## Occluder selection at $nviews viewpoints, leaves of $leaf triangles: efficiency % / mean ms"

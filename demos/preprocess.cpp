@@ -8,6 +8,7 @@
 //                   [--selection marginal|static] [--pixels-per-occluder P]
 //                   [--shard I/N] [--driver llvmpipe|softpipe]
 //   occu-preprocess merge --out FILE SHARD...
+//   occu-preprocess views --out ROUTE [--every K] DATABASE
 //
 // --selection static keeps the paper's fixed scores (section 4.3) instead of the
 // greedy marginal order (occluder_preprocessing.h). --pixels-per-occluder P
@@ -16,7 +17,11 @@
 //
 // Grid points span the scene's ground rectangle corner to corner at eye
 // height (for the default city, 8 x 8 points are its street crossings);
-// each has D headings. --shard I/N processes the views v with v % N == I - 1, so N
+// each has D headings. `views` writes a route file (camera/route.h) of the
+// database's views as preprocessing placed them: every K-th view with
+// occluders at the inner points (the outer ones look out of the city or
+// along its edge), for measuring selection at viewpoints (bench/occluders.sh).
+// --shard I/N processes the views v with v % N == I - 1, so N
 // machines (under any job scheduler) each write a shard; merge joins them.
 // The scene options must match the walkthrough's (the database records the
 // scene's triangle and leaf counts, and the walkthrough checks them).
@@ -48,7 +53,8 @@ namespace {
                  "                       [--grid NX,NY,NZ] [--directions D] [--eye-height H] [--max-occluders N]\n"
                  "                       [--resolution R] [--selection marginal|static] [--pixels-per-occluder P]\n"
                  "                       [--shard I/N] [--driver llvmpipe|softpipe]\n"
-                 "       occu-preprocess merge --out FILE SHARD...\n",
+                 "       occu-preprocess merge --out FILE SHARD...\n"
+                 "       occu-preprocess views --out ROUTE [--every K] DATABASE\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
     std::exit(error.empty() ? 0 : 2);
 }
@@ -59,7 +65,8 @@ struct Options {
     glm::ivec3 grid{8, 1, 8};
     float eye_height = 1.7f;
     occu::PreprocessOptions pre;
-    std::vector<std::string> inputs;   // merge
+    std::vector<std::string> inputs;   // merge, views
+    int every = 1;                     // views
 };
 
 int merge(const Options &o)
@@ -72,6 +79,31 @@ int merge(const Options &o)
     std::printf("%s: %zu of %u views from %zu shards\n", o.out.c_str(), db.views.size(), db.grid.view_count(),
                 shards.size());
     return db.views.size() == db.grid.view_count() ? 0 : (std::fprintf(stderr, "occu-preprocess: views missing\n"), 1);
+}
+
+int views(const Options &o)
+{
+    const auto db = occu::OccluderDatabase::load(o.inputs.front());
+    const occu::OccluderGrid &g = db.grid;
+    std::FILE *out = std::fopen(o.out.c_str(), "w");
+    if (!out)
+        throw std::runtime_error(o.out + ": cannot write");
+    std::size_t eligible = 0, written = 0;
+    for (const auto &[v, list] : db.views) {
+        const std::uint32_t p = v / std::uint32_t(g.directions);
+        const int i = int(p % std::uint32_t(g.points.x));
+        const int k = int(p / std::uint32_t(g.points.x * g.points.y));
+        if (list.empty() || i == 0 || k == 0 || i == g.points.x - 1 || k == g.points.z - 1 || eligible++ % std::size_t(o.every))
+            continue;
+        const occu::Camera c = g.view_camera(v, occu::Camera{});
+        std::fprintf(out, "%.6f %.6f %.6f %.6f %.6f %.6f  # view %u\n", c.position.x, c.position.y, c.position.z,
+                     c.target.x, c.target.y, c.target.z, v);
+        ++written;
+    }
+    if (std::fclose(out) != 0)
+        throw std::runtime_error(o.out + ": write failed");
+    std::printf("%s: %zu views\n", o.out.c_str(), written);
+    return written ? 0 : (std::fprintf(stderr, "occu-preprocess: no view with occluders at inner points\n"), 1);
 }
 
 int build(const Options &o)
@@ -143,17 +175,17 @@ int build(const Options &o)
 int main(int argc, char **argv)
 {
     if (argc < 2)
-        usage("give a command: build or merge");
+        usage("give a command: build, merge or views");
     const std::string command = argv[1];
     if (command == "-h" || command == "--help")
         usage("");
-    if (command != "build" && command != "merge")
-        usage("unknown command '" + command + "' (build or merge)");
+    if (command != "build" && command != "merge" && command != "views")
+        usage("unknown command '" + command + "' (build, merge or views)");
     Options o;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
         if (a.rfind("--", 0) != 0) {
-            if (command != "merge")
+            if (command == "build")
                 usage("unexpected argument '" + a + "'");
             o.inputs.push_back(a);
             continue;
@@ -163,6 +195,8 @@ int main(int argc, char **argv)
         const std::string v = argv[++i];
         try {
             if (a == "--out") o.out = v;
+            else if (command == "views" && a == "--every") o.every = int(occu::integer_option(a, v, 1, 1 << 20));
+            else if (command == "views") usage("views takes only --out, --every and a database, not " + a);
             else if (command == "merge") usage("merge takes only --out and shard files, not " + a);
             else if (a == "--scene") o.scene = v;
             else if (a == "--driver") o.driver = v;
@@ -201,8 +235,10 @@ int main(int argc, char **argv)
         usage("--out FILE is required");
     if (command == "merge" && o.inputs.empty())
         usage("merge needs shard files");
+    if (command == "views" && o.inputs.size() != 1)
+        usage("views needs one database");
     try {
-        return command == "merge" ? merge(o) : build(o);
+        return command == "merge" ? merge(o) : command == "views" ? views(o) : build(o);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "occu-preprocess: %s\n", e.what());
         return 1;

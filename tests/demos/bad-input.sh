@@ -49,6 +49,9 @@ expect_error "--shard" "$preprocess" build --out "$dir/x.db" --shard 0/2
 expect_error "--selection" "$preprocess" build --out "$dir/x.db" --selection best
 expect_error "--pixels-per-occluder" "$preprocess" build --out "$dir/x.db" --pixels-per-occluder 0
 expect_error "bad.db" "$preprocess" merge --out "$dir/x.db" "$dir/bad.db"
+expect_error "views needs one database" "$preprocess" views --out "$dir/x.route"
+expect_error "--every" "$preprocess" views --out "$dir/x.route" --every 0 "$dir/bad.db"
+expect_error "bad.db" "$preprocess" views --out "$dir/x.route" "$dir/bad.db"
 expect_error "frob" "$preprocess" frob
 
 [ $failures -eq 0 ] || { echo "$failures bad-input cases failed"; exit 1; }
