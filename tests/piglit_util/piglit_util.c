@@ -146,12 +146,25 @@ GLuint piglit_build_fragment_program(const char *source)
     PFNGLGETPROGRAMIVPROC GetProgramiv = (PFNGLGETPROGRAMIVPROC)piglit_get_proc_address("glGetProgramiv");
     PFNGLGETPROGRAMINFOLOGPROC GetProgramInfoLog =
         (PFNGLGETPROGRAMINFOLOGPROC)piglit_get_proc_address("glGetProgramInfoLog");
+    PFNGLGETSHADERIVPROC GetShaderiv = (PFNGLGETSHADERIVPROC)piglit_get_proc_address("glGetShaderiv");
+    PFNGLGETSHADERINFOLOGPROC GetShaderInfoLog =
+        (PFNGLGETSHADERINFOLOGPROC)piglit_get_proc_address("glGetShaderInfoLog");
     if (!CreateShader || !ShaderSource || !CompileShader || !CreateProgram || !AttachShader || !LinkProgram ||
-        !GetProgramiv || !GetProgramInfoLog)
+        !GetProgramiv || !GetProgramInfoLog || !GetShaderiv || !GetShaderInfoLog) {
+        printf("GL 2.0 shader entry points are missing\n");
         return 0;
+    }
     GLuint shader = CreateShader(GL_FRAGMENT_SHADER);
     ShaderSource(shader, 1, &source, NULL);
     CompileShader(shader);
+    GLint compiled = 0;
+    GetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
+    if (!compiled) {
+        char log[1024];
+        GetShaderInfoLog(shader, sizeof(log), NULL, log);
+        printf("fragment shader failed to compile: %s\n", log);
+        return 0;
+    }
     GLuint program = CreateProgram();
     AttachShader(program, shader);
     LinkProgram(program);

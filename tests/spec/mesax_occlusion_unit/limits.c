@@ -1,40 +1,133 @@
 /*
- * GL_MESAX_occlusion_unit: the extension string, the limits and the
- * initial state of New State / New Implementation Dependent State.
+ * GL_MESAX_occlusion_unit: the extension string, the entry points, the
+ * limits and the initial state of New State / New Implementation Dependent
+ * State, through every Get command the spec names.
  *
  * Subtests:
- *   max-tiles-at-least-64     MAX_OCCLUSION_TILES_MESAX >= 64
- *   tile-count-initially-0    OCCLUSION_TILE_COUNT_MESAX == 0
+ *   entry-points                   glScissorsMESAX and glOcclusionBuffersMESAX
+ *                                  resolve and act: a tile count set by one is
+ *                                  read back, a pass entered with a buffer set
+ *                                  by the other writes its record
+ *   max-tiles-at-least-64          MAX_OCCLUSION_TILES_MESAX >= 64
+ *   tile-count-initially-0         OCCLUSION_TILE_COUNT_MESAX == 0
  *   render-mode-initially-render
- *   entry-points              both functions resolve (checked by ou_init)
+ *   max-tiles-get{boolean,float,double}v
+ *                                  the other Get commands return the limit
+ *                                  GetIntegerv returns, converted as section
+ *                                  6.1.2 of OpenGL 2.1 converts integers
+ *                                  (a non-zero integer is TRUE)
+ *   tile-count-0-get{boolean,float,double}v
+ *   tile-count-3-get{boolean,float,double}v
+ *                                  the same for the tile count at 0 and at 3,
+ *                                  so that both boolean values are seen
  */
 #include "ou_util.h"
 
+static GLint
+get_integer(GLenum pname)
+{
+    GLint v = -12345;
+    glGetIntegerv(pname, &v);
+    return v;
+}
+
+/* GetBooleanv, GetFloatv and GetDoublev of `pname` against GetIntegerv's
+ * `expected`; one subtest per command. */
+static void
+check_other_gets(GLenum pname, const char *name, GLint expected)
+{
+    char subtest_name[64];
+    GLboolean b = 0x7f;   /* neither GL_FALSE nor GL_TRUE */
+    GLfloat f = -12345.0f;
+    GLdouble d = -12345.0;
+
+    glGetBooleanv(pname, &b);
+    bool ok = piglit_check_gl_error(GL_NO_ERROR) && b == (expected ? GL_TRUE : GL_FALSE);
+    if (!ok)
+        printf("GetBooleanv(%s) is %d, GetIntegerv %d\n", name, b, expected);
+    snprintf(subtest_name, sizeof(subtest_name), "%s-getbooleanv", name);
+    subtest(ok, subtest_name);
+
+    glGetFloatv(pname, &f);
+    ok = piglit_check_gl_error(GL_NO_ERROR) && f == (GLfloat)expected;
+    if (!ok)
+        printf("GetFloatv(%s) is %g, GetIntegerv %d\n", name, f, expected);
+    snprintf(subtest_name, sizeof(subtest_name), "%s-getfloatv", name);
+    subtest(ok, subtest_name);
+
+    glGetDoublev(pname, &d);
+    ok = piglit_check_gl_error(GL_NO_ERROR) && d == (GLdouble)expected;
+    if (!ok)
+        printf("GetDoublev(%s) is %g, GetIntegerv %d\n", name, d, expected);
+    snprintf(subtest_name, sizeof(subtest_name), "%s-getdoublev", name);
+    subtest(ok, subtest_name);
+}
+
+/* The entry points act on the GL: a dispatch stub that exists for any name
+ * would resolve too, so resolving alone proves nothing. */
+static bool
+entry_points_work(void)
+{
+    if (!ou_resolve_entry_points()) {
+        printf("glScissorsMESAX %p, glOcclusionBuffersMESAX %p\n", (void *)ScissorsMESAX,
+               (void *)OcclusionBuffersMESAX);
+        return false;
+    }
+    const GLint tile[4] = {0, 0, 2, 2};
+    ScissorsMESAX(1, tile);
+    const GLint count = get_integer(GL_OCCLUSION_TILE_COUNT_MESAX);
+
+    GLuint record[OU_BRIEF_SIZE];
+    GLuint *buffers[1] = {record};
+    const GLsizei size = OU_BRIEF_SIZE;
+    ou_fill(record, OU_BRIEF_SIZE);
+    OcclusionBuffersMESAX(1, &size, buffers);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    const GLint mode = get_integer(GL_RENDER_MODE);
+    glRenderMode(GL_RENDER);
+    ScissorsMESAX(0, NULL);
+    OcclusionBuffersMESAX(0, NULL, NULL);
+
+    /* Nothing was drawn: NOHC and PHC are 0 in a written record. */
+    const bool ok = piglit_check_gl_error(GL_NO_ERROR) && count == 1 && mode == GL_BRIEF_OCCLUSION_MESAX &&
+                    record[OU_NOHC] == 0 && record[OU_PHC] == 0;
+    if (!ok)
+        printf("tile count %d (expected 1), render mode 0x%x, record NOHC 0x%08x PHC 0x%08x\n", count, mode,
+               record[OU_NOHC], record[OU_PHC]);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
-    ou_init(argc, argv, 16, 16);
-    enum piglit_result result = PIGLIT_PASS, r;
+    ou_init_context(argc, argv, 16, 16);
 
-    GLint max_tiles = 0;
-    glGetIntegerv(GL_MAX_OCCLUSION_TILES_MESAX, &max_tiles);
-    r = max_tiles >= 64 && piglit_check_gl_error(GL_NO_ERROR) ? PIGLIT_PASS : PIGLIT_FAIL;
-    if (r == PIGLIT_FAIL)
+    /* The initial state first: entry-points changes and restores it. */
+    const GLint max_tiles = get_integer(GL_MAX_OCCLUSION_TILES_MESAX);
+    bool ok = piglit_check_gl_error(GL_NO_ERROR) && max_tiles >= 64;
+    if (!ok)
         printf("MAX_OCCLUSION_TILES_MESAX is %d\n", max_tiles);
-    piglit_report_subtest_result(r, "max-tiles-at-least-64");
-    result = piglit_merge_result(result, r);
+    subtest(ok, "max-tiles-at-least-64");
 
-    GLint count = -1;
-    glGetIntegerv(GL_OCCLUSION_TILE_COUNT_MESAX, &count);
-    r = count == 0 && piglit_check_gl_error(GL_NO_ERROR) ? PIGLIT_PASS : PIGLIT_FAIL;
-    piglit_report_subtest_result(r, "tile-count-initially-0");
-    result = piglit_merge_result(result, r);
+    const GLint count = get_integer(GL_OCCLUSION_TILE_COUNT_MESAX);
+    ok = piglit_check_gl_error(GL_NO_ERROR) && count == 0;
+    if (!ok)
+        printf("OCCLUSION_TILE_COUNT_MESAX is %d\n", count);
+    subtest(ok, "tile-count-initially-0");
 
-    GLint mode = 0;
-    glGetIntegerv(GL_RENDER_MODE, &mode);
-    r = mode == GL_RENDER ? PIGLIT_PASS : PIGLIT_FAIL;
-    piglit_report_subtest_result(r, "render-mode-initially-render");
-    result = piglit_merge_result(result, r);
+    subtest(get_integer(GL_RENDER_MODE) == GL_RENDER, "render-mode-initially-render");
 
-    piglit_report_subtest_result(PIGLIT_PASS, "entry-points");
+    check_other_gets(GL_MAX_OCCLUSION_TILES_MESAX, "max-tiles", max_tiles);
+
+    /* Tile count 0 (FALSE), then 3 (TRUE) read by every command. */
+    bool entered = entry_points_work();
+    subtest(entered, "entry-points");
+    if (entered) {
+        check_other_gets(GL_OCCLUSION_TILE_COUNT_MESAX, "tile-count-0", 0);
+        const GLint three[12] = {0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 1, 1};
+        ScissorsMESAX(3, three);
+        check_other_gets(GL_OCCLUSION_TILE_COUNT_MESAX, "tile-count-3", 3);
+        ScissorsMESAX(0, NULL);
+    }
+
     piglit_report_result(result);
 }

@@ -37,31 +37,53 @@ subtest(bool ok, const char *name)
 static PFNGLSCISSORSMESAXPROC ScissorsMESAX;
 static PFNGLOCCLUSIONBUFFERSMESAXPROC OcclusionBuffersMESAX;
 
-/* Makes the context, requires the extension (skips without it; fails on
- * softpipe, which occu's patches give it), sets pixel-exact projection. */
+/* The drivers occu's patches give the extension. */
+static inline bool
+ou_driver_is_patched(void)
+{
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    return renderer && (strstr(renderer, "softpipe") || strstr(renderer, "llvmpipe"));
+}
+
+/* Makes the context and sets the pixel-exact projection. Without the
+ * extension the test fails on softpipe and llvmpipe, which must advertise it,
+ * and skips elsewhere. */
 static inline void
-ou_init(int argc, char **argv, int width, int height)
+ou_init_context(int argc, char **argv, int width, int height)
 {
     piglit_osmesa_init(argc, argv, width, height);
     if (!piglit_is_extension_supported("GL_MESAX_occlusion_unit")) {
-        const char *renderer = (const char *)glGetString(GL_RENDERER);
-        if (renderer && strstr(renderer, "softpipe")) {
-            printf("softpipe must advertise GL_MESAX_occlusion_unit with occu's patches\n");
+        if (ou_driver_is_patched()) {
+            printf("%s must advertise GL_MESAX_occlusion_unit\n", (const char *)glGetString(GL_RENDERER));
             piglit_report_result(PIGLIT_FAIL);
         }
         piglit_require_extension("GL_MESAX_occlusion_unit");
-    }
-    ScissorsMESAX = (PFNGLSCISSORSMESAXPROC)piglit_get_proc_address("glScissorsMESAX");
-    OcclusionBuffersMESAX = (PFNGLOCCLUSIONBUFFERSMESAXPROC)piglit_get_proc_address("glOcclusionBuffersMESAX");
-    if (!ScissorsMESAX || !OcclusionBuffersMESAX) {
-        printf("extension advertised but its entry points are missing\n");
-        piglit_report_result(PIGLIT_FAIL);
     }
     glMatrixMode(GL_PROJECTION);
     glLoadIdentity();
     glOrtho(0, width, 0, height, 0, -1); /* window z = object z */
     glMatrixMode(GL_MODELVIEW);
     glLoadIdentity();
+}
+
+/* Resolves the extension's two entry points; false when one is missing. */
+static inline bool
+ou_resolve_entry_points(void)
+{
+    ScissorsMESAX = (PFNGLSCISSORSMESAXPROC)piglit_get_proc_address("glScissorsMESAX");
+    OcclusionBuffersMESAX = (PFNGLOCCLUSIONBUFFERSMESAXPROC)piglit_get_proc_address("glOcclusionBuffersMESAX");
+    return ScissorsMESAX && OcclusionBuffersMESAX;
+}
+
+/* ou_init_context and ou_resolve_entry_points; fails without the entry points. */
+static inline void
+ou_init(int argc, char **argv, int width, int height)
+{
+    ou_init_context(argc, argv, width, height);
+    if (!ou_resolve_entry_points()) {
+        printf("extension advertised but its entry points are missing\n");
+        piglit_report_result(PIGLIT_FAIL);
+    }
 }
 
 static inline void
