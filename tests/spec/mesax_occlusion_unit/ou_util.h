@@ -117,6 +117,17 @@ ou_depth(double z)
     return (GLuint)(z * 4294967295.0 + 0.5);
 }
 
+/* Tolerance, in record units, between a record's z and the same fragment's
+ * depth read back from a 24-bit depth buffer as GL_UNSIGNED_INT. One step
+ * of the buffer is (2^32 - 1) / (2^24 - 1) = 257.00002 record units; the
+ * buffer holds z rounded or truncated to a step (implementations do
+ * either), so within one step of z, and the read-back scales it to 32 bits
+ * by bit replication, within 1 unit of (2^32 - 1) / (2^24 - 1) times the
+ * stored value. A record of the buffer's value also passes this tolerance:
+ * tests that must tell the two apart compare with a float depth buffer or
+ * with a z that float32 represents exactly. */
+#define OU_Z24_READBACK_TOLERANCE 258u
+
 static int
 ou_compare_pairs(const void *a, const void *b)
 {
