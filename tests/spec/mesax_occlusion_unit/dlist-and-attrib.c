@@ -1,8 +1,10 @@
 /*
  * GL_MESAX_occlusion_unit and display lists, glPushAttrib (spec issue 8):
  * ScissorsMESAX and OcclusionBuffersMESAX execute immediately even while a
- * list is compiled, and are not compiled into it; no attribute group saves
- * the tiles; PopAttrib(SCISSOR_BIT) restores the scissor box, which is the
+ * list is compiled, and are not compiled into it: each list is called and
+ * changes neither the tiles nor the buffers, while a glScissor compiled
+ * next to them shows that the list ran. No attribute group saves the
+ * tiles; PopAttrib(SCISSOR_BIT) restores the scissor box, which is the
  * default tile of the next pass.
  */
 #include "ou_util.h"
@@ -20,6 +22,18 @@ tile_count(void)
     return v;
 }
 
+static bool
+scissor_box_is(GLint x, GLint y, GLint w, GLint h)
+{
+    GLint box[4] = {-1, -1, -1, -1};
+    glGetIntegerv(GL_SCISSOR_BOX, box);
+    if (box[0] == x && box[1] == y && box[2] == w && box[3] == h)
+        return true;
+    printf("scissor box %d %d %d %d, expected %d %d %d %d: the list did not run\n", box[0], box[1], box[2], box[3], x,
+           y, w, h);
+    return false;
+}
+
 static void draw_all(void) { ou_rect(0, 0, W, H, 0.5f); }
 
 int main(int argc, char **argv)
@@ -28,22 +42,29 @@ int main(int argc, char **argv)
     glDisable(GL_DEPTH_TEST);
     const GLint tiles[12] = {0, 0, 1, 1, 0, 0, 2, 2, 0, 0, 3, 3};
 
+    /* Each list also holds a glScissor, which is compiled: after
+     * glCallList the scissor box shows that the list was executed. */
     GLuint list = glGenLists(1);
     glNewList(list, GL_COMPILE);
     ScissorsMESAX(2, tiles);
+    glScissor(1, 2, 3, 4);
     glEndList();
     subtest(tile_count() == 2 && piglit_check_gl_error(GL_NO_ERROR), "scissors-executes-while-compiling");
     ScissorsMESAX(0, NULL);
+    glScissor(0, 0, W, H);
     glCallList(list);
-    subtest(tile_count() == 0, "scissors-not-compiled");
+    subtest(scissor_box_is(1, 2, 3, 4) && tile_count() == 0 && piglit_check_gl_error(GL_NO_ERROR),
+            "scissors-not-compiled");
+    glScissor(0, 0, W, H);
 
     /* Buffers set while compiling are in effect at once. */
-    GLuint record[8];
-    GLuint *buffers[1] = {record};
+    GLuint record[8], other[8];
+    GLuint *buffers[1] = {record}, *other_buffers[1] = {other};
     GLsizei size = 8;
     GLuint list2 = glGenLists(1);
     glNewList(list2, GL_COMPILE);
     OcclusionBuffersMESAX(1, &size, buffers);
+    glScissor(1, 2, 3, 4);
     glEndList();
     ou_fill(record, 8);
     glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
@@ -51,6 +72,20 @@ int main(int argc, char **argv)
     draw_all();
     glRenderMode(GL_RENDER);
     subtest(entered && record[OU_NOHC] == W * H, "buffers-execute-while-compiling");
+
+    /* Calling the list sets no buffers: the next pass writes `other`. */
+    OcclusionBuffersMESAX(1, &size, other_buffers);
+    glScissor(0, 0, W, H);
+    glCallList(list2);
+    const bool called = scissor_box_is(1, 2, 3, 4);
+    glScissor(0, 0, W, H);
+    ou_fill(record, 8);
+    ou_fill(other, 8);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    draw_all();
+    glRenderMode(GL_RENDER);
+    subtest(called && piglit_check_gl_error(GL_NO_ERROR) && other[OU_NOHC] == W * H && record[OU_NOHC] == OU_SENTINEL,
+            "buffers-not-compiled");
 
     /* No attribute group holds the tiles. */
     glPushAttrib(GL_ALL_ATTRIB_BITS);
