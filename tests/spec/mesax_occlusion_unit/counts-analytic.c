@@ -2,16 +2,24 @@
  * GL_MESAX_occlusion_unit: exact NOHC, PHC, bounding box and depth range
  * for coverage known analytically: axis-aligned rectangles on pixel
  * boundaries (no rasterization ambiguity), a half-occluded rectangle, a
- * fully occluded one, and tiles that cut a rectangle's edges.
+ * fully occluded one, tiles that cut a rectangle's edges, and the default
+ * tile, which is taken when the pass begins (a Scissor or Viewport call
+ * during the pass changes the scissor test and the rasterization, not the
+ * tile).
  *
- * Tolerances: counts and coordinates exact; depth within 512 record units
- * (2^-23 of the range: float32 rounding of a constant z).
+ * Tolerances: counts, coordinates and depth exact. The rectangles lie at
+ * z = 0.5, which float32 holds exactly and which glOrtho(..., 0, -1) and
+ * the viewport transform map to itself without rounding (2 * 0.5 - 1 = 0,
+ * then 0 * 0.5 + 0.5), so the record is ou_depth(0.5) = 0x80000000. A
+ * record of the 24-bit depth buffer's value instead would be half a buffer
+ * step off (0.5 * (2^24 - 1) lies half-way between two steps), about 128
+ * units: any tolerance would have to stay below that, and none is needed.
  */
 #include "ou_util.h"
 
 #define W 64
 #define H 64
-#define ZTOL 512
+#define ZTOL 0
 
 
 static void
@@ -25,6 +33,31 @@ check(const char *name, const GLuint *got, const GLuint expected[OU_BRIEF_SIZE])
 
 /* The tested object: 20 x 10 pixels at depth 0.5. */
 static void draw_target(void) { ou_rect(10, 20, 30, 30, 0.5f); }
+
+/* Viewport and projection 0..width-1 wide, pixel-exact as ou_init sets them. */
+static void
+set_viewport(int width)
+{
+    glViewport(0, 0, width, H);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glOrtho(0, width, 0, H, 0, -1);
+    glMatrixMode(GL_MODELVIEW);
+}
+
+static void
+widen_viewport_and_draw_target(void)
+{
+    set_viewport(W);
+    draw_target();
+}
+
+static void
+widen_scissor_and_draw_target(void)
+{
+    glScissor(0, 0, W, H);
+    draw_target();
+}
 
 static void
 reset_depth(void)
@@ -90,13 +123,23 @@ int main(int argc, char **argv)
     check("scissor-is-default-tile", rec[0], (GLuint[]){50, 50, 10, 14, 20, 29, z, z});
 
     /* The viewport is the default tile without the scissor test. */
-    glViewport(0, 0, 20, H);
-    glMatrixMode(GL_PROJECTION);
-    glLoadIdentity();
-    glOrtho(0, 20, 0, H, 0, -1);
-    glMatrixMode(GL_MODELVIEW);
+    set_viewport(20);
     ou_brief_pass(0, NULL, rec, draw_target);
     check("viewport-is-default-tile", rec[0], (GLuint[]){100, 100, 10, 19, 20, 29, z, z});
+
+    /* Viewport 0..19 is the tile; widened during the pass, it lets the
+     * whole rectangle through, and the tile still stops at column 19. */
+    ou_brief_pass(0, NULL, rec, widen_viewport_and_draw_target);
+    check("viewport-change-during-pass-keeps-tile", rec[0], (GLuint[]){100, 100, 10, 19, 20, 29, z, z});
+    set_viewport(W);
+
+    /* Scissor box 0..14 is the tile; widened during the pass, it lets the
+     * whole rectangle through, and the tile still stops at column 14. */
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 15, H);
+    ou_brief_pass(0, NULL, rec, widen_scissor_and_draw_target);
+    glDisable(GL_SCISSOR_TEST);
+    check("scissor-change-during-pass-keeps-tile", rec[0], (GLuint[]){50, 50, 10, 14, 20, 29, z, z});
 
     piglit_report_result(result);
 }
