@@ -125,14 +125,10 @@ int main(int argc, char **argv)
 
     subtest(record_matches_render("24-bit depth", false, OU_Z24_READBACK_TOLERANCE), "tilted-triangle-partly-occluded");
 
-    /* softpipe and llvmpipe support float depth buffers; only other drivers
-     * may skip this. */
     if (bind_float_depth_fbo())
         subtest(record_matches_render("float depth", true, 0), "tilted-triangle-float-depth-buffer");
-    else if (ou_driver_is_patched())
-        subtest(false, "tilted-triangle-float-depth-buffer");
     else
-        piglit_report_subtest_result(PIGLIT_SKIP, "tilted-triangle-float-depth-buffer");
+        ou_subtest_unsupported("tilted-triangle-float-depth-buffer", "a complete DEPTH_COMPONENT32F framebuffer");
 
     piglit_report_result(result);
 }

@@ -45,6 +45,19 @@ ou_driver_is_patched(void)
     return renderer && (strstr(renderer, "softpipe") || strstr(renderer, "llvmpipe"));
 }
 
+/* Reports a subtest whose GL feature the context lacks: a failure on
+ * softpipe and llvmpipe, which have every feature these tests use, a skip
+ * elsewhere. */
+static inline void
+ou_subtest_unsupported(const char *name, const char *feature)
+{
+    printf("%s: %s is not supported\n", name, feature);
+    if (ou_driver_is_patched())
+        subtest(false, name);
+    else
+        piglit_report_subtest_result(PIGLIT_SKIP, "%s", name);
+}
+
 /* Makes the context and sets the pixel-exact projection. Without the
  * extension the test fails on softpipe and llvmpipe, which must advertise it,
  * and skips elsewhere. */
