@@ -3,7 +3,9 @@
  * issues 1, 7 and 10): PHC counts fragments entering the per-fragment tests
  * (after scissor and discard), NOHC those passing alpha, stencil and depth
  * tests; an occlusion pass writes no depth, so its own primitives never
- * occlude each other; an active SAMPLES_PASSED query counts NOHC.
+ * occlude each other; an active SAMPLES_PASSED query counts NOHC and an
+ * ANY_SAMPLES_PASSED query whether it is non-zero; a draw that conditional
+ * rendering discards adds nothing to the tiles, one it lets through counts.
  * Object: a 20 x 10 rectangle at z = 0.5, left half behind an occluder at
  * z = 0.25 where noted. Counts exact.
  */
@@ -38,6 +40,92 @@ scene_with_occluder(void)
     glClearStencil(0);
     glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     ou_rect(10, 20, 20, 30, 0.25f);
+}
+
+static void draw_occluded_half(void) { ou_rect(10, 20, 20, 30, 0.5f); }
+
+/* An ANY_SAMPLES_PASSED query around a pass's draw: FALSE for the hidden
+ * half of the object, TRUE for the object. */
+static void
+test_any_samples_passed(void)
+{
+    if (!piglit_is_extension_supported("GL_ARB_occlusion_query2")) {
+        ou_subtest_unsupported("any-samples-passed-query-in-pass", "GL_ARB_occlusion_query2");
+        return;
+    }
+    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
+        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    GLuint query[2], any[2] = {7, 7};
+    void (*draws[2])(void) = {draw_occluded_half, draw_target};
+    GLuint nohc[2];
+    GenQueries(2, query);
+    scene_with_occluder();
+    for (int i = 0; i < 2; ++i) {
+        BeginQuery(GL_ANY_SAMPLES_PASSED, query[i]);
+        ou_brief_pass(0, NULL, rec, draws[i]);
+        EndQuery(GL_ANY_SAMPLES_PASSED);
+        GetQueryObjectuiv(query[i], GL_QUERY_RESULT, &any[i]);
+        nohc[i] = rec[0][OU_NOHC];
+    }
+    const bool ok = piglit_check_gl_error(GL_NO_ERROR) && any[0] == GL_FALSE && nohc[0] == 0 &&
+                    any[1] == GL_TRUE && nohc[1] == 100;
+    if (!ok)
+        printf("ANY_SAMPLES_PASSED %u and %u, NOHC %u and %u; expected FALSE, TRUE, 0, 100\n", any[0], any[1],
+               nohc[0], nohc[1]);
+    subtest(ok, "any-samples-passed-query-in-pass");
+}
+
+/* Conditional rendering on a SAMPLES_PASSED query taken in GL_RENDER: the
+ * hidden half's query (0) discards the pass's draw, the object's lets it
+ * through. */
+static void
+test_conditional_render(void)
+{
+    PFNGLBEGINCONDITIONALRENDERPROC BeginConditionalRender =
+        (PFNGLBEGINCONDITIONALRENDERPROC)piglit_get_proc_address("glBeginConditionalRender");
+    PFNGLENDCONDITIONALRENDERPROC EndConditionalRender =
+        (PFNGLENDCONDITIONALRENDERPROC)piglit_get_proc_address("glEndConditionalRender");
+    if (!piglit_is_extension_supported("GL_NV_conditional_render")) {
+        ou_subtest_unsupported("conditional-render-discarded-draw-not-counted", "GL_NV_conditional_render");
+        ou_subtest_unsupported("conditional-render-passed-draw-counted", "GL_NV_conditional_render");
+        return;
+    }
+    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    GLuint query[2];
+    GenQueries(2, query);
+    scene_with_occluder();
+    glDepthMask(GL_FALSE);   /* the queried draws leave the depth buffer as it is */
+    BeginQuery(GL_SAMPLES_PASSED, query[0]);
+    draw_occluded_half();
+    EndQuery(GL_SAMPLES_PASSED);
+    BeginQuery(GL_SAMPLES_PASSED, query[1]);
+    draw_target();
+    EndQuery(GL_SAMPLES_PASSED);
+    glDepthMask(GL_TRUE);
+
+    for (int i = 0; i < 2; ++i) {
+        GLuint record[OU_BRIEF_SIZE];
+        GLuint *buffers[1] = {record};
+        const GLsizei size = OU_BRIEF_SIZE;
+        ou_fill(record, OU_BRIEF_SIZE);
+        OcclusionBuffersMESAX(1, &size, buffers);
+        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        BeginConditionalRender(query[i], GL_QUERY_WAIT);
+        draw_target();
+        EndConditionalRender();
+        glRenderMode(GL_RENDER);
+        const GLuint nohc = i == 0 ? 0 : 100, phc = i == 0 ? 0 : 200;
+        const bool ok = piglit_check_gl_error(GL_NO_ERROR) && record[OU_NOHC] == nohc && record[OU_PHC] == phc;
+        if (!ok)
+            printf("conditional draw %d: NOHC %u PHC %u, expected %u %u\n", i, record[OU_NOHC], record[OU_PHC], nohc,
+                   phc);
+        subtest(ok, i == 0 ? "conditional-render-discarded-draw-not-counted" : "conditional-render-passed-draw-counted");
+    }
 }
 
 int main(int argc, char **argv)
@@ -103,8 +191,10 @@ int main(int argc, char **argv)
     glDisable(GL_SCISSOR_TEST);
     expect("scissor-test-before-tile", 50, 150);
 
-    /* Discard in a fragment shader removes fragments from PHC too. */
-    /* Discards the columns x < 20: the left half of the object. */
+    /* Discard in a fragment shader removes fragments from PHC too: the
+     * shader discards the columns x < 20, the left half of the object.
+     * GLSL 1.10 is part of every context these tests run in, so a shader
+     * that does not build fails the subtest. */
     GLuint program = piglit_build_fragment_program(
         "#version 110\n"
         "void main() { if (gl_FragCoord.x < 20.0) discard; gl_FragColor = vec4(1.0); }\n");
@@ -116,7 +206,9 @@ int main(int argc, char **argv)
         UseProgram(0);
         expect("shader-discard", 100, 100);
     } else {
-        piglit_report_subtest_result(PIGLIT_SKIP, "shader-discard");
+        printf("shader-discard: the GLSL 1.10 shader did not build\n");
+        piglit_report_subtest_result(PIGLIT_FAIL, "shader-discard");
+        result = PIGLIT_FAIL;
     }
 
     /* An active SAMPLES_PASSED query counts what NOHC counts. */
@@ -138,6 +230,9 @@ int main(int argc, char **argv)
     piglit_report_subtest_result(ok ? PIGLIT_PASS : PIGLIT_FAIL, "samples-passed-query-equals-nohc");
     if (!ok)
         result = PIGLIT_FAIL;
+
+    test_any_samples_passed();
+    test_conditional_render();
 
     piglit_report_result(result);
 }
