@@ -5,7 +5,8 @@
  * tests; an occlusion pass writes no depth, so its own primitives never
  * occlude each other; an active SAMPLES_PASSED query counts NOHC and an
  * ANY_SAMPLES_PASSED query whether it is non-zero; a draw that conditional
- * rendering discards adds nothing to the tiles, one it lets through counts.
+ * rendering discards adds nothing to the tiles, one it lets through counts;
+ * nor does a draw with RASTERIZER_DISCARD enabled.
  * Object: a 20 x 10 rectangle at z = 0.5, left half behind an occluder at
  * z = 0.25 where noted. Counts exact.
  */
@@ -233,6 +234,13 @@ int main(int argc, char **argv)
 
     test_any_samples_passed();
     test_conditional_render();
+
+    /* RASTERIZER_DISCARD: no fragments, nothing counted. */
+    scene_with_occluder();
+    glEnable(GL_RASTERIZER_DISCARD);
+    ou_brief_pass(0, NULL, rec, draw_target);
+    glDisable(GL_RASTERIZER_DISCARD);
+    expect("rasterizer-discard-counts-nothing", 0, 0);
 
     piglit_report_result(result);
 }
