@@ -14,6 +14,12 @@
  *                                    counter and may discard: the counter
  *                                    ends at one increment per fragment, as
  *                                    in GL_RENDER
+ *   image-store-shader-that-may-discard-runs
+ *   buffer-store-shader-that-may-discard-runs
+ *                                    the same for a shader that stores into
+ *                                    an image or a shader storage buffer:
+ *                                    the words stored in a brief pass equal
+ *                                    those stored in GL_RENDER
  *   atomic-shader-runs-{brief,verbose}
  *                                    the same without the discard: the
  *                                    shader's only effect besides colour is
@@ -176,6 +182,132 @@ test_atomic_counter_shaders(void)
     }
 }
 
+/* A shader that may discard and stores 1 for its fragment into an image or
+ * a buffer: the stored words after a brief pass equal those after
+ * GL_RENDER, one per fragment. */
+static const char *store_header = "#version 130\n"
+                                  "#extension GL_ARB_shading_language_420pack : require\n";
+
+static bool
+stores_match_render(const char *name, GLuint program, void (*reset)(void), void (*read)(GLuint *))
+{
+    static GLuint render[W * H], pass[W * H];
+    reset();
+    UseProgram(program);
+    draw_in_mode(GL_RENDER);
+    UseProgram(0);
+    read(render);
+    reset();
+    UseProgram(program);
+    draw_in_mode(GL_BRIEF_OCCLUSION_MESAX);
+    UseProgram(0);
+    read(pass);
+    GLuint stored = 0;
+    for (int i = 0; i < W * H; ++i)
+        stored += render[i] != 0;
+    const bool ok = piglit_check_gl_error(GL_NO_ERROR) && stored > 0 && !memcmp(render, pass, sizeof(pass));
+    if (!ok) {
+        GLuint in_pass = 0;
+        for (int i = 0; i < W * H; ++i)
+            in_pass += pass[i] != 0;
+        printf("%s: %u words stored in GL_RENDER, %u in the pass\n", name, stored, in_pass);
+    }
+    return ok;
+}
+
+static GLuint image_texture, storage_buffer;
+
+static void
+reset_image(void)
+{
+    static const GLuint zero[W * H];
+    glBindTexture(GL_TEXTURE_2D, image_texture);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, W, H, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+}
+
+static void
+read_image(GLuint *words)
+{
+    PFNGLMEMORYBARRIERPROC MemoryBarrier = (PFNGLMEMORYBARRIERPROC)piglit_get_proc_address("glMemoryBarrier");
+    MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glBindTexture(GL_TEXTURE_2D, image_texture);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, words);
+}
+
+static void
+reset_buffer(void)
+{
+    static const GLuint zero[W * H];
+    PFNGLBUFFERSUBDATAPROC BufferSubData = (PFNGLBUFFERSUBDATAPROC)piglit_get_proc_address("glBufferSubData");
+    BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zero), zero);
+}
+
+static void
+read_buffer(GLuint *words)
+{
+    PFNGLMEMORYBARRIERPROC MemoryBarrier = (PFNGLMEMORYBARRIERPROC)piglit_get_proc_address("glMemoryBarrier");
+    PFNGLGETBUFFERSUBDATAPROC GetBufferSubData =
+        (PFNGLGETBUFFERSUBDATAPROC)piglit_get_proc_address("glGetBufferSubData");
+    MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, W * H * sizeof(GLuint), words);
+}
+
+static void
+test_image_store(void)
+{
+    const char *name = "image-store-shader-that-may-discard-runs";
+    if (!piglit_is_extension_supported("GL_ARB_shader_image_load_store") ||
+        !piglit_is_extension_supported("GL_ARB_shading_language_420pack")) {
+        ou_subtest_unsupported(name, "GL_ARB_shader_image_load_store with GL_ARB_shading_language_420pack");
+        return;
+    }
+    char source[512];
+    snprintf(source, sizeof(source),
+             "%s#extension GL_ARB_shader_image_load_store : require\n"
+             "layout(r32ui, binding = 0) uniform writeonly uimage2D stored;\n"
+             "void main() { imageStore(stored, ivec2(gl_FragCoord.xy), uvec4(1u));"
+             " if (gl_FragCoord.x < 0.0) discard; gl_FragColor = vec4(1.0); }\n",
+             store_header);
+    const GLuint program = piglit_build_fragment_program(source);
+    PFNGLTEXSTORAGE2DPROC TexStorage2D = (PFNGLTEXSTORAGE2DPROC)piglit_get_proc_address("glTexStorage2D");
+    PFNGLBINDIMAGETEXTUREPROC BindImageTexture =
+        (PFNGLBINDIMAGETEXTUREPROC)piglit_get_proc_address("glBindImageTexture");
+    glGenTextures(1, &image_texture);
+    glBindTexture(GL_TEXTURE_2D, image_texture);
+    TexStorage2D(GL_TEXTURE_2D, 1, GL_R32UI, W, H);
+    BindImageTexture(0, image_texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+    subtest(program && stores_match_render(name, program, reset_image, read_image), name);
+}
+
+static void
+test_buffer_store(void)
+{
+    const char *name = "buffer-store-shader-that-may-discard-runs";
+    if (!piglit_is_extension_supported("GL_ARB_shader_storage_buffer_object") ||
+        !piglit_is_extension_supported("GL_ARB_shading_language_420pack")) {
+        ou_subtest_unsupported(name, "GL_ARB_shader_storage_buffer_object with GL_ARB_shading_language_420pack");
+        return;
+    }
+    /* The buffer's layout is the implementation's; both draws use the same. */
+    char source[512];
+    snprintf(source, sizeof(source),
+             "%s#extension GL_ARB_shader_storage_buffer_object : require\n"
+             "layout(binding = 0) buffer Stored { uint stored[]; };\n"
+             "void main() { stored[int(gl_FragCoord.y) * %d + int(gl_FragCoord.x)] = 1u;"
+             " if (gl_FragCoord.x < 0.0) discard; gl_FragColor = vec4(1.0); }\n",
+             store_header, W);
+    const GLuint program = piglit_build_fragment_program(source);
+    PFNGLGENBUFFERSPROC GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
+    PFNGLBINDBUFFERPROC BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
+    PFNGLBUFFERDATAPROC BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
+    PFNGLBINDBUFFERBASEPROC BindBufferBase = (PFNGLBINDBUFFERBASEPROC)piglit_get_proc_address("glBindBufferBase");
+    GenBuffers(1, &storage_buffer);
+    BindBuffer(GL_SHADER_STORAGE_BUFFER, storage_buffer);
+    BufferData(GL_SHADER_STORAGE_BUFFER, W * H * sizeof(GLuint), NULL, GL_DYNAMIC_DRAW);
+    BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, storage_buffer);
+    subtest(program && stores_match_render(name, program, reset_buffer, read_buffer), name);
+}
+
 int main(int argc, char **argv)
 {
     ou_init(argc, argv, W, H);
@@ -206,6 +338,8 @@ int main(int argc, char **argv)
     glDisable(GL_ALPHA_TEST);
     check_invocations(discards, GL_BRIEF_OCCLUSION_MESAX, false, "discarding-shader-runs");
     test_atomic_counter_shaders();
+    test_image_store();
+    test_buffer_store();
 
     check_invocations(plain, GL_BRIEF_OCCLUSION_MESAX, true, "performance-brief-pass-skips-plain-shader");
     check_invocations(plain, GL_VERBOSE_OCCLUSION_MESAX, true, "performance-verbose-pass-skips-plain-shader");
