@@ -60,6 +60,16 @@ widen_scissor_and_draw_target(void)
 }
 
 static void
+disable_indexed_scissor_and_draw_target(void)
+{
+    PFNGLSCISSORINDEXEDPROC ScissorIndexed = (PFNGLSCISSORINDEXEDPROC)piglit_get_proc_address("glScissorIndexed");
+    PFNGLDISABLEIPROC Disablei = (PFNGLDISABLEIPROC)piglit_get_proc_address("glDisablei");
+    ScissorIndexed(0, 0, 0, W, H);
+    Disablei(GL_SCISSOR_TEST, 0);
+    draw_target();
+}
+
+static void
 reset_depth(void)
 {
     glDepthMask(GL_TRUE);
@@ -140,6 +150,18 @@ int main(int argc, char **argv)
     ou_brief_pass(0, NULL, rec, widen_scissor_and_draw_target);
     glDisable(GL_SCISSOR_TEST);
     check("scissor-change-during-pass-keeps-tile", rec[0], (GLuint[]){50, 50, 10, 14, 20, 29, z, z});
+
+    /* The same through ARB_viewport_array's indexed scissor commands:
+     * disabling the test for index 0 during the pass keeps the tile. */
+    if (piglit_is_extension_supported("GL_ARB_viewport_array")) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, 0, 15, H);
+        ou_brief_pass(0, NULL, rec, disable_indexed_scissor_and_draw_target);
+        glDisable(GL_SCISSOR_TEST);
+        check("indexed-scissor-change-during-pass-keeps-tile", rec[0], (GLuint[]){50, 50, 10, 14, 20, 29, z, z});
+    } else {
+        ou_subtest_unsupported("indexed-scissor-change-during-pass-keeps-tile", "GL_ARB_viewport_array");
+    }
 
     piglit_report_result(result);
 }

@@ -3,8 +3,8 @@
  * ScissorsMESAX and OcclusionBuffersMESAX execute immediately even while a
  * list is compiled, and are not compiled into it: each list is called and
  * changes neither the tiles nor the buffers, while a glScissor compiled
- * next to them shows that the list ran. No attribute group saves the
- * tiles; PopAttrib(SCISSOR_BIT) restores the scissor box, which is the
+ * next to them shows that the list ran. No attribute group, server or
+ * client, saves the tiles or the buffers; PopAttrib(SCISSOR_BIT) restores the scissor box, which is the
  * default tile of the next pass.
  */
 #include "ou_util.h"
@@ -93,6 +93,22 @@ int main(int argc, char **argv)
     glPopAttrib();
     subtest(tile_count() == 3, "push-pop-attrib-keeps-tiles");
     ScissorsMESAX(0, NULL);
+
+    /* Nor the buffers: after PopAttrib the pass writes the buffer set
+     * between PushAttrib and PopAttrib. */
+    OcclusionBuffersMESAX(1, &size, buffers);
+    glPushAttrib(GL_ALL_ATTRIB_BITS);
+    glPushClientAttrib(GL_CLIENT_ALL_ATTRIB_BITS);
+    OcclusionBuffersMESAX(1, &size, other_buffers);
+    glPopClientAttrib();
+    glPopAttrib();
+    ou_fill(record, 8);
+    ou_fill(other, 8);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    draw_all();
+    glRenderMode(GL_RENDER);
+    subtest(piglit_check_gl_error(GL_NO_ERROR) && other[OU_NOHC] == W * H && record[OU_NOHC] == OU_SENTINEL,
+            "push-pop-attrib-keeps-buffers");
 
     /* PopAttrib restores the scissor box: the default tile of the next pass. */
     glEnable(GL_SCISSOR_TEST);
