@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # The occluder database's density against preprocessing time and culling
 # (Poon and Wang, section 3: grid points over the scene, representative view
-# directions at each): mos-om against vfc on the dense and medium routes,
-# llvmpipe 512x512, one run per database with both strategies side by side.
-# Databases are preprocessed once into build/bench-grid/ (named by the
-# grid and by tools/lib.sh's occluder_db_key), with their preprocessing log.
+# directions at each): om-mos against vfc and the floor on the dense and
+# medium routes, llvmpipe 512x512, one run per database with the strategies
+# side by side. Databases are preprocessed once into build/occluders/
+# (occu-preprocess build --cache) with their preprocessing log.
 # Usage: bench/grid.sh [FRAMES] [NX,NY,NZ/HEADINGS ...]
 #        (default: 8,1,8/8 15,1,15/8 8,1,8/16)     Prints a markdown table.
 set -euo pipefail
-source "$(dirname "$0")/../tools/lib.sh"
+source "$(dirname "$0")/lib.sh"
 frames=${1:-30}
 shift || true
 configs=("$@")
@@ -16,30 +16,27 @@ configs=("$@")
 "$OCCU_ROOT/tools/build.sh" bench >/dev/null
 out=$OCCU_ROOT/build/bench-grid
 mkdir -p "$out"
-key=$(occluder_db_key)
 
-echo "## Occluder database density ($frames frames, 64 occluders): mos-om mean ms (speed-up over vfc), efficiency"
+echo "## Occluder database density ($frames frames, 64 occluders): om-mos mean ms (x vfc, x the floor), efficiency"
 echo
 echo "| grid points | headings | views | preprocessing s | dense | medium |"
 echo "|---|---|---|---|---|---|"
 for c in "${configs[@]}"; do
     grid=${c%/*}
     dirs=${c#*/}
-    db=$out/city-${grid//,/x}-h$dirs-$key.db
-    if [ ! -s "$db" ]; then
-        "$OCCU_ROOT/build/demos/occu-preprocess" build --out "$db" --grid "$grid" --directions "$dirs" \
-            --max-occluders 512 > "$db.log" 2>/dev/null
-    fi
+    log=$out/${grid//,/x}-h$dirs.log
+    db=$(occluder_db --grid "$grid" --directions "$dirs" --max-occluders 512 2>"$log")
+    # The preprocessing time, from this run's log or the one that made the database.
+    if grep -q "views in" "$log"; then cp "$log" "$db.log"; fi
     line=$(grep "views in" "$db.log")
     views=$(sed -E 's/.*: ([0-9]+) views in.*/\1/' <<<"$line")
     seconds=$(sed -E 's/.* views in ([0-9.]+) s.*/\1/' <<<"$line")
     row="| ${grid//,/x} | $dirs | $views | $seconds |"
     for route in dense medium; do
-        cell=$("$OCCU_ROOT/build/demos/walkthrough" --route "$route" --frames "$frames" --png-every 0 \
-                   --occluder-db "$db" --strategies vfc,mos-om --out "$out/run" |
-               awk '$1 == "vfc" { vfc = $2 } $1 == "mos-om" { ms = $2; eff = $7 }
-                    END { printf "%.2f (%.2fx) %s", ms, vfc / ms, eff }')
-        row="$row $cell |"
+        "$OCCU_ROOT/build/demos/walkthrough" --route "$route" --frames "$frames" --png-every 0 \
+            --occluder-db "$db" --strategies vfc,ideal,om-mos --out "$out/run" >/dev/null
+        s=$out/run/summary.csv
+        row+=" $(field "$s" om-mos mean_ms) ($(field "$s" om-mos vs_vfc)x, $(field "$s" om-mos x_floor)x) $(field "$s" om-mos efficiency_percent)% |"
     done
     echo "$row"
 done

@@ -27,12 +27,13 @@
 #include <functional>
 #include <string>
 #include <utility>
+#include <optional>
 #include <vector>
 
 #include "gl/extensions.h"
 #include "gl/gl_headers.h"
+#include "gl/occlusion_unit.h"
 #include "gl/offscreen_context.h"
-#include "GL/mesax_occlusion_unit.h"
 
 namespace {
 
@@ -54,8 +55,7 @@ PFNGLGENQUERIESPROC GenQueries;
 PFNGLBEGINQUERYPROC BeginQuery;
 PFNGLENDQUERYPROC EndQuery;
 PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv;
-PFNGLSCISSORSMESAXPROC ScissorsMESAX;
-PFNGLOCCLUSIONBUFFERSMESAXPROC OcclusionBuffersMESAX;
+std::optional<occu::gl::OcclusionUnit> unit;   // when the context has the extension
 
 // An axis-aligned box in window coordinates (x, y pixels; z window depth),
 // drawn as 6 quads: the proxy the papers test.
@@ -87,14 +87,16 @@ void draw_grid(int n, int size)
     }
 }
 
-void grid_tiles(int n, int size, std::vector<GLint> &tiles)
+std::vector<occu::PixelRect> grid_tiles(int n, int size)
 {
     const int side = int(std::ceil(std::sqrt(double(n))));
     const int cell = size / side;
-    tiles.clear();
+    std::vector<occu::PixelRect> tiles;
     for (int i = 0; i < n; ++i) {
-        tiles.insert(tiles.end(), {(i % side) * cell, (i / side) * cell, cell, cell});
+        const int x = (i % side) * cell, y = (i / side) * cell;
+        tiles.push_back({x, y, x + cell, y + cell});
     }
+    return tiles;
 }
 
 // A scene that fills the depth buffer: a wall in front of half the boxes.
@@ -214,29 +216,23 @@ GLuint build_program(const char *vertex_source, const char *fragment_source)
 void compare_tiles(const Options &o, int n, const char *label, const std::function<void()> &draw)
 {
     setup_frame(o.size);
-    std::vector<GLint> tiles;
-    grid_tiles(n, o.size, tiles);
-    std::vector<GLuint> records(8 * std::size_t(n));
-    std::vector<GLuint *> buffers(n);
-    std::vector<GLsizei> sizes(n, 8);
-    for (int i = 0; i < n; ++i)
-        buffers[i] = &records[8 * std::size_t(i)];
-    std::vector<GLuint> queries(n), samples(n);
+    const std::vector<occu::PixelRect> tiles = grid_tiles(n, o.size);
+    std::vector<GLuint> nohc(n), queries(n), samples(n);
     GenQueries(n, queries.data());
     auto occlusion_unit = [&] {
-        OcclusionBuffersMESAX(n, sizes.data(), buffers.data());
-        ScissorsMESAX(n, tiles.data());
-        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        occu::gl::OcclusionPass pass(*unit, occu::gl::OcclusionMode::brief, tiles);
         draw();
-        glRenderMode(GL_RENDER);
-        ScissorsMESAX(0, nullptr);
+        const auto &records = pass.end();
+        for (int i = 0; i < n; ++i)
+            nohc[i] = records[std::size_t(i)].nohc;
     };
     auto arb_queries = [&] {
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glDepthMask(GL_FALSE);
         glEnable(GL_SCISSOR_TEST);
         for (int i = 0; i < n; ++i) {
-            glScissor(tiles[4 * i], tiles[4 * i + 1], tiles[4 * i + 2], tiles[4 * i + 3]);
+            const occu::PixelRect &t = tiles[std::size_t(i)];
+            glScissor(t.x0, t.y0, t.width(), t.height());
             BeginQuery(GL_SAMPLES_PASSED, queries[i]);
             draw();
             EndQuery(GL_SAMPLES_PASSED);
@@ -249,9 +245,9 @@ void compare_tiles(const Options &o, int n, const char *label, const std::functi
     };
     const auto t = compare({occlusion_unit, arb_queries}, o.repeat, 2);
     for (int i = 0; i < n; ++i)
-        if (records[8 * std::size_t(i)] != samples[i])
-            std::fprintf(stderr, "occu-bench-ou: %s tile %d: NOHC %u but SAMPLES_PASSED %u\n", label, i,
-                         records[8 * std::size_t(i)], samples[i]);
+        if (nohc[i] != samples[i])
+            std::fprintf(stderr, "occu-bench-ou: %s tile %d: NOHC %u but SAMPLES_PASSED %u\n", label, i, nohc[i],
+                         samples[i]);
     std::printf("%s,%s,%d,%d,%.4f,%.4f,%.3f\n", label, occu::gl::driver_name(o.driver), o.size, n, t[0], t[1],
                 t[0] / t[1]);
 }
@@ -271,17 +267,13 @@ void case_shaded(const Options &o)
         "  gl_FragColor = vec4(fract(a));\n"
         "}\n");
     auto UseProgram = reinterpret_cast<PFNGLUSEPROGRAMPROC>(get_proc_address("glUseProgram"));
-    GLuint record[8];
-    GLuint *buffers[1] = {record};
-    GLsizei sizes[1] = {8};
     const float s = float(o.size);
     glDepthFunc(GL_ALWAYS);
     UseProgram(program);
     auto occlusion_unit = [&] {
-        OcclusionBuffersMESAX(1, sizes, buffers);
-        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        occu::gl::OcclusionPass pass(*unit, occu::gl::OcclusionMode::brief, {});
         draw_box(0, 0, s, s, 0.4f, 0.6f);
-        glRenderMode(GL_RENDER);
+        pass.end();
     };
     auto render = [&] {
         draw_box(0, 0, s, s, 0.4f, 0.6f);
@@ -297,20 +289,11 @@ void case_shaded(const Options &o)
 void case_passes(const Options &o)
 {
     setup_frame(o.size);
-    std::vector<GLint> tiles;
-    grid_tiles(16, o.size, tiles);
-    std::vector<GLuint> records(8 * 16);
-    std::vector<GLuint *> buffers(16);
-    std::vector<GLsizei> sizes(16, 8);
-    for (int i = 0; i < 16; ++i)
-        buffers[i] = &records[8 * std::size_t(i)];
+    const std::vector<occu::PixelRect> tiles = grid_tiles(16, o.size);
     auto pass = [&] {
-        OcclusionBuffersMESAX(16, sizes.data(), buffers.data());
-        ScissorsMESAX(16, tiles.data());
-        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        occu::gl::OcclusionPass p(*unit, occu::gl::OcclusionMode::brief, tiles);
         draw_mesh(o.size);
-        glRenderMode(GL_RENDER);
-        ScissorsMESAX(0, nullptr);
+        p.end();
     };
     const auto t = compare({pass}, o.repeat, 4);
     const char *threads = std::getenv("LP_NUM_THREADS");
@@ -321,16 +304,13 @@ void case_passes(const Options &o)
 void case_box(const Options &o)
 {
     setup_frame(o.size);
-    GLuint record[8], query = 0, samples = 0;
-    GLuint *buffers[1] = {record};
-    GLsizei sizes[1] = {8};
+    GLuint nohc = 0, query = 0, samples = 0;
     GenQueries(1, &query);
     const float s = float(o.size);
     auto occlusion_unit = [&] {
-        OcclusionBuffersMESAX(1, sizes, buffers);
-        glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        occu::gl::OcclusionPass pass(*unit, occu::gl::OcclusionMode::brief, {});
         draw_box(0.25f * s, 0.25f * s, 0.75f * s, 0.75f * s, 0.4f, 0.6f);
-        glRenderMode(GL_RENDER);
+        nohc = pass.end()[0].nohc;
     };
     auto arb_query = [&] {
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -343,8 +323,8 @@ void case_box(const Options &o)
         glDepthMask(GL_TRUE);
     };
     const auto t = compare({occlusion_unit, arb_query}, o.repeat, 20);
-    if (record[0] != samples)
-        std::fprintf(stderr, "occu-bench-ou: NOHC %u but SAMPLES_PASSED %u\n", record[0], samples);
+    if (nohc != samples)
+        std::fprintf(stderr, "occu-bench-ou: NOHC %u but SAMPLES_PASSED %u\n", nohc, samples);
     std::printf("box,%s,%d,1,%.4f,%.4f,%.3f\n", occu::gl::driver_name(o.driver), o.size, t[0], t[1], t[0] / t[1]);
 }
 
@@ -449,9 +429,9 @@ int main(int argc, char **argv)
     BeginQuery = reinterpret_cast<PFNGLBEGINQUERYPROC>(get_proc_address("glBeginQuery"));
     EndQuery = reinterpret_cast<PFNGLENDQUERYPROC>(get_proc_address("glEndQuery"));
     GetQueryObjectuiv = reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(get_proc_address("glGetQueryObjectuiv"));
-    ScissorsMESAX = reinterpret_cast<PFNGLSCISSORSMESAXPROC>(get_proc_address("glScissorsMESAX"));
-    OcclusionBuffersMESAX = reinterpret_cast<PFNGLOCCLUSIONBUFFERSMESAXPROC>(get_proc_address("glOcclusionBuffersMESAX"));
-    const bool has_unit = occu::gl::has_extension("GL_MESAX_occlusion_unit");
+    const bool has_unit = occu::gl::OcclusionUnit::available();
+    if (has_unit)
+        unit.emplace();
 
     for (const std::string &c : o.cases) {
         if (c == "render")

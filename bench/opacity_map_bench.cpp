@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "culling/opacity_map.h"
-#include "culling/sparse_depth_map.h"
+#include "maps/opacity_map.h"
+#include "maps/sparse_depth_map.h"
 
 namespace {
 

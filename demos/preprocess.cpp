@@ -1,17 +1,23 @@
 // occu-preprocess: builds the minimum-occluder-set database that the
-// walkthrough's mos-om strategy reads (Poon and Wang, section 4; the steps
-// are in src/mos/occluder_preprocessing.h).
+// walkthrough's om-mos strategy reads (Poon and Wang, section 4; the steps
+// are in src/preprocessing/view_preprocessing.h).
 //
-//   occu-preprocess build --out FILE [--scene FILE] [--city-copies N]
+//   occu-preprocess build (--out FILE | --cache DIR) [--scene FILE] [--city-copies N]
 //                   [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D]
-//                   [--eye-height H] [--max-occluders N] [--resolution R]
+//                   [--eye-height H] [--max-occluders N] [--resolution R] [--map-divisor K]
 //                   [--selection marginal|static] [--pixels-per-occluder P]
 //                   [--shard I/N] [--driver llvmpipe|softpipe]
 //   occu-preprocess merge --out FILE SHARD...
 //   occu-preprocess views --out ROUTE [--every K] DATABASE
 //
+// --cache DIR names the database by its key (DatabaseProvenance::key: the
+// preprocessing code, options, scene, hierarchy, Mesa build and grid),
+// makes it only if DIR holds no database of that key, and prints its path
+// on stdout (the rest goes to stderr). --resolution R and --map-divisor K:
+// the run-time maps the database serves (R x R maps of a frame of R * K
+// pixels; the walkthrough's defaults are 128 and 4).
 // --selection static keeps the paper's fixed scores (section 4.3) instead of the
-// greedy marginal order (occluder_preprocessing.h). --pixels-per-occluder P
+// greedy marginal order (preprocessing/occluder_scoring.h). --pixels-per-occluder P
 // weighs an occluder's cost: 1 + its pixels (at --resolution) / P (16384); a
 // large P counts occluders, a small one their rasterization.
 //
@@ -23,12 +29,14 @@
 // along its edge), for measuring selection at viewpoints (bench/occluders.sh).
 // --shard I/N processes the views v with v % N == I - 1, so N
 // machines (under any job scheduler) each write a shard; merge joins them.
-// The scene options must match the walkthrough's (the database records the
-// scene's triangle and leaf counts, and the walkthrough checks them).
+// The scene options must match the walkthrough's: the database records
+// what it was made for (occluder_database.h), and the walkthrough refuses a
+// database made for another scene, hierarchy, map resolution or Mesa.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -37,8 +45,8 @@
 #include "cli/progress.h"
 #include "gl/extensions.h"
 #include "gl/offscreen_context.h"
-#include "mos/occluder_database.h"
-#include "mos/occluder_preprocessing.h"
+#include "preprocessing/occluder_database.h"
+#include "preprocessing/view_preprocessing.h"
 #include "render/scene_renderer.h"
 #include "scene/city.h"
 #include "scene/scene_file.h"
@@ -49,9 +57,10 @@ namespace {
 [[noreturn]] void usage(const std::string &error)
 {
     std::fprintf(error.empty() ? stdout : stderr,
-                 "%s%susage: occu-preprocess build --out FILE [--scene FILE] [--city-copies N] [--leaf-triangles N]\n"
-                 "                       [--grid NX,NY,NZ] [--directions D] [--eye-height H] [--max-occluders N]\n"
-                 "                       [--resolution R] [--selection marginal|static] [--pixels-per-occluder P]\n"
+                 "%s%susage: occu-preprocess build (--out FILE | --cache DIR) [--scene FILE] [--city-copies N]\n"
+                 "                       [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D] [--eye-height H]\n"
+                 "                       [--max-occluders N] [--resolution R] [--map-divisor K]\n"
+                 "                       [--selection marginal|static] [--pixels-per-occluder P]\n"
                  "                       [--shard I/N] [--driver llvmpipe|softpipe]\n"
                  "       occu-preprocess merge --out FILE SHARD...\n"
                  "       occu-preprocess views --out ROUTE [--every K] DATABASE\n",
@@ -60,7 +69,7 @@ namespace {
 }
 
 struct Options {
-    std::string out, scene, driver = "llvmpipe";
+    std::string out, cache, scene, driver = "llvmpipe";
     int city_copies = 1, leaf_triangles = 256, directions = 8, shard = 1, shards = 1;
     glm::ivec3 grid{8, 1, 8};
     float eye_height = 1.7f;
@@ -116,14 +125,8 @@ int build(const Options &o)
     HierarchyOptions ho;
     ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
     const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-    gl::OffscreenContext ctx(o.pre.resolution, o.pre.resolution);
-    if (!gl::has_extension("GL_MESAX_occlusion_unit"))
-        throw std::runtime_error(ctx.renderer() + " lacks GL_MESAX_occlusion_unit (run on occu's patched Mesa)");
-    SceneRenderer renderer(scene, hierarchy);
-
     OccluderDatabase db;
-    db.scene_leaves = std::uint32_t(hierarchy.leaf_count());
-    db.scene_triangles = std::uint32_t(scene.triangle_count());
+    db.provenance = DatabaseProvenance::current(hierarchy, o.pre.describe(), o.pre.stacks.resolution);
     OccluderGrid &g = db.grid;
     g.points = o.grid;
     g.directions = o.directions;
@@ -135,11 +138,37 @@ int build(const Options &o)
     Camera lens;
     lens.far_plane = 2.0f * glm::length(size);
 
+    // With --cache the database is named by what it depends on, and made
+    // only once.
+    std::string path = o.out;
+    std::FILE *report = stdout;
+    if (!o.cache.empty()) {
+        std::filesystem::create_directories(o.cache);
+        path = o.cache + "/occluders-" + db.provenance.key(g) + (o.shards > 1 ? "-shard" + std::to_string(o.shard) + "of" + std::to_string(o.shards) : "") + ".db";
+        report = stderr;
+        if (std::filesystem::exists(path)) {
+            try {
+                const OccluderDatabase cached = OccluderDatabase::load(path);
+                if (cached.provenance == db.provenance && cached.grid == g) {
+                    std::fprintf(stderr, "occu-preprocess: %s is up to date\n", path.c_str());
+                    std::printf("%s\n", path.c_str());
+                    return 0;
+                }
+            } catch (const std::exception &e) {
+                std::fprintf(stderr, "occu-preprocess: remaking %s (%s)\n", path.c_str(), e.what());
+            }
+        }
+    }
+    gl::OffscreenContext ctx(o.pre.stacks.resolution, o.pre.stacks.resolution);
+    if (!gl::has_extension("GL_MESAX_occlusion_unit"))
+        throw std::runtime_error(ctx.renderer() + " lacks GL_MESAX_occlusion_unit (run on occu's patched Mesa)");
+    SceneRenderer renderer(scene, hierarchy);
+
     std::vector<std::uint32_t> views;
     for (std::uint32_t v = 0; v < g.view_count(); ++v)
         if (int(v % std::uint32_t(o.shards)) == o.shard - 1)
             views.push_back(v);
-    std::printf("scene: %zu triangles, %zu leaves; %u views (%d x %d x %d points, %d headings), shard %d/%d: %zu views\n",
+    std::fprintf(report, "scene: %zu triangles, %zu leaves; %u views (%d x %d x %d points, %d headings), shard %d/%d: %zu views\n",
                 scene.triangle_count(), hierarchy.leaf_count(), g.view_count(), g.points.x, g.points.y, g.points.z,
                 g.directions, o.shard, o.shards, views.size());
     const auto start = std::chrono::steady_clock::now();
@@ -155,18 +184,20 @@ int build(const Options &o)
         total.searches_cut += st.searches_cut;
         progress("preprocess", long(i + 1), long(views.size()));
     }
-    db.save(o.out);
+    db.save(path);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::size_t occluders = 0;
     for (const auto &[v, list] : db.views)
         occluders += list.size();
-    std::printf("%s: %zu views in %.1f s; per view %.1f occluders, %.0f occludees (%.0f coverable), "
+    std::fprintf(report, "%s: %zu views in %.1f s; per view %.1f occluders, %.0f occludees (%.0f coverable), "
                 "%.0f verbose passes, %.0f distinct sets; %u searches cut by the budget\n",
-                o.out.c_str(), views.size(), s, double(occluders) / double(std::max<std::size_t>(views.size(), 1)),
+                path.c_str(), views.size(), s, double(occluders) / double(std::max<std::size_t>(views.size(), 1)),
                 double(total.occludees) / double(std::max<std::size_t>(views.size(), 1)),
                 double(total.coverable) / double(std::max<std::size_t>(views.size(), 1)),
                 double(total.passes) / double(std::max<std::size_t>(views.size(), 1)),
                 double(total.sets) / double(std::max<std::size_t>(views.size(), 1)), total.searches_cut);
+    if (!o.cache.empty())
+        std::printf("%s\n", path.c_str());
     return 0;
 }
 
@@ -211,7 +242,9 @@ int main(int argc, char **argv)
                     usage("--selection wants marginal or static, got '" + v + "'");
                 o.pre.marginal_scores = v == "marginal";
             }
-            else if (a == "--resolution") o.pre.resolution = int(occu::integer_option(a, v, 16, 1024));
+            else if (a == "--resolution") o.pre.stacks.resolution = int(occu::integer_option(a, v, 16, 1024));
+            else if (a == "--map-divisor") o.pre.stacks.map_divisor = int(occu::integer_option(a, v, 1, 64));
+            else if (command == "build" && a == "--cache") o.cache = v;
             else if (a == "--eye-height") o.eye_height = float(occu::number_option(a, v, -1e6, 1e6));
             else if (a == "--grid") {
                 std::istringstream in(v);
@@ -231,8 +264,10 @@ int main(int argc, char **argv)
             usage(e.what());
         }
     }
-    if (o.out.empty())
-        usage("--out FILE is required");
+    if (o.out.empty() && (command != "build" || o.cache.empty()))
+        usage(command == "build" ? "--out FILE or --cache DIR is required" : "--out FILE is required");
+    if (!o.out.empty() && !o.cache.empty())
+        usage("give --out FILE or --cache DIR, not both");
     if (command == "merge" && o.inputs.empty())
         usage("merge needs shard files");
     if (command == "views" && o.inputs.size() != 1)

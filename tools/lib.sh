@@ -18,11 +18,3 @@ die()  { printf '\033[1;31m[occu] error:\033[0m %s\n' "$*" >&2; exit 1; }
 as_root() {
     if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi
 }
-
-# A short key for what an occluder database depends on (the preprocessing,
-# the scene, the hierarchy, ID rendering): cached databases are named by it,
-# so that a changed preprocessing makes a new one instead of reusing a stale one.
-occluder_db_key() {
-    (cd "$OCCU_ROOT" && cat src/mos/*.cpp src/mos/*.h src/scene/*.cpp src/spatial/*.cpp src/render/*.cpp \
-        src/camera/camera.cpp demos/preprocess.cpp 2>/dev/null) | sha256sum | cut -c1-12
-}

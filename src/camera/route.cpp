@@ -1,5 +1,9 @@
 #include "camera/route.h"
 
+#include <cmath>
+#include <random>
+#include <sstream>
+
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -36,15 +40,78 @@ std::vector<Camera> read_route_file(const std::string &path, float aspect)
     return route;
 }
 
+// Around the scene's bounding sphere, 1.5 radii from its centre and a
+// third of a radius above it, looking at the centre: nothing is nearer
+// than half a radius, so the near plane can sit a quarter radius out.
+std::vector<Camera> orbit_route(const Aabb &bounds, int frames, float aspect)
+{
+    const glm::vec3 centre = bounds.center();
+    const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-3f);
+    std::vector<Camera> route;
+    for (int f = 0; f < frames; ++f) {
+        const float a = 6.28318530718f * float(f) / float(frames);
+        Camera c;
+        c.aspect = aspect;
+        c.position = centre + glm::vec3(1.5f * radius * std::cos(a), radius / 3.0f, 1.5f * radius * std::sin(a));
+        c.target = centre;
+        c.near_plane = 0.25f * radius;
+        c.far_plane = 3.0f * radius;
+        route.push_back(c);
+    }
+    return route;
+}
+
+// "random:N:SEED": N cameras at uniformly random points of the scene's
+// bounds, each looking in a random heading and a pitch within 60 degrees
+// of the horizon (the up vector stays well away from the view direction).
+// The same N and SEED give the same cameras.
+std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, float aspect)
+{
+    std::istringstream in(name.substr(std::string("random:").size()));
+    long count = 0;
+    unsigned long seed = 0;
+    char colon = 0;
+    if (!(in >> count >> colon >> seed) || colon != ':' || !in.eof() || count < 1 || count > 1000000)
+        throw std::invalid_argument("route '" + name + "': random routes are random:N:SEED (N in 1..1000000)");
+    std::mt19937 random(std::uint32_t(seed & 0xffffffffu));
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const float diagonal = std::max(glm::length(bounds.extent()), 1e-3f);
+    std::vector<Camera> route;
+    for (long i = 0; i < count; ++i) {
+        Camera c;
+        c.aspect = aspect;
+        c.position = bounds.min + glm::vec3(unit(random), unit(random), unit(random)) * bounds.extent();
+        const float heading = 6.28318530718f * unit(random);
+        const float pitch = glm::radians(120.0f * unit(random) - 60.0f);
+        c.target = c.position + glm::vec3(std::cos(pitch) * std::cos(heading), std::sin(pitch),
+                                          std::cos(pitch) * std::sin(heading));
+        c.near_plane = 1e-3f * diagonal;
+        c.far_plane = 2.0f * diagonal;
+        route.push_back(c);
+    }
+    return route;
+}
+
 }  // namespace
 
 std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, const CityOptions &city, int frames,
                                float aspect)
 {
-    if (name != "dense" && name != "street" && name != "medium" && name != "open")
+    const bool built_in = name == "dense" || name == "street" || name == "medium" || name == "open" ||
+                          name == "orbit" || name.rfind("random:", 0) == 0;
+    if (!built_in)
         return read_route_file(name, aspect);
+    // Routes placed by the scene's bounds need finite ones.
+    if (bounds.empty() || !std::isfinite(bounds.min.x) || !std::isfinite(bounds.min.y) ||
+        !std::isfinite(bounds.min.z) || !std::isfinite(bounds.max.x) || !std::isfinite(bounds.max.y) ||
+        !std::isfinite(bounds.max.z))
+        throw std::invalid_argument("route '" + name + "': the scene's bounds are empty or not finite");
+    if (name.rfind("random:", 0) == 0)
+        return random_route(name, bounds, aspect);
     if (frames < 1)
         throw std::invalid_argument("a route needs at least one frame");
+    if (name == "orbit")
+        return orbit_route(bounds, frames, aspect);
 
     const glm::vec3 size = bounds.extent();
     // The street between the two middle rows of blocks.

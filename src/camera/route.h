@@ -6,11 +6,15 @@
 //           looking diagonally across the blocks towards the centre: the
 //           nearest buildings hide almost all of the city in the frustum;
 //   street  street level along the middle street, looking down it: a long
-//           sight line between facades (the "dense" route before 2026-11-22);
+//           sight line between facades;
 //   medium  the same walk, looking 35 degrees aside, into crossings and
 //           courtyards;
 //   open    150 m up outside the city, looking across its roofs: little
 //           is hidden (the paper's worst case).
+// Routes for any scene:
+//   orbit          around the scene's bounding sphere, looking at its centre;
+//   random:N:SEED  N cameras at random points inside the scene's bounds,
+//                  looking in random directions (N frames, whatever `frames` is).
 // A route file has one camera per line, "px py pz tx ty tz" (position and
 // target); '#' starts a comment.
 #pragma once
@@ -23,7 +27,7 @@
 
 namespace occu {
 
-// `name`: dense, street, medium, open, or a route file's path. Throws
+// `name`: dense, street, medium, open, orbit, random:N:SEED, or a route file's path. Throws
 // std::invalid_argument (unknown name) or std::runtime_error (a file it
 // cannot read or parse, naming the file and line).
 std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds, const CityOptions &city,

@@ -1,93 +1,88 @@
-// The one interface every culling strategy implements, so that demos and
-// benchmarks select strategies by name (in the manner of Intel's Masked
-// Occlusion Culling: clear, render occluders, test boxes).
+// The interface every culling strategy implements (in the manner of Intel's
+// Masked Occlusion Culling: clear and render occluders, then test boxes).
 //
-// A frame: begin_frame(camera) clears the strategy's occlusion state; then
-// the caller tests boxes (world-space AABBs) with test(), front to back,
-// and tells the strategy what it drew with rendered(), which occlusion
-// strategies use as occluders. Results:
-//   visible      the box may contribute pixels: draw or descend into it;
-//   visible_subtree  as visible, and its descendants are not worth testing
-//                (the adaptive overlap test): draw them, culling only
-//                against the view frustum;
-//   occluded     nothing in the box can be seen (conservative strategies)
-//                or contributes too little (approximate ones);
-//   view_culled  the box lies outside the view frustum.
+// Conventions, for every strategy and every caller:
+//   world      right-handed, y up, metres (geometry/aabb.h);
+//   camera     OpenGL's: looks down its -z axis, clip z in [-w, w], window
+//              depth in [0, 1], 0 nearest (camera/camera.h);
+//   screen     window pixels of the frame's viewport, (0, 0) its lower left
+//              pixel; a box covers its footprint (camera/footprint.h), the
+//              one box-to-rectangle rule of the library; a box without one
+//              (it holds the eye or crosses the near plane) is visible;
+//   hierarchy  nodes are indices into the Hierarchy the strategy was made
+//              for (StrategyContext), given once, never per call.
+//
+// A frame: begin_frame(frame) clears the strategy's occlusion state and
+// renders its occluders (into its own framebuffer or memory, never the
+// caller's); test() answers for a batch of nodes, front to back; rendered()
+// says which leaves the caller drew. Results:
+//   visible      the node may contribute pixels: draw it, or open it;
+//   occluded     nothing in it can be seen (conservative strategies) or it
+//                contributes too little (approximate ones);
+//   view_culled  it lies outside the view frustum.
+// With visible, `test_below` false is a hint that the node's descendants
+// are not worth an occlusion test (Poon and Wang's adaptive overlap test,
+// section 5.2): the traversal draws them with frustum culling only.
+// Statistics (passes) are reported, never used to steer the traversal.
 #pragma once
 
 #include <cstdint>
-#include <memory>
-#include <string>
-#include <string_view>
+#include <optional>
 #include <vector>
 
 #include "camera/camera.h"
+#include "camera/footprint.h"
 #include "geometry/aabb.h"
 
 namespace occu {
 
-enum class Visibility { visible, occluded, view_culled, visible_subtree };
+enum class Visibility { visible, occluded, view_culled };
 
 const char *visibility_name(Visibility v);
 
-class Hierarchy;
+struct VisibilityTruth;
+
+// What a strategy knows of the frame it culls.
+struct Frame {
+    Frame(const Camera &camera, int viewport_width, int viewport_height, const VisibilityTruth *truth = nullptr);
+
+    Camera camera;
+    glm::mat4 view_projection;
+    Frustum frustum;
+    int width, height;   // the viewport, in pixels
+    // The exact-visibility oracle's answer for this frame, when the caller
+    // computed one (evaluation/oracle.h); only the `ideal` reference uses it.
+    const VisibilityTruth *truth;
+
+    // The box's footprint in this frame (camera/footprint.h).
+    std::optional<Footprint> footprint(const Aabb &box) const
+    {
+        return box_footprint(view_projection, camera.position, box, width, height);
+    }
+};
+
+// One node to test, and the answer.
+struct NodeTest {
+    std::uint32_t node = 0;
+    Aabb box;                 // the node's bounds
+    bool leaf = false;
+    Visibility result = Visibility::visible;   // out
+    bool test_below = true;                    // out, with visible: see above
+};
+
+struct CullerStats {
+    std::uint32_t passes = 0;   // occlusion passes (or map builds) since begin_frame
+};
 
 class Culler {
 public:
     virtual ~Culler() = default;
-    virtual std::string_view name() const = 0;
-    // True when the strategy never culls a box with a visible pixel.
-    virtual bool conservative() const = 0;
-    virtual void begin_frame(const Camera &camera) = 0;
-    virtual Visibility test(const Aabb &box) = 0;
-    // Tests several boxes at once (strategies that batch, such as the
-    // Occlusion Unit with one tile per box, override it).
-    virtual void test_many(const std::vector<Aabb> &boxes, std::vector<Visibility> &results)
-    {
-        results.resize(boxes.size());
-        for (std::size_t i = 0; i < boxes.size(); ++i)
-            results[i] = test(boxes[i]);
-    }
-    // Tests nodes of `hierarchy` whose boxes are `boxes` (the traversal
-    // calls this; strategies that can test a leaf by its own geometry
-    // override it, the others test the boxes).
-    virtual void test_nodes(const Hierarchy &hierarchy, const std::vector<std::uint32_t> &nodes,
-                            const std::vector<Aabb> &boxes, std::vector<Visibility> &results)
-    {
-        (void)hierarchy;
-        (void)nodes;
-        test_many(boxes, results);
-    }
-    // The caller drew the contents of `box`.
-    virtual void rendered(const Aabb &box) { (void)box; }
-    // Occlusion passes (or queries) issued since begin_frame.
-    virtual std::uint32_t passes() const { return 0; }
+    virtual void begin_frame(const Frame &frame) = 0;
+    // Answers every test, in the order given (front to back).
+    virtual void test(std::vector<NodeTest> &tests) = 0;
+    // The caller drew leaf `node`.
+    virtual void rendered(std::uint32_t node) { (void)node; }
+    virtual CullerStats stats() const { return {}; }
 };
-
-class SceneRenderer;
-class OccluderDatabase;
-
-// The knobs of the occlusion strategies (occlusion_unit_culler.h,
-// opacity_map_culler.h).
-struct CullerOptions {
-    float adaptive_threshold = 0.0f;   // occu-hier: occluded when NOHC <= t * PHC; 0: exact
-    double max_test_area = 0.25;       // occu-hier: boxes covering more of the viewport are not tested
-    bool leaf_geometry = false;        // occu-hier: test leaves by their triangles, not their boxes (needs renderer)
-    std::size_t occluders = 64;        // om-ps: leaves rendered as occluders
-    std::uint32_t tolerance = 0;       // om-*, pc-*: hole pixels the overlap test ignores; 0: exact
-    double coverage_ratio = 0.2;       // om-*, pc-*: adaptive overlap test; below it, descendants go untested
-    int map_divisor = 4;               // om-*, pc-*: frame pixels per map pixel, each way (512 -> 128)
-    const Hierarchy *hierarchy = nullptr;         // om-*, pc-*, mos-om draw occluders from these
-    const SceneRenderer *renderer = nullptr;
-    const OccluderDatabase *occluder_database = nullptr;   // mos-om, pc-mos
-};
-
-// Strategies by name: "none", "vfc", and with a current GL context that
-// advertises GL_MESAX_occlusion_unit, "occu-hier" and "occu-hier-shared";
-// with a context and options.hierarchy/renderer, "om-ps", "om-fh", "pc-ps",
-// and with an occluder database too, "mos-om" and "pc-mos".
-// Throws std::invalid_argument naming the unknown strategy and the known ones.
-std::unique_ptr<Culler> make_culler(std::string_view name, const CullerOptions &options = {});
-std::vector<std::string> culler_names();
 
 }  // namespace occu

@@ -1,5 +1,7 @@
 #include "spatial/hierarchy.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <array>
 
@@ -87,7 +89,55 @@ private:
     const HierarchyOptions &options_;
 };
 
+// FNV-1a over bytes: a stable hash (the same on every run and machine for
+// the same data), which std::hash does not promise.
+struct Fnv1a {
+    std::uint64_t h = 1469598103934665603ull;
+    template <typename T> void add(const T &value)
+    {
+        const auto *p = reinterpret_cast<const unsigned char *>(&value);
+        for (std::size_t i = 0; i < sizeof(T); ++i) {
+            h ^= p[i];
+            h *= 1099511628211ull;
+        }
+    }
+};
+
 }  // namespace
+
+std::string Hierarchy::fingerprint_of(const Scene &scene, const Hierarchy &h)
+{
+    Fnv1a f;
+    for (const Mesh &mesh : scene.meshes) {
+        f.add(mesh.positions.size());
+        for (const glm::vec3 &p : mesh.positions)
+            f.add(p);
+        f.add(mesh.indices.size());
+        for (std::uint32_t i : mesh.indices)
+            f.add(i);
+    }
+    for (const HierarchyNode &n : h.nodes_) {
+        f.add(n.bounds.min);
+        f.add(n.bounds.max);
+        f.add(n.first_child);
+        f.add(n.child_count);
+        f.add(n.first_triangle);
+        f.add(n.triangle_count);
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(f.h));
+    return hex;
+}
+
+std::vector<std::uint32_t> leaves_in_frustum(const Hierarchy &hierarchy, const Frustum &frustum)
+{
+    std::vector<std::uint32_t> leaves;
+    const auto &nodes = hierarchy.nodes();
+    for (std::uint32_t n = 0; n < nodes.size(); ++n)
+        if (nodes[n].leaf() && frustum.classify(nodes[n].bounds) != Frustum::Side::outside)
+            leaves.push_back(n);
+    return leaves;
+}
 
 Hierarchy Hierarchy::build(const Scene &scene, const HierarchyOptions &options)
 {
@@ -114,6 +164,7 @@ Hierarchy Hierarchy::build(const Scene &scene, const HierarchyOptions &options)
         for (std::uint32_t c = 0; c < n.child_count; ++c)
             n.subtree_triangles += h.nodes_[n.first_child + c].subtree_triangles;
     }
+    h.fingerprint_ = fingerprint_of(scene, h);
     return h;
 }
 

@@ -8,8 +8,10 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "camera/camera.h"
 #include "geometry/aabb.h"
 #include "scene/scene.h"
 
@@ -42,10 +44,19 @@ public:
     const std::vector<TriangleRef> &triangles() const { return triangles_; }
     const HierarchyNode &root() const { return nodes_.front(); }
     std::size_t leaf_count() const;
+    // A hash of the scene's triangles and of the nodes built over them:
+    // what a precomputed database (preprocessing/occluder_database.h) was
+    // made for. 16 hex digits.
+    const std::string &fingerprint() const { return fingerprint_; }
 
 private:
+    static std::string fingerprint_of(const Scene &scene, const Hierarchy &h);
     std::vector<HierarchyNode> nodes_;
     std::vector<TriangleRef> triangles_;
+    std::string fingerprint_;
 };
+
+// Leaves not outside `frustum`, in node order.
+std::vector<std::uint32_t> leaves_in_frustum(const Hierarchy &hierarchy, const Frustum &frustum);
 
 }  // namespace occu

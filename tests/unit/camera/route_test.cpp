@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <fstream>
 #include <stdexcept>
 
@@ -60,4 +62,44 @@ TEST(Route, FileRoutesAndErrorsNamingFileAndLine)
     }
     std::remove(path.c_str());
     EXPECT_THROW(make_route("/nonexistent/route.txt", Aabb{}, CityOptions{}, 1, 1.0f), std::runtime_error);
+}
+
+TEST(Route, OrbitCirclesTheBoundingSphereLookingAtItsCentre)
+{
+    const Aabb box = Aabb::of({-10, 0, -4}, {30, 8, 16});
+    const auto r = make_route("orbit", box, CityOptions{}, 12, 1.0f);
+    ASSERT_EQ(r.size(), 12u);
+    const float radius = 0.5f * glm::length(box.extent());
+    for (const Camera &c : r) {
+        EXPECT_EQ(c.target, box.center());
+        const float d = glm::length(c.position - box.center());
+        EXPECT_GT(d, radius) << "the eye is outside the bounding sphere";
+        EXPECT_GT(c.far_plane, d + radius) << "the whole sphere is inside the far plane";
+        EXPECT_LT(c.near_plane, d - radius) << "nothing is nearer than the near plane";
+    }
+    EXPECT_NE(r[0].position, r[6].position);
+}
+
+TEST(Route, RandomRoutesAreReproducibleAndInsideTheBounds)
+{
+    const Aabb box = Aabb::of({-10, 0, -4}, {30, 8, 16});
+    const auto a = make_route("random:25:7", box, CityOptions{}, 3, 1.0f);
+    const auto b = make_route("random:25:7", box, CityOptions{}, 60, 1.0f);
+    const auto c = make_route("random:25:8", box, CityOptions{}, 3, 1.0f);
+    ASSERT_EQ(a.size(), 25u) << "N cameras, whatever the frame count";
+    ASSERT_EQ(b.size(), 25u);
+    bool differs = false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].position, b[i].position);
+        EXPECT_TRUE(box.contains(a[i].position));
+        const glm::vec3 view = glm::normalize(a[i].target - a[i].position);
+        EXPECT_LT(std::abs(view.y), 0.9f) << "the up vector stays away from the view direction";
+        differs = differs || a[i].position != c[i].position;
+    }
+    EXPECT_TRUE(differs) << "another seed gives other cameras";
+    for (const char *bad : {"random:0:1", "random:5", "random:x:1", "random:5:1:2", "random:-3:1"})
+        EXPECT_THROW(make_route(bad, box, CityOptions{}, 3, 1.0f), std::invalid_argument) << bad;
+    const float inf = std::numeric_limits<float>::infinity();
+    EXPECT_THROW(make_route("orbit", Aabb::of({0, 0, 0}, {inf, 1, 1}), CityOptions{}, 3, 1.0f), std::invalid_argument);
+    EXPECT_THROW(make_route("orbit", Aabb{}, CityOptions{}, 3, 1.0f), std::invalid_argument);
 }

@@ -1,0 +1,151 @@
+#include "culling/registry.h"
+
+#include <stdexcept>
+
+#include "strategies/baselines/family.h"
+#include "strategies/bartz_occlusion_unit/family.h"
+#include "strategies/poon_wang_opacity_maps/family.h"
+
+namespace occu {
+
+// The registry: one line per family, in the order help lists them.
+const std::vector<StrategyFamily> &strategy_families()
+{
+    static const std::vector<StrategyFamily> families = {
+        strategies::no_culling_family(),        // none
+        strategies::frustum_culling_family(),   // vfc
+        strategies::ideal_family(),             // ideal: the oracle's visible leaves, the floor
+        strategies::occlusion_unit_family(),    // ou: Bartz, Meissner and Huettner 1998
+        strategies::opacity_map_family(),       // om: Poon and Wang
+    };
+    return families;
+}
+
+namespace {
+
+struct Found {
+    const StrategyFamily *family = nullptr;
+    const StrategyPreset *preset = nullptr;
+};
+
+Found find(const std::string &name)
+{
+    for (const StrategyFamily &f : strategy_families()) {
+        if (f.name == name)
+            return {&f, nullptr};
+        for (const StrategyPreset &p : f.presets)
+            if (p.name == name)
+                return {&f, &p};
+    }
+    std::string known;
+    for (const std::string &n : strategy_names())
+        known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown culling strategy '" + name + "' (known: " + known + ")");
+}
+
+std::pair<std::string, std::string> split_assignment(const std::string &item)
+{
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw std::invalid_argument("setting '" + item + "' is not key=value");
+    return {item.substr(0, eq), item.substr(eq + 1)};
+}
+
+}  // namespace
+
+std::string StrategyChoice::label() const
+{
+    const std::string extra = settings.changed();
+    // A preset's own settings are part of its name; show only what differs.
+    Settings preset(name, &family->settings);
+    for (const StrategyPreset &p : family->presets)
+        if (p.name == name)
+            preset.set_all(p.settings);
+    const std::string base = preset.changed();
+    if (extra == base)
+        return name;
+    std::string shown;
+    std::string item;
+    for (std::size_t i = 0; i <= extra.size(); ++i) {
+        if (i == extra.size() || extra[i] == ':') {
+            if (!item.empty() && (":" + base + ":").find(":" + item + ":") == std::string::npos)
+                shown += ":" + item;
+            item.clear();
+        } else {
+            item += extra[i];
+        }
+    }
+    return name + shown;
+}
+
+StrategyChoice choose_strategy(const std::string &spec, const std::vector<std::string> &common)
+{
+    const auto colon = spec.find(':');
+    const std::string name = spec.substr(0, colon);
+    if (name.empty())
+        throw std::invalid_argument("empty strategy name in '" + spec + "'");
+    const Found found = find(name);
+    StrategyChoice choice{name, found.family, Settings(name, &found.family->settings)};
+    if (found.preset)
+        choice.settings.set_all(found.preset->settings);
+    for (const std::string &c : common) {
+        const auto [key, value] = split_assignment(c);
+        if (choice.settings.knows(key))
+            choice.settings.set(key, value);
+    }
+    if (colon != std::string::npos)
+        choice.settings.set_all(spec.substr(colon + 1));
+    return choice;
+}
+
+void check_common_settings(const std::vector<StrategyChoice> &chosen, const std::vector<std::string> &common)
+{
+    for (const std::string &c : common) {
+        const std::string key = split_assignment(c).first;
+        bool known = false;
+        std::string names;
+        for (const StrategyChoice &s : chosen) {
+            known = known || s.settings.knows(key);
+            names += (names.empty() ? "" : ", ") + s.name;
+        }
+        if (!known)
+            throw std::invalid_argument("no chosen strategy (" + names + ") has a setting '" + key + "'");
+    }
+}
+
+Strategy make_strategy(const std::string &spec, const StrategyContext &context, const std::vector<std::string> &common)
+{
+    StrategyChoice choice = choose_strategy(spec, common);
+    std::unique_ptr<Culler> culler = choice.family->make(context, choice.settings);
+    return {std::move(choice), std::move(culler)};
+}
+
+std::vector<std::string> strategy_names()
+{
+    std::vector<std::string> names;
+    for (const StrategyFamily &f : strategy_families()) {
+        names.push_back(f.name);
+        for (const StrategyPreset &p : f.presets)
+            if (!p.former_name)
+                names.push_back(p.name);
+    }
+    return names;
+}
+
+std::string strategies_help()
+{
+    std::string h;
+    for (const StrategyFamily &f : strategy_families()) {
+        h += "  " + f.name + ": " + f.summary + "\n      " + f.paper + "; " +
+             (f.conservative ? "conservative" : "approximate") + (f.tests_occlusion ? ", tests occlusion" : "") +
+             (f.needs_truth ? ", needs the oracle" : "") + "\n";
+        for (const StrategyPreset &p : f.presets)
+            if (!p.former_name)
+                h += "      " + p.name + " = " + f.name + ":" + p.settings + "\n";
+        for (const SettingSpec &s : f.settings)
+            h += "      " + s.describe() + "\n";
+    }
+    return h;
+}
+
+}  // namespace occu

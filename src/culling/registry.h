@@ -1,0 +1,77 @@
+// The strategy registry: every culling strategy the programs can run, one
+// entry per family (src/culling/registry.cpp), each from its own folder
+// under src/strategies/. Programs learn strategies, their papers and their
+// settings from here; a family parses its own settings.
+//
+// A strategy is named on the command line as NAME[:key=value...], NAME a
+// family or one of its presets (a preset is the family with some settings),
+// e.g. "om-ps", "om:selection=fh:occluders=32", "ou:tolerance=0.05".
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "culling/culler.h"
+#include "culling/settings.h"
+
+namespace occu {
+
+class Hierarchy;
+class SceneRenderer;
+
+// What every strategy may use, given once for all its frames.
+struct StrategyContext {
+    const Hierarchy &hierarchy;
+    const SceneRenderer &renderer;   // draws occluders and proxies (needs the GL context)
+};
+
+struct StrategyPreset {
+    std::string name;
+    std::string settings;   // "key=value:..."
+    bool former_name = false;   // an older name kept working; not listed in help
+};
+
+struct StrategyFamily {
+    std::string name;
+    std::string paper;     // the paper and sections it implements
+    std::string summary;
+    bool conservative = true;      // never removes a visible pixel with tolerance=0
+    bool tests_occlusion = false;  // the traversal's temporal coherence and switch-off apply
+    bool needs_truth = false;      // culls with the oracle's answer (Frame::truth)
+    std::vector<SettingSpec> settings;
+    std::vector<StrategyPreset> presets;
+    std::unique_ptr<Culler> (*make)(const StrategyContext &context, const Settings &settings) = nullptr;
+};
+
+const std::vector<StrategyFamily> &strategy_families();
+
+// A strategy chosen by name, its settings parsed, not yet built.
+struct StrategyChoice {
+    std::string name;   // as given, without settings
+    const StrategyFamily *family;
+    Settings settings;
+    bool conservative() const { return family->conservative && settings.exact(); }
+    std::string label() const;   // name, and the settings that differ from the preset's
+};
+
+// Parses "NAME[:key=value...]"; `common` ("key=value") apply where the
+// family has the key. Throws std::invalid_argument naming an unknown
+// strategy (and the known ones) or setting (and the family's).
+StrategyChoice choose_strategy(const std::string &spec, const std::vector<std::string> &common = {});
+// Throws std::invalid_argument when one of `common` is known to none of the strategies.
+void check_common_settings(const std::vector<StrategyChoice> &chosen, const std::vector<std::string> &common);
+
+struct Strategy {
+    StrategyChoice choice;
+    std::unique_ptr<Culler> culler;
+};
+Strategy make_strategy(const std::string &spec, const StrategyContext &context,
+                       const std::vector<std::string> &common = {});
+
+// Names that choose_strategy takes and help lists (families, presets).
+std::vector<std::string> strategy_names();
+// The families, their papers, presets and settings, for --help.
+std::string strategies_help();
+
+}  // namespace occu

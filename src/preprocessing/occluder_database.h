@@ -1,0 +1,98 @@
+// The occluder database (Poon and Wang, section 3): for grid points over
+// the scene, each with representative view directions, the occluders
+// (hierarchy leaves) chosen there by the minimum-occluder-set
+// preprocessing, best first, so that a run-time limit of N occluders takes
+// the first N. At run time the culler takes the list of the grid point
+// nearest the eye and the direction nearest the view direction.
+//
+// Grid: nx * ny * nz points at origin + (i, j, k) * spacing; view
+// directions: `directions` horizontal headings, heading d at angle
+// 2 pi d / directions from +x towards +z. View v = point * directions + d.
+//
+// File format (text, one record per line, '#' comments):
+//   occu-occluder-database 2
+//   algorithm minimum-occluder-set CODE   the preprocessing and a hash of its code
+//   options KEY=VALUE ...                 how it was made (PreprocessOptions)
+//   resolution R                          the run-time maps it serves (R x R)
+//   scene FINGERPRINT LEAVES TRIANGLES    the scene and hierarchy it was made for
+//   mesa BUILD                            the Mesa (version, patch series) that made it
+//   grid OX OY OZ SX SY SZ NX NY NZ DIRECTIONS
+//   view V ID ID ...                      one line per view that was processed
+// A shard holds some views; merge() joins shards of one provenance and grid.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "camera/camera.h"
+#include "spatial/hierarchy.h"
+
+namespace occu {
+
+struct OccluderGrid {
+    glm::vec3 origin{0.0f};
+    glm::vec3 spacing{1.0f};
+    glm::ivec3 points{1};
+    int directions = 4;
+
+    std::uint32_t view_count() const { return std::uint32_t(points.x * points.y * points.z * directions); }
+    // The camera of view v (same lens as `lens`: fov, aspect, planes).
+    Camera view_camera(std::uint32_t view, const Camera &lens) const;
+    // The view nearest `camera`: nearest point, nearest heading.
+    std::uint32_t nearest_view(const Camera &camera) const;
+    bool operator==(const OccluderGrid &o) const;
+};
+
+// What a database was made from, by and for. The run time refuses a
+// database made for another scene, hierarchy, resolution or Mesa, naming
+// the difference; occu-preprocess names cached databases by key().
+struct DatabaseProvenance {
+    std::string algorithm = "minimum-occluder-set";
+    std::string code;      // a hash of the preprocessing sources (preprocessing_code_hash)
+    std::string options;   // PreprocessOptions::describe()
+    int resolution = 0;
+    std::string scene;     // Hierarchy::fingerprint()
+    std::uint32_t leaves = 0, triangles = 0;
+    std::string mesa;      // mesa_build()
+
+    // For a database about to be made here: this build's code and Mesa.
+    static DatabaseProvenance current(const Hierarchy &hierarchy, const std::string &options, int resolution);
+    // Why the database cannot serve `hierarchy` on this build's Mesa; empty when it can.
+    std::string mismatch_for(const Hierarchy &hierarchy) const;
+    // A short hash of everything above with the grid: a cache name.
+    std::string key(const OccluderGrid &grid) const;
+    bool operator==(const DatabaseProvenance &o) const;
+};
+
+// The hash of the preprocessing sources and the Mesa build this program
+// was built with (set by the build, src/meson.build).
+const char *preprocessing_code_hash();
+const char *mesa_build();
+
+class OccluderDatabase {
+public:
+    DatabaseProvenance provenance;
+    OccluderGrid grid;
+    std::map<std::uint32_t, std::vector<std::uint32_t>> views;   // view -> occluders, best first
+
+    // The occluders for `camera`: the nearest view's list (or, if that view
+    // was never processed, the nearest processed point's view of that
+    // heading), interleaved with the list of the next heading on the
+    // camera's side at the same point, if processed: a frustum turned
+    // between two headings sees what both were chosen for. The share of
+    // the second list grows with the turn, from none on the nearest
+    // heading to half midway between the two. Best first.
+    std::vector<std::uint32_t> occluders_for(const Camera &camera) const;
+
+    void save(const std::string &path) const;
+    // Throws std::runtime_error naming the file and line of what is wrong.
+    static OccluderDatabase load(const std::string &path);
+    // Joins shards; throws if their provenance or grids differ or a view repeats.
+    static OccluderDatabase merge(const std::vector<OccluderDatabase> &shards);
+};
+
+}  // namespace occu

@@ -1,0 +1,180 @@
+#include "strategies/bartz_occlusion_unit/family.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "gl/occlusion_unit.h"
+#include "gl/state.h"
+#include "render/scene_renderer.h"
+#include "spatial/hierarchy.h"
+
+namespace occu::strategies {
+
+namespace {
+
+class OcclusionUnitCuller final : public Culler {
+public:
+    OcclusionUnitCuller(const StrategyContext &context, const Settings &settings)
+        : renderer_(context.renderer), shared_passes_(settings.text("passes") == "shared"),
+          leaf_triangles_(settings.text("proxy") == "triangles"), tolerance_(settings.number("tolerance")),
+          max_test_area_(settings.number("max-test-area"))
+    {
+        // The unit holds at most max_tiles tiles; 64 bounds the records kept.
+        tiles_per_pass_ = std::size_t(std::min(unit_.max_tiles(), 64));
+    }
+
+    void begin_frame(const Frame &frame) override
+    {
+        frame_.emplace(frame);
+        GLint viewport[4];
+        glGetIntegerv(GL_VIEWPORT, viewport);
+        origin_x_ = viewport[0];
+        origin_y_ = viewport[1];
+        stats_ = {};
+    }
+
+    void test(std::vector<NodeTest> &tests) override
+    {
+        const Frame &f = *frame_;
+        rects_.assign(tests.size(), PixelRect{});
+        std::vector<std::size_t> pending;
+        const double viewport_area = double(f.width) * double(f.height);
+        for (std::size_t i = 0; i < tests.size(); ++i) {
+            NodeTest &t = tests[i];
+            t.result = Visibility::visible;
+            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
+                t.result = Visibility::view_culled;
+                continue;
+            }
+            const auto footprint = f.footprint(t.box);
+            if (!footprint || double(footprint->rect.area()) > max_test_area_ * viewport_area)
+                continue;   // visible untested
+            rects_[i] = footprint->rect;
+            pending.push_back(i);
+        }
+        // Greedy passes of boxes with pairwise disjoint footprints (or any, shared).
+        while (!pending.empty()) {
+            std::vector<std::size_t> pass, later;
+            for (std::size_t i : pending) {
+                const bool fits = pass.size() < tiles_per_pass_ &&
+                                  (shared_passes_ || std::none_of(pass.begin(), pass.end(), [&](std::size_t j) {
+                                       return rects_[i].overlaps(rects_[j]);
+                                   }));
+                (fits ? pass : later).push_back(i);
+            }
+            run_pass(tests, pass);
+            pending.swap(later);
+        }
+    }
+
+    CullerStats stats() const override { return stats_; }
+
+private:
+    // Each tile grows outwards to whole 64 x 64 blocks of the viewport where
+    // that takes in no other member's footprint: its counts cannot change
+    // (only its own box's fragments fall in it), and llvmpipe sums bins that
+    // tiles cover whole without sorting fragments into tiles (its bins are
+    // 64 x 64; patch 0004).
+    std::vector<PixelRect> tiles_for(const std::vector<std::size_t> &members) const
+    {
+        constexpr int bin = 64;
+        const PixelRect viewport{0, 0, frame_->width, frame_->height};
+        std::vector<PixelRect> tiles;
+        for (std::size_t i : members) {
+            PixelRect r = rects_[i];
+            const PixelRect grown = PixelRect{r.x0 / bin * bin, r.y0 / bin * bin, (r.x1 + bin - 1) / bin * bin,
+                                              (r.y1 + bin - 1) / bin * bin}
+                                        .clamped(viewport);
+            const bool alone = std::none_of(members.begin(), members.end(),
+                                            [&](std::size_t j) { return j != i && grown.overlaps(rects_[j]); });
+            if (alone && !grown.empty())
+                r = grown;
+            tiles.push_back({r.x0 + origin_x_, r.y0 + origin_y_, r.x1 + origin_x_, r.y1 + origin_y_});
+        }
+        return tiles;
+    }
+
+    void run_pass(std::vector<NodeTest> &tests, const std::vector<std::size_t> &members)
+    {
+        const Camera &camera = frame_->camera;
+        // Back faces culled (the paper's precondition for meaningful counts).
+        // The proxy must pass wherever what it holds would: content can lie
+        // on the box's faces, and far away a few centimetres are below both
+        // the depth buffer's and float z's resolution. So the test uses
+        // LEQUAL and a polygon offset of a few depth units towards the eye,
+        // and the box grows by about a pixel at its distance, so that
+        // snapping and edge rules at the silhouette cannot drop a pixel the
+        // content covers.
+        gl::AttribScope state(GL_ENABLE_BIT | GL_DEPTH_BUFFER_BIT | GL_POLYGON_BIT);
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        glDepthFunc(GL_LEQUAL);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(-1.0f, -4.0f);
+        gl::OcclusionPass pass(unit_, gl::OcclusionMode::brief, tiles_for(members));
+        const float metres_per_pixel =
+            2.0f * std::tan(glm::radians(camera.fovy_degrees) * 0.5f) / float(std::max(frame_->height, 1));
+        for (std::size_t i : members) {
+            if (leaf_triangles_ && tests[i].leaf) {
+                renderer_.draw_leaf_flat(tests[i].node);
+                continue;
+            }
+            Aabb grown = tests[i].box;
+            const glm::vec3 nearest = glm::clamp(camera.position, grown.min, grown.max);
+            const float margin = 0.01f + 1.5f * metres_per_pixel * glm::length(nearest - camera.position);
+            grown.min -= glm::vec3(margin);
+            grown.max += glm::vec3(margin);
+            SceneRenderer::draw_box(grown);
+        }
+        const std::vector<gl::OcclusionRecord> &records = pass.end();
+        ++stats_.passes;
+        for (std::size_t k = 0; k < members.size(); ++k) {
+            const gl::OcclusionRecord &r = records[k];
+            const bool occluded = tolerance_ == 0.0 ? r.nohc == 0 : double(r.nohc) <= tolerance_ * double(r.phc);
+            tests[members[k]].result = occluded ? Visibility::occluded : Visibility::visible;
+        }
+    }
+
+    gl::OcclusionUnit unit_;
+    const SceneRenderer &renderer_;
+    bool shared_passes_, leaf_triangles_;
+    double tolerance_, max_test_area_;
+    std::size_t tiles_per_pass_ = 64;
+    std::optional<Frame> frame_;
+    GLint origin_x_ = 0, origin_y_ = 0;
+    std::vector<PixelRect> rects_;
+    CullerStats stats_;
+};
+
+}  // namespace
+
+StrategyFamily occlusion_unit_family()
+{
+    using Role = SettingSpec::Role;
+    StrategyFamily f;
+    f.name = "ou";
+    f.paper = "Bartz, Meissner and Huettner 1998, sections 3 and 5";
+    f.summary = "hierarchical occlusion tests of node boxes with GL_MESAX_occlusion_unit, one tile per box";
+    f.tests_occlusion = true;
+    f.settings = {
+        choice_setting("passes", {"disjoint", "shared"},
+                       "boxes share a pass only where their footprints are disjoint, or always"),
+        choice_setting("proxy", {"box", "triangles"}, "what stands for a leaf in the test: its box or its triangles"),
+        number_setting("tolerance", 0.0, 0.0, 0.999, Role::approximation,
+                       "adaptive culling: occluded when NOHC <= tolerance * PHC"),
+        number_setting("max-test-area", 0.25, 0.0001, 1.0, Role::cost,
+                       "boxes covering more of the viewport are taken as visible untested", "1"),
+    };
+    f.presets = {
+        {"ou-shared", "passes=shared"},
+        {"occu-hier", "", true},
+        {"occu-hier-shared", "passes=shared", true},
+    };
+    f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
+        return std::make_unique<OcclusionUnitCuller>(context, settings);
+    };
+    return f;
+}
+
+}  // namespace occu::strategies

@@ -1,0 +1,239 @@
+#include "strategies/poon_wang_opacity_maps/family.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+
+#include "gl/framebuffer.h"
+#include "gl/state.h"
+#include "maps/opacity_map.h"
+#include "maps/sparse_depth_map.h"
+#include "occluders/selection.h"
+#include "preprocessing/occluder_database.h"
+#include "render/id_buffer.h"
+#include "render/scene_renderer.h"
+#include "spatial/hierarchy.h"
+
+namespace occu::strategies {
+
+namespace {
+
+enum class Selection { projected_size, first_hit, minimum_occluder_set };
+
+class OpacityMapCuller final : public Culler {
+public:
+    OpacityMapCuller(const StrategyContext &context, const Settings &settings)
+        : hierarchy_(context.hierarchy), renderer_(context.renderer), ids_(context.renderer),
+          occluders_(std::size_t(settings.integer("occluders"))),
+          tolerance_(std::uint32_t(settings.integer("tolerance"))), coverage_ratio_(settings.number("coverage-ratio")),
+          divisor_(int(settings.integer("map-divisor"))), pixelwise_(settings.text("compare") == "pixels")
+    {
+        const std::string &s = settings.text("selection");
+        selection_ = s == "fh" ? Selection::first_hit : s == "mos" ? Selection::minimum_occluder_set
+                                                                   : Selection::projected_size;
+        const std::string &path = settings.text("database");
+        if (selection_ == Selection::minimum_occluder_set) {
+            if (path.empty())
+                throw std::invalid_argument("selection=mos needs database=FILE (made by occu-preprocess)");
+            database_.emplace(OccluderDatabase::load(path));
+            const std::string mismatch = database_->provenance.mismatch_for(hierarchy_);
+            if (!mismatch.empty())
+                throw std::runtime_error(path + ": " + mismatch);
+        }
+    }
+
+    void begin_frame(const Frame &frame) override
+    {
+        frame_.emplace(frame);
+        const int w = frame.width, h = frame.height, k = divisor_;
+        map_width_ = (w + k - 1) / k;
+        map_height_ = (h + k - 1) / k;
+        if (database_ && database_->provenance.resolution != map_width_)
+            throw std::runtime_error("the occluder database was made for maps of " +
+                                     std::to_string(database_->provenance.resolution) + " pixels, this frame's are " +
+                                     std::to_string(map_width_) + " (frame " + std::to_string(w) +
+                                     " / map-divisor " + std::to_string(k) + ")");
+        const std::vector<std::uint32_t> occluders = choose_occluders(frame);
+        const std::vector<float> full = occluder_depth(frame, occluders);
+
+        // Reduce: covered if every frame pixel is, depth the farthest. A
+        // map pixel past the frame's edge (width not a multiple of k) takes
+        // the frame pixels it has.
+        std::vector<std::uint8_t> covered(std::size_t(map_width_) * std::size_t(map_height_));
+        std::vector<float> depth(covered.size());
+        for (int my = 0; my < map_height_; ++my)
+            for (int mx = 0; mx < map_width_; ++mx) {
+                float farthest = 0.0f;
+                for (int y = my * k; y < std::min(h, (my + 1) * k); ++y)
+                    for (int x = mx * k; x < std::min(w, (mx + 1) * k); ++x)
+                        farthest = std::max(farthest, full[std::size_t(y) * std::size_t(w) + std::size_t(x)]);
+                const std::size_t i = std::size_t(my) * std::size_t(map_width_) + std::size_t(mx);
+                covered[i] = farthest < 1.0f;
+                // Holes weigh nothing in the depth test: with the exact
+                // overlap test no box over a hole gets that far, with the
+                // approximate one the holes are what it chose to ignore.
+                depth[i] = covered[i] ? farthest : 0.0f;
+            }
+        opacity_.emplace(map_width_, map_height_, covered);
+        if (pixelwise_)
+            covered_ = std::move(covered);
+        depth_.emplace(map_width_, map_height_, std::move(depth));
+        stats_.passes = 1;
+    }
+
+    void test(std::vector<NodeTest> &tests) override
+    {
+        for (NodeTest &t : tests)
+            test_one(t);
+    }
+
+    CullerStats stats() const override { return stats_; }
+
+private:
+    std::vector<std::uint32_t> choose_occluders(const Frame &frame)
+    {
+        switch (selection_) {
+        case Selection::projected_size:
+            return occluders_by_projected_size(hierarchy_, frame.camera, frame.frustum, occluders_);
+        case Selection::first_hit:
+            // The ID buffer at the maps' resolution: a first-hit count needs no more.
+            return occluders_by_first_hit(ids_, hierarchy_, frame.camera, frame.frustum, map_width_, map_height_,
+                                          occluders_);
+        case Selection::minimum_occluder_set: break;
+        }
+        std::vector<std::uint32_t> chosen;
+        const auto &nodes = hierarchy_.nodes();
+        for (std::uint32_t n : database_->occluders_for(frame.camera)) {
+            if (chosen.size() >= occluders_)
+                break;
+            if (n < nodes.size() && nodes[n].leaf() && frame.frustum.classify(nodes[n].bounds) != Frustum::Side::outside)
+                chosen.push_back(n);
+        }
+        return chosen;
+    }
+
+    // The occluders' window depth at full resolution, drawn into the
+    // strategy's own framebuffer: depth only, no colour, lighting or
+    // materials (section 3).
+    std::vector<float> occluder_depth(const Frame &frame, const std::vector<std::uint32_t> &occluders)
+    {
+        if (!target_)
+            target_.emplace(frame.width, frame.height);
+        target_->resize(frame.width, frame.height);
+        std::vector<float> full(std::size_t(frame.width) * std::size_t(frame.height));
+        gl::Framebuffer::Bind bind(*target_);
+        gl::AttribScope state(GL_ENABLE_BIT | GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_POLYGON_BIT);
+        gl::MatrixScope matrices;
+        gl::load_camera(frame.camera);
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_CULL_FACE);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        for (std::uint32_t n : occluders)
+            renderer_.draw_leaf_flat(n);
+        glReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_FLOAT, full.data());
+        return full;
+    }
+
+    void test_one(NodeTest &t) const
+    {
+        const Frame &f = *frame_;
+        t.result = Visibility::visible;
+        if (f.frustum.classify(t.box) == Frustum::Side::outside) {
+            t.result = Visibility::view_culled;
+            return;
+        }
+        const auto footprint = f.footprint(t.box);
+        if (!footprint)
+            return;   // holds the eye or crosses the near plane
+        const PixelRect m = footprint->rect.to_map(divisor_).clamped({0, 0, map_width_, map_height_});
+        if (m.empty())
+            return;
+        // Behind every occluder pixel, with a margin for float z.
+        const float z = footprint->window_z_near - 1e-6f;
+        // OPF coordinates (section 5.2): x1 < x <= x2 over 1-based pixels,
+        // i.e. the 0-based pixels x1 .. x2 - 1.
+        if (pixelwise_) {
+            std::uint32_t holes = 0;
+            for (int y = m.y0; y < m.y1; ++y)
+                for (int x = m.x0; x < m.x1; ++x)
+                    holes += !covered_[std::size_t(y) * std::size_t(map_width_) + std::size_t(x)];
+            if (holes > tolerance_) {
+                t.test_below = 1.0 - double(holes) / double(m.area()) >= coverage_ratio_;
+                return;
+            }
+            if (depth_->behind_pixelwise(z, m.x0, m.x1 - 1, m.y0, m.y1 - 1))
+                t.result = Visibility::occluded;
+            return;
+        }
+        if (!opacity_->overlaps_fully(m.x0, m.x1, m.y0, m.y1, tolerance_)) {
+            t.test_below = opacity_->coverage_ratio(m.x0, m.x1, m.y0, m.y1) >= coverage_ratio_;
+            return;
+        }
+        const bool behind = depth_->worthwhile() ? depth_->behind(z, m.x0, m.x1 - 1, m.y0, m.y1 - 1)
+                                                 : depth_->behind_pixelwise(z, m.x0, m.x1 - 1, m.y0, m.y1 - 1);
+        if (behind)
+            t.result = Visibility::occluded;
+    }
+
+    const Hierarchy &hierarchy_;
+    const SceneRenderer &renderer_;
+    IdBuffer ids_;
+    std::optional<gl::Framebuffer> target_;
+    std::optional<OccluderDatabase> database_;
+    Selection selection_ = Selection::projected_size;
+    std::size_t occluders_;
+    std::uint32_t tolerance_;
+    double coverage_ratio_;
+    int divisor_;
+    bool pixelwise_;
+    std::optional<Frame> frame_;
+    int map_width_ = 0, map_height_ = 0;
+    std::optional<OpacityMap> opacity_;
+    std::optional<SparseDepthMap> depth_;
+    std::vector<std::uint8_t> covered_;   // compare=pixels: the map's pixels, row by row
+    CullerStats stats_;
+};
+
+}  // namespace
+
+StrategyFamily opacity_map_family()
+{
+    using Role = SettingSpec::Role;
+    StrategyFamily f;
+    f.name = "om";
+    f.paper = "Poon and Wang, sections 4, 5 and 6.1";
+    f.summary = "opacity map and sparse depth map of selected occluders, tested on the CPU";
+    f.tests_occlusion = true;
+    f.settings = {
+        choice_setting("selection", {"ps", "fh", "mos"},
+                       "occluders by projected size, first hit, or from a minimum-occluder-set database"),
+        choice_setting("compare", {"maps", "pixels"}, "overlap and depth tests on the maps (OM + SDM) or per pixel (PC)"),
+        integer_setting("occluders", 64, 1, 1 << 20, Role::cost, "leaves rendered as occluders each frame"),
+        integer_setting("tolerance", 0, 0, 1 << 20, Role::approximation,
+                        "approximate overlap test: map pixels of holes ignored"),
+        number_setting("coverage-ratio", 0.2, 0.0, 1.0, Role::cost,
+                       "adaptive overlap test: below this coverage a box's descendants go untested", "0"),
+        integer_setting("map-divisor", 4, 1, 64, Role::cost, "frame pixels per map pixel, each way"),
+        path_setting("database", "the occluder database for selection=mos (occu-preprocess build)"),
+    };
+    f.presets = {
+        {"om-ps", "selection=ps"},
+        {"om-fh", "selection=fh"},
+        {"om-mos", "selection=mos"},
+        {"pc-ps", "selection=ps:compare=pixels"},
+        {"pc-fh", "selection=fh:compare=pixels"},
+        {"pc-mos", "selection=mos:compare=pixels"},
+        {"mos-om", "selection=mos", true},
+    };
+    f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
+        return std::make_unique<OpacityMapCuller>(context, settings);
+    };
+    return f;
+}
+
+}  // namespace occu::strategies

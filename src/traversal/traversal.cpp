@@ -1,0 +1,163 @@
+#include "traversal/traversal.h"
+
+#include <algorithm>
+#include <chrono>
+#include <queue>
+
+namespace occu {
+
+namespace {
+
+float distance_to(const Aabb &box, const glm::vec3 &p)
+{
+    const glm::vec3 d = glm::max(glm::max(box.min - p, p - box.max), glm::vec3(0.0f));
+    return glm::length(d);
+}
+
+class Stopwatch {
+public:
+    template <typename Work> void time(double &ms, Work &&work)
+    {
+        const auto start = std::chrono::steady_clock::now();
+        work();
+        ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+};
+
+// One frame's traversal: the front of nodes ordered by distance, what each
+// answer leads to, and the nodes drawn without a test.
+class FrameTraversal {
+public:
+    FrameTraversal(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler, const Frame &frame,
+                   const TraversalOptions &options)
+        : renderer_(renderer), nodes_(hierarchy.nodes()), culler_(culler), frame_(frame), options_(options)
+    {
+    }
+
+    FrameStats run()
+    {
+        VisibleNodeList *coherence = options_.coherence;
+        if (coherence)
+            coherence->begin_frame(nodes_.size());
+        testing_ = !options_.switch_off || options_.switch_off->begin_frame();
+        stats_.occlusion_tested = testing_;
+        watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(frame_); });
+        push(0);
+        std::vector<NodeTest> batch;
+        while (!front_.empty()) {
+            next_batch(batch);
+            if (!batch.empty()) {
+                watch_.time(stats_.test_ms, [&] { culler_.test(batch); });
+                stats_.nodes_tested += std::uint32_t(batch.size());
+            }
+            // A probe stops testing once its budget is spent; it judges by
+            // what it saw up to this batch.
+            const bool cut = testing_ && options_.switch_off && options_.switch_off->probe_spent(stats_.nodes_tested);
+            for (const NodeTest &t : batch)
+                settle(t.node, t.result, t.test_below);
+            if (cut) {
+                testing_ = false;
+                judged_triangles_ = stats_.triangles;
+                judged_occluded_ = stats_.triangles_occluded;
+                cut_ = true;
+            }
+        }
+        stats_.passes = culler_.stats().passes;
+        if (coherence)
+            coherence->end_frame();
+        if (options_.switch_off)
+            options_.switch_off->end_frame(stats_.occlusion_tested,
+                                           double(cut_ ? judged_triangles_ : stats_.triangles),
+                                           double(cut_ ? judged_occluded_ : stats_.triangles_occluded));
+        return std::move(stats_);
+    }
+
+private:
+    void push(std::uint32_t node) { front_.push({distance_to(nodes_[node].bounds, frame_.camera.position), node}); }
+
+    bool untested(std::uint32_t node) const { return !untested_.empty() && untested_[node]; }
+
+    // Takes nodes off the front until `batch` holds options.batch nodes to
+    // test. Nodes taken as visible without a test are drawn (or opened) at
+    // once, before the batch is tested: with temporal coherence the
+    // previous frame's visible leaves are then in the depth buffer when the
+    // nodes behind them are tested, whatever the batch size.
+    void next_batch(std::vector<NodeTest> &batch)
+    {
+        batch.clear();
+        const std::size_t size = std::max<std::size_t>(1, options_.batch);
+        while (!front_.empty() && batch.size() < size) {
+            const std::uint32_t n = front_.top().second;
+            front_.pop();
+            const bool assumed = !testing_ || untested(n) ||
+                                 (options_.coherence && !(options_.switch_off && options_.switch_off->probing()) &&
+                                  options_.coherence->assumed_visible(n));
+            if (assumed && frame_.frustum.classify(nodes_[n].bounds) != Frustum::Side::outside) {
+                settle(n, Visibility::visible, !untested(n));
+                continue;
+            }
+            NodeTest t;
+            t.node = n;
+            t.box = nodes_[n].bounds;
+            t.leaf = nodes_[n].leaf();
+            batch.push_back(t);
+        }
+    }
+
+    // What a node's answer leads to: a visible leaf is drawn, a visible
+    // inner node's children join the front.
+    void settle(std::uint32_t node, Visibility visibility, bool test_below)
+    {
+        const HierarchyNode &n = nodes_[node];
+        if (visibility == Visibility::view_culled) {
+            ++stats_.nodes_view_culled;
+            return;
+        }
+        if (visibility == Visibility::occluded) {
+            ++stats_.nodes_occluded;
+            stats_.triangles_occluded += n.subtree_triangles;
+            return;
+        }
+        if (options_.coherence)
+            options_.coherence->mark_visible(node);
+        if (n.leaf()) {
+            stats_.triangles += renderer_.draw_leaf(node);
+            ++stats_.leaves_drawn;
+            stats_.drawn.push_back(node);
+            culler_.rendered(node);
+            return;
+        }
+        // Sized on the first "do not test below": strategies that never
+        // give one pay nothing.
+        if (!test_below && untested_.empty())
+            untested_.assign(nodes_.size(), 0);
+        for (std::uint32_t c = 0; c < n.child_count; ++c) {
+            if (!untested_.empty())
+                untested_[n.first_child + c] = !test_below;
+            push(n.first_child + c);
+        }
+    }
+
+    const SceneRenderer &renderer_;
+    const std::vector<HierarchyNode> &nodes_;
+    Culler &culler_;
+    const Frame &frame_;
+    const TraversalOptions &options_;
+    using Entry = std::pair<float, std::uint32_t>;   // distance, node
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front_;
+    std::vector<std::uint8_t> untested_;   // below a "do not test below" answer
+    bool testing_ = true, cut_ = false;
+    std::uint64_t judged_triangles_ = 0, judged_occluded_ = 0;
+    Stopwatch watch_;
+    FrameStats stats_;
+};
+
+}  // namespace
+
+FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler,
+                            const Frame &frame, const TraversalOptions &options)
+{
+    return FrameTraversal(renderer, hierarchy, culler, frame, options).run();
+}
+
+}  // namespace occu

@@ -1,0 +1,176 @@
+// Conservative strategies never remove a visible pixel: on short routes of
+// a small city, every frame of every conservative strategy in the registry
+// (and of its traversal variants: strictly front to back, in batches, with
+// temporal coherence, leaves tested by their triangles, from a minimum
+// occluder set database preprocessed here) equals the unculled frame byte
+// for byte, while the occlusion strategies draw fewer triangles (so the
+// comparison can fail). Runs on the driver meson selects with GALLIUM_DRIVER.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "camera/route.h"
+#include "culling/registry.h"
+#include "evaluation/oracle.h"
+#include "gl/offscreen_context.h"
+#include "gl/state.h"
+#include "preprocessing/occluder_database.h"
+#include "preprocessing/view_preprocessing.h"
+#include "scene/city.h"
+#include "traversal/traversal.h"
+
+using namespace occu;
+
+namespace {
+
+struct Drawn {
+    std::vector<std::uint8_t> pixels;
+    std::uint64_t triangles;
+};
+
+Drawn draw(const gl::OffscreenContext &ctx, const SceneRenderer &renderer, const Hierarchy &h, Culler &culler,
+           const Frame &frame, const TraversalOptions &options)
+{
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl::load_camera(frame.camera);
+    const FrameStats s = render_hierarchy(renderer, h, culler, frame, options);
+    glFinish();
+    const std::size_t n = std::size_t(ctx.width()) * std::size_t(ctx.height()) * 4;
+    return {std::vector<std::uint8_t>(ctx.pixels(), ctx.pixels() + n), s.triangles};
+}
+
+// A city of 4x4 blocks in leaves of at most 128 triangles, drawn into a
+// 128x128 context with depth test and back-face culling.
+struct SmallCity {
+    SmallCity()
+    {
+        city.blocks_x = city.blocks_z = 4;
+        scene = generate_city(city);
+        HierarchyOptions ho;
+        ho.max_leaf_triangles = 128;
+        h.emplace(Hierarchy::build(scene, ho));
+        renderer.emplace(scene, *h);
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_CULL_FACE);
+    }
+    gl::OffscreenContext ctx{128, 128};
+    CityOptions city;
+    Scene scene;
+    std::optional<Hierarchy> h;
+    std::optional<SceneRenderer> renderer;
+};
+
+// A minimum-occluder-set database for the small city, made here (maps of
+// 32 x 32 for its 128 x 128 frames).
+std::string small_city_database(const SmallCity &small)
+{
+    OccluderDatabase db;
+    db.grid.points = {5, 1, 5};
+    db.grid.directions = 4;
+    db.grid.origin = small.scene.bounds.min + glm::vec3(0.0f, 1.7f, 0.0f);
+    db.grid.spacing = small.scene.bounds.extent() / 4.0f;
+    db.grid.spacing.y = 0.0f;
+    PreprocessOptions pre;
+    pre.stacks.resolution = 32;
+    db.provenance = DatabaseProvenance::current(*small.h, pre.describe(), 32);
+    Camera lens;
+    lens.far_plane = 2.0f * glm::length(small.scene.bounds.extent());
+    for (std::uint32_t v = 0; v < db.grid.view_count(); ++v)
+        db.views[v] = select_occluders_for_view(*small.renderer, *small.h, db.grid.view_camera(v, lens), pre);
+    const std::string path = ::testing::TempDir() + "occu-small-city-occluders.db";
+    db.save(path);
+    return path;
+}
+
+struct Variant {
+    std::string spec;
+    std::size_t batch = 16;
+    bool coherence = false;
+};
+
+}  // namespace
+
+TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
+{
+    const SmallCity small;
+    const Hierarchy &h = *small.h;
+    const SceneRenderer &renderer = *small.renderer;
+    const StrategyContext context{h, renderer};
+    const std::string database = small_city_database(small);
+    glClearColor(0, 0, 0, 0);
+
+    // Every listed strategy, and the traversal variants of the occlusion unit.
+    std::vector<Variant> variants;
+    for (const std::string &name : strategy_names())
+        if (choose_strategy(name).conservative())
+            variants.push_back({name});
+    variants.push_back({"ou:max-test-area=1", 1});
+    variants.push_back({"ou:max-test-area=1", 16});
+    variants.push_back({"ou:proxy=triangles:max-test-area=1", 16});
+    variants.push_back({"ou-shared", 32, true});
+    variants.push_back({"om-ps", 16, true});
+
+    const Strategy none = make_strategy("none", context);
+    Oracle oracle(renderer, h);
+    std::map<std::string, std::uint64_t> drawn;
+    std::uint64_t drawn_none = 0;
+    for (const Variant &v : variants) {
+        SCOPED_TRACE(v.spec);
+        Strategy s = make_strategy(v.spec, context, {"database=" + database});
+        VisibleNodeList coherence(3);
+        TraversalOptions options;
+        options.batch = v.batch;
+        options.coherence = v.coherence ? &coherence : nullptr;
+        const std::string key = v.spec + "/" + std::to_string(v.batch) + (v.coherence ? "/coherent" : "");
+        for (const char *route : {"dense", "medium", "open"}) {
+            const auto cameras = make_route(route, small.scene.bounds, small.city, 5, 1.0f);
+            for (std::size_t f = 0; f < cameras.size(); ++f) {
+                const VisibilityTruth truth = oracle.see(cameras[f], 128, 128);
+                const Frame frame(cameras[f], 128, 128, &truth);
+                const Drawn reference = draw(small.ctx, renderer, h, *none.culler, frame, {});
+                const Drawn culled = draw(small.ctx, renderer, h, *s.culler, frame, options);
+                EXPECT_TRUE(reference.pixels == culled.pixels) << route << " frame " << f << ": " << key;
+                drawn[key] += culled.triangles;
+                if (v.spec == "none")
+                    drawn_none += reference.triangles;
+            }
+        }
+    }
+    ASSERT_GT(drawn_none, 0u);
+    for (const char *occluding : {"ideal/16", "ou/16", "ou-shared/16", "om-ps/16", "om-fh/16", "om-mos/16",
+                                  "pc-mos/16", "ou:max-test-area=1/1"})
+        EXPECT_LT(drawn[occluding], drawn["vfc/16"]) << occluding << " culled no more than vfc";
+    EXPECT_LT(drawn["ou:max-test-area=1/16"], drawn_none / 2) << "ou culled too little for the comparison to mean anything";
+    EXPECT_LE(drawn["ou:proxy=triangles:max-test-area=1/16"], drawn["ou:max-test-area=1/16"])
+        << "triangles as proxies should cull at least what boxes do";
+    EXPECT_LE(drawn["ideal/16"], drawn["ou:max-test-area=1/1"]) << "nothing culls more than the floor";
+}
+
+// The same at a distance: the default city seen from the open route, where
+// depth resolution is coarse and proxy faces lie on the surfaces they bound.
+TEST(ConservativeCulling, FramesEqualUnculledFramesFarAway)
+{
+    gl::OffscreenContext ctx(256, 256);
+    const CityOptions city;
+    const Scene scene = generate_city(city);
+    const Hierarchy h = Hierarchy::build(scene);
+    SceneRenderer renderer(scene, h);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_CULL_FACE);
+    const StrategyContext context{h, renderer};
+    const Strategy none = make_strategy("none", context), ou = make_strategy("ou:max-test-area=1", context);
+    const auto cameras = make_route("open", scene.bounds, city, 3, 1.0f);
+    std::uint64_t drawn_none = 0, drawn_ou = 0;
+    for (std::size_t f = 0; f < cameras.size(); ++f) {
+        const Frame frame(cameras[f], 256, 256);
+        const Drawn reference = draw(ctx, renderer, h, *none.culler, frame, {});
+        const Drawn culled = draw(ctx, renderer, h, *ou.culler, frame, {});
+        EXPECT_TRUE(reference.pixels == culled.pixels) << "open frame " << f;
+        drawn_none += reference.triangles;
+        drawn_ou += culled.triangles;
+    }
+    EXPECT_LT(drawn_ou, drawn_none) << "ou culled nothing";
+}

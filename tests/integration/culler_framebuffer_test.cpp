@@ -1,0 +1,86 @@
+// Strategies never touch the caller's framebuffer or GL state: each one's
+// begin_frame and tests leave the colour and depth buffers, the viewport,
+// the matrices and the enables exactly as the caller set them (their
+// occluder images go to framebuffers of their own).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "camera/route.h"
+#include "culling/registry.h"
+#include "evaluation/oracle.h"
+#include "gl/offscreen_context.h"
+#include "gl/state.h"
+#include "scene/city.h"
+
+using namespace occu;
+
+TEST(Cullers, LeaveTheCallersFramebufferAndStateAlone)
+{
+    gl::OffscreenContext ctx(96, 96);
+    CityOptions city;
+    city.blocks_x = city.blocks_z = 3;
+    const Scene scene = generate_city(city);
+    const Hierarchy h = Hierarchy::build(scene);
+    SceneRenderer renderer(scene, h);
+    const StrategyContext context{h, renderer};
+    const Camera camera = make_route("dense", scene.bounds, city, 1, 1.0f)[0];
+    Oracle oracle(renderer, h);
+    const VisibilityTruth truth = oracle.see(camera, 96, 96);
+    const Frame frame(camera, 96, 96, &truth);
+
+    for (const std::string &name : strategy_names()) {
+        if (name == "om-mos" || name == "pc-mos")
+            continue;   // need a database; the same code as om-ps after selection
+        SCOPED_TRACE(name);
+        const Strategy s = make_strategy(name, context);
+        // A caller's frame in progress: a gradient of colour and depth.
+        glEnable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glDepthFunc(GL_ALWAYS);
+        glClearColor(0.2f, 0.3f, 0.4f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glMatrixMode(GL_PROJECTION);
+        glLoadIdentity();
+        glMatrixMode(GL_MODELVIEW);
+        glLoadIdentity();
+        glBegin(GL_TRIANGLES);
+        glColor3f(1, 0, 0);
+        glVertex3f(-1, -1, -0.5f);
+        glColor3f(0, 1, 0);
+        glVertex3f(1, -1, 0.0f);
+        glColor3f(0, 0, 1);
+        glVertex3f(0, 1, 0.7f);
+        glEnd();
+        glFinish();
+        std::vector<float> depth_before(96 * 96), depth_after(96 * 96);
+        glReadPixels(0, 0, 96, 96, GL_DEPTH_COMPONENT, GL_FLOAT, depth_before.data());
+        const std::vector<std::uint8_t> colour_before(ctx.pixels(), ctx.pixels() + 96 * 96 * 4);
+        GLfloat projection_before[16], projection_after[16];
+        glGetFloatv(GL_PROJECTION_MATRIX, projection_before);
+
+        s.culler->begin_frame(frame);
+        std::vector<NodeTest> tests;
+        for (std::uint32_t n = 0; n < h.nodes().size() && tests.size() < 40; ++n)
+            tests.push_back({n, h.nodes()[n].bounds, h.nodes()[n].leaf()});
+        s.culler->test(tests);
+        glFinish();
+
+        glReadPixels(0, 0, 96, 96, GL_DEPTH_COMPONENT, GL_FLOAT, depth_after.data());
+        EXPECT_TRUE(depth_before == depth_after) << "depth buffer changed";
+        EXPECT_TRUE(std::equal(colour_before.begin(), colour_before.end(), ctx.pixels())) << "colour buffer changed";
+        glGetFloatv(GL_PROJECTION_MATRIX, projection_after);
+        EXPECT_TRUE(std::equal(projection_before, projection_before + 16, projection_after)) << "projection changed";
+        GLint viewport[4], depth_func = 0;
+        glGetIntegerv(GL_VIEWPORT, viewport);
+        glGetIntegerv(GL_DEPTH_FUNC, &depth_func);
+        EXPECT_EQ(viewport[2], 96);
+        EXPECT_EQ(viewport[3], 96);
+        EXPECT_EQ(depth_func, GL_ALWAYS);
+        EXPECT_FALSE(glIsEnabled(GL_CULL_FACE));
+        EXPECT_TRUE(glIsEnabled(GL_DEPTH_TEST));
+        GLint fbo = -1;
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+        EXPECT_EQ(fbo, 0);
+    }
+}

@@ -1,0 +1,70 @@
+#!/bin/sh
+# Bad input to the demos gets a message naming it and a failing exit status,
+# never a crash (no signal) and never a silent success.
+# Usage: bad-input.sh WALKTHROUGH OCCU-PREPROCESS
+set -u
+walkthrough=$1
+preprocess=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+failures=0
+
+# expect_error WHAT-THE-MESSAGE-NAMES COMMAND...
+expect_error() {
+    named=$1
+    shift
+    "$@" >"$dir/out" 2>&1
+    status=$?
+    if [ $status -eq 0 ] || [ $status -gt 128 ]; then
+        echo "FAIL (status $status): $*"
+        failures=$((failures + 1))
+    elif ! grep -qF -- "$named" "$dir/out"; then
+        echo "FAIL (message does not name '$named'): $*"
+        sed 's/^/    /' "$dir/out"
+        failures=$((failures + 1))
+    else
+        echo "ok: $* -> $(head -n 1 "$dir/out")"
+    fi
+}
+
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 99\n' > "$dir/broken.obj"
+printf 'this is not a scene\n' > "$dir/garbage.gltf"
+printf '0 1.7 0 1 1.7\n' > "$dir/short.route"
+printf 'hello\n' > "$dir/bad.db"
+# A real database, of the city in leaves of 256 triangles.
+"$preprocess" build --out "$dir/small.db" --grid 2,1,2 --directions 1 >/dev/null 2>&1 || echo "could not make small.db"
+
+expect_error "zbuffer-magic" "$walkthrough" --strategies vfc,zbuffer-magic
+expect_error "--frames" "$walkthrough" --frames -3
+expect_error "tolerance" "$walkthrough" --strategies ou:tolerance=1.5
+expect_error "tolerance" "$walkthrough" --strategies ou --set tolerance=nan
+expect_error "'threshold'" "$walkthrough" --strategies ou:threshold=0.1
+expect_error "proxy" "$walkthrough" --strategies ou:proxy=maybe
+expect_error "'passes'" "$walkthrough" --strategies vfc,om-ps --set passes=shared
+expect_error "--coherence" "$walkthrough" --coherence maybe
+expect_error "database=FILE" "$walkthrough" --frames 1 --strategies om-mos
+expect_error "needs the oracle" "$walkthrough" --strategies vfc,ideal --oracle off
+expect_error "bad.db" "$walkthrough" --frames 1 --strategies om-mos --occluder-db "$dir/bad.db"
+expect_error "another scene or hierarchy" "$walkthrough" --frames 1 --strategies om-mos --leaf-triangles 512 \
+    --occluder-db "$dir/small.db"
+expect_error "random:N:SEED" "$walkthrough" --frames 1 --route random:0:1
+expect_error "broken.obj" "$walkthrough" --frames 1 --scene "$dir/broken.obj"
+expect_error "garbage.gltf" "$walkthrough" --frames 1 --scene "$dir/garbage.gltf"
+expect_error "no-such-scene.obj" "$walkthrough" --frames 1 --scene "$dir/no-such-scene.obj"
+expect_error "short.route" "$walkthrough" --frames 1 --route "$dir/short.route"
+expect_error "map-divisor" "$walkthrough" --strategies om-ps:map-divisor=0
+expect_error "--nonsense" "$walkthrough" --nonsense 1
+expect_error "--grid" "$preprocess" build --out "$dir/x.db" --grid 3,0,3
+expect_error "--shard" "$preprocess" build --out "$dir/x.db" --shard 0/2
+expect_error "--selection" "$preprocess" build --out "$dir/x.db" --selection best
+expect_error "--pixels-per-occluder" "$preprocess" build --out "$dir/x.db" --pixels-per-occluder 0
+expect_error "--cache" "$preprocess" build --out "$dir/x.db" --cache "$dir"
+expect_error "--out FILE or --cache DIR" "$preprocess" build
+expect_error "bad.db" "$preprocess" merge --out "$dir/x.db" "$dir/bad.db"
+expect_error "views needs one database" "$preprocess" views --out "$dir/x.route"
+expect_error "--every" "$preprocess" views --out "$dir/x.route" --every 0 "$dir/bad.db"
+expect_error "bad.db" "$preprocess" views --out "$dir/x.route" "$dir/bad.db"
+expect_error "frob" "$preprocess" frob
+
+[ $failures -eq 0 ] || { echo "$failures bad-input cases failed"; exit 1; }
+echo "every bad input was refused with a message naming it"

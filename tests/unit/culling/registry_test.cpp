@@ -1,0 +1,202 @@
+// The strategy registry: every listed name builds a strategy of its
+// family with its settings; traits come from the family, not the name;
+// approximation knobs at tolerance=0 are exact; unknown strategies,
+// settings and values are refused naming them and what is known; former
+// names keep working.
+#include "culling/registry.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <optional>
+#include <stdexcept>
+
+#include "evaluation/oracle.h"
+#include "gl/offscreen_context.h"
+#include "render/scene_renderer.h"
+
+using namespace occu;
+
+namespace {
+
+std::string error_of(const std::string &spec, const std::vector<std::string> &common = {})
+{
+    try {
+        choose_strategy(spec, common);
+    } catch (const std::invalid_argument &e) {
+        return e.what();
+    }
+    return "";
+}
+
+struct OneBox {
+    OneBox()
+    {
+        scene.meshes.emplace_back();
+        append_box(scene.meshes[0], Aabb::of({0, 0, 0}, {1, 1, 1}));
+        scene.update_bounds();
+        h.emplace(Hierarchy::build(scene));
+        renderer.emplace(scene, *h);
+    }
+    gl::OffscreenContext ctx{8, 8};   // ou queries the context's extensions
+    Scene scene;
+    std::optional<Hierarchy> h;
+    std::optional<SceneRenderer> renderer;
+};
+
+}  // namespace
+
+TEST(Registry, EveryFamilyNamesItsPaperAndFactory)
+{
+    ASSERT_GE(strategy_families().size(), 5u);
+    for (const StrategyFamily &f : strategy_families()) {
+        EXPECT_FALSE(f.paper.empty()) << f.name;
+        EXPECT_FALSE(f.summary.empty()) << f.name;
+        EXPECT_TRUE(f.make) << f.name;
+        for (const SettingSpec &s : f.settings) {
+            if (s.role == SettingSpec::Role::approximation) {
+                EXPECT_EQ(s.name, "tolerance") << f.name << ": approximation knobs are all called tolerance";
+            }
+        }
+    }
+    const auto help = strategies_help();
+    for (const std::string &n : strategy_names())
+        EXPECT_NE(help.find(n), std::string::npos) << n;
+}
+
+TEST(Registry, EveryNameBuildsAConservativeStrategyAtDefaults)
+{
+    const OneBox box;
+    const StrategyContext context{*box.h, *box.renderer};
+    for (const std::string &n : strategy_names()) {
+        const StrategyChoice c = choose_strategy(n);
+        EXPECT_TRUE(c.conservative()) << n;
+        if (c.settings.knows("selection") && c.settings.text("selection") == "mos") {
+            // Needs a database (tests/integration makes one).
+            EXPECT_THROW(make_strategy(n, context), std::invalid_argument) << n;
+            continue;
+        }
+        const Strategy s = make_strategy(n, context);
+        EXPECT_TRUE(s.culler) << n;
+        EXPECT_EQ(s.choice.label(), n);
+    }
+}
+
+TEST(Registry, TraitsComeFromTheFamily)
+{
+    EXPECT_TRUE(choose_strategy("ou").family->tests_occlusion);
+    EXPECT_TRUE(choose_strategy("om-fh").family->tests_occlusion);
+    EXPECT_FALSE(choose_strategy("vfc").family->tests_occlusion);
+    EXPECT_TRUE(choose_strategy("ideal").family->needs_truth);
+    EXPECT_FALSE(choose_strategy("none").family->needs_truth);
+    // A tolerance makes an approximation; 0 is exact again.
+    EXPECT_FALSE(choose_strategy("ou:tolerance=0.1").conservative());
+    EXPECT_TRUE(choose_strategy("ou:tolerance=0").conservative());
+    EXPECT_FALSE(choose_strategy("om-ps:tolerance=4").conservative());
+    // Cost knobs never make a strategy approximate.
+    EXPECT_TRUE(choose_strategy("om-ps:coverage-ratio=0.9:occluders=2").conservative());
+}
+
+TEST(Registry, PresetsAndFormerNames)
+{
+    const StrategyChoice shared = choose_strategy("ou-shared");
+    EXPECT_EQ(shared.family->name, "ou");
+    EXPECT_EQ(shared.settings.text("passes"), "shared");
+    EXPECT_EQ(choose_strategy("occu-hier-shared").settings.text("passes"), "shared");
+    EXPECT_EQ(choose_strategy("occu-hier").settings.text("passes"), "disjoint");
+    const StrategyChoice mos = choose_strategy("mos-om");
+    EXPECT_EQ(mos.family->name, "om");
+    EXPECT_EQ(mos.settings.text("selection"), "mos");
+    EXPECT_EQ(choose_strategy("pc-fh").settings.text("compare"), "pixels");
+    EXPECT_EQ(choose_strategy("pc-fh").settings.text("selection"), "fh");
+    // Former names are accepted but not listed.
+    const auto names = strategy_names();
+    EXPECT_EQ(std::count(names.begin(), names.end(), "occu-hier"), 0);
+    EXPECT_EQ(std::count(names.begin(), names.end(), "om-mos"), 1);
+    // Labels show what differs from the preset.
+    EXPECT_EQ(choose_strategy("om-ps:occluders=8").label(), "om-ps:occluders=8");
+    EXPECT_EQ(choose_strategy("om:selection=fh").label(), "om:selection=fh");
+}
+
+TEST(Registry, SettingsAndCommonSettings)
+{
+    const StrategyChoice c = choose_strategy("om-ps:occluders=8:tolerance=2", {"occluders=16", "tolerance=1"});
+    EXPECT_EQ(c.settings.integer("occluders"), 8) << "a strategy's own settings win over common ones";
+    EXPECT_EQ(c.settings.integer("tolerance"), 2);
+    EXPECT_EQ(choose_strategy("om-ps", {"occluders=16"}).settings.integer("occluders"), 16);
+    EXPECT_EQ(choose_strategy("vfc", {"occluders=16"}).settings.changed(), "") << "ignored where unknown";
+    EXPECT_DOUBLE_EQ(choose_strategy("ou:max-test-area=1").settings.number("max-test-area"), 1.0);
+    const std::vector<StrategyChoice> chosen = {choose_strategy("vfc"), choose_strategy("om-ps")};
+    EXPECT_NO_THROW(check_common_settings(chosen, {"occluders=3"}));
+    try {
+        check_common_settings(chosen, {"passes=shared"});
+        FAIL() << "no exception";
+    } catch (const std::invalid_argument &e) {
+        EXPECT_NE(std::string(e.what()).find("'passes'"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Registry, BadNamesSettingsAndValuesAreRefusedNamingThem)
+{
+    std::string e = error_of("zbuffer-magic");
+    EXPECT_NE(e.find("'zbuffer-magic'"), std::string::npos) << e;
+    EXPECT_NE(e.find("vfc"), std::string::npos) << e;
+    EXPECT_NE(e.find("om-mos"), std::string::npos) << e;
+    e = error_of("ou:threshold=0.1");
+    EXPECT_NE(e.find("'threshold'"), std::string::npos) << e;
+    EXPECT_NE(e.find("tolerance"), std::string::npos) << e;
+    e = error_of("vfc:tolerance=1");
+    EXPECT_NE(e.find("it has none"), std::string::npos) << e;
+    EXPECT_NE(error_of("ou:tolerance=1.5").find("tolerance"), std::string::npos);
+    EXPECT_NE(error_of("ou:tolerance=nan").find("'nan'"), std::string::npos);
+    EXPECT_NE(error_of("ou:tolerance=inf").find("'inf'"), std::string::npos);
+    EXPECT_NE(error_of("ou:max-test-area=0").find("max-test-area"), std::string::npos);
+    EXPECT_NE(error_of("om-ps:map-divisor=0").find("map-divisor"), std::string::npos);
+    EXPECT_NE(error_of("om-ps:occluders=-1").find("occluders"), std::string::npos);
+    EXPECT_NE(error_of("ou:passes=sometimes").find("disjoint, shared"), std::string::npos);
+    EXPECT_NE(error_of("ou:passes").find("not key=value"), std::string::npos);
+    EXPECT_NE(error_of(":passes=shared").find("empty strategy name"), std::string::npos);
+}
+
+TEST(Baselines, VfcCullsOnlyWhatTheFrustumExcludes)
+{
+    const OneBox box;
+    const StrategyContext context{*box.h, *box.renderer};
+    Camera c;
+    c.position = {0, 0, 0};
+    c.target = {0, 0, -1};
+    const Frame frame(c, 8, 8);
+    const Strategy vfc = make_strategy("vfc", context), none = make_strategy("none", context);
+    vfc.culler->begin_frame(frame);
+    none.culler->begin_frame(frame);
+    std::vector<NodeTest> tests = {{0, Aabb::of({-1, -1, -20}, {1, 1, -10})}, {0, Aabb::of({-1, -1, 10}, {1, 1, 20})}};
+    std::vector<NodeTest> same = tests;
+    vfc.culler->test(tests);
+    none.culler->test(same);
+    EXPECT_EQ(tests[0].result, Visibility::visible);
+    EXPECT_EQ(tests[1].result, Visibility::view_culled);
+    EXPECT_EQ(same[1].result, Visibility::visible);
+    EXPECT_STREQ(visibility_name(Visibility::occluded), "occluded");
+}
+
+TEST(Baselines, IdealDrawsTheOraclesVisibleLeavesAndNeedsTheOracle)
+{
+    const OneBox box;
+    const StrategyContext context{*box.h, *box.renderer};
+    Camera c;
+    c.position = {0.5f, 0.5f, 5};
+    c.target = {0.5f, 0.5f, 0};
+    const Strategy ideal = make_strategy("ideal", context);
+    EXPECT_THROW(ideal.culler->begin_frame(Frame(c, 8, 8)), std::runtime_error);
+    VisibilityTruth truth;
+    truth.in_frustum = {0};
+    const Frame hidden(c, 8, 8, &truth);   // the oracle saw nothing
+    ideal.culler->begin_frame(hidden);
+    std::vector<NodeTest> tests = {{0, box.h->nodes()[0].bounds, true}};
+    ideal.culler->test(tests);
+    EXPECT_EQ(tests[0].result, Visibility::occluded);
+    truth.visible = {0};
+    ideal.culler->begin_frame(Frame(c, 8, 8, &truth));
+    ideal.culler->test(tests);
+    EXPECT_EQ(tests[0].result, Visibility::visible);
+}

@@ -1,0 +1,112 @@
+// The traversal: a "do not test below" answer stops occlusion tests under
+// a node and still draws what vfc draws; switched-off occlusion tests come
+// back only in probe frames, backing off; temporal coherence takes last
+// frame's visible nodes as visible without a test.
+#include "traversal/traversal.h"
+
+#include <gtest/gtest.h>
+
+#include <optional>
+
+#include "culling/registry.h"
+#include "gl/offscreen_context.h"
+
+using namespace occu;
+
+namespace {
+
+// Answers visible with "do not test below" for the root, visible
+// otherwise, and counts the nodes it is asked about.
+class GiveUpAtTheRoot final : public Culler {
+public:
+    void begin_frame(const Frame &frame) override { frustum_.emplace(frame.frustum); }
+    void test(std::vector<NodeTest> &tests) override
+    {
+        for (NodeTest &t : tests) {
+            ++tested;
+            t.result = frustum_->classify(t.box) == Frustum::Side::outside ? Visibility::view_culled
+                                                                           : Visibility::visible;
+            t.test_below = t.node != 0;
+        }
+    }
+    std::uint32_t tested = 0;
+
+private:
+    std::optional<Frustum> frustum_;
+};
+
+// A row of `n` unit boxes along x at z = -5, one leaf each (12 triangles),
+// in a 32x32 context, and a camera at z = 20 that sees part of the row.
+struct BoxRow {
+    explicit BoxRow(int n)
+    {
+        scene.meshes.emplace_back();
+        for (int i = 0; i < n; ++i)
+            append_box(scene.meshes[0], Aabb::of({float(i) * 3.0f, 0, -5}, {float(i) * 3.0f + 1, 1, -4}));
+        scene.update_bounds();
+        HierarchyOptions ho;
+        ho.max_leaf_triangles = 12;
+        h.emplace(Hierarchy::build(scene, ho));
+        renderer.emplace(scene, *h);
+        camera.position = {10, 0.5f, 20};
+        camera.target = {10, 0.5f, -5};
+    }
+    gl::OffscreenContext ctx{32, 32};
+    Scene scene;
+    std::optional<Hierarchy> h;
+    std::optional<SceneRenderer> renderer;
+    Camera camera;
+};
+
+}  // namespace
+
+TEST(Traversal, NoTestsBelowANodeTheCullerGaveUpOn)
+{
+    const BoxRow row(40);
+    const Hierarchy &h = *row.h;
+    ASSERT_GT(h.leaf_count(), 8u);
+    GiveUpAtTheRoot give_up;
+    const Strategy vfc = make_strategy("vfc", {h, *row.renderer});
+    const Frame frame(row.camera, 32, 32);
+    const FrameStats s = render_hierarchy(*row.renderer, h, give_up, frame);
+    const FrameStats v = render_hierarchy(*row.renderer, h, *vfc.culler, frame);
+    EXPECT_EQ(s.leaves_drawn, v.leaves_drawn);
+    EXPECT_GT(v.leaves_drawn, 0u);
+    EXPECT_LT(v.leaves_drawn, h.leaf_count()) << "the frustum should leave some leaves out";
+    // The root, then only nodes outside the frustum.
+    EXPECT_EQ(give_up.tested, 1 + s.nodes_view_culled);
+}
+
+// Where occlusion tests cull nothing they stop after the first frame and
+// come back only in probe frames, 8 frames later, then twice as long after
+// each probe that finds them still not worth it, up to 64.
+TEST(Traversal, SwitchedOffProbesBackOff)
+{
+    const BoxRow row(8);
+    const Strategy none = make_strategy("none", {*row.h, *row.renderer});   // never finds anything occluded
+    SwitchOff switch_off;
+    TraversalOptions options;
+    options.switch_off = &switch_off;
+    const Frame frame(row.camera, 32, 32);
+    std::vector<std::uint32_t> tested;
+    for (std::uint32_t f = 0; f < 200; ++f)
+        if (render_hierarchy(*row.renderer, *row.h, *none.culler, frame, options).occlusion_tested)
+            tested.push_back(f);
+    EXPECT_EQ(tested, (std::vector<std::uint32_t>{0, 8, 24, 56, 120, 184}));
+}
+
+// Nodes visible last frame are drawn untested, except every retest_period
+// frames; so a second frame tests fewer nodes and draws the same.
+TEST(Traversal, VisibleNodeListSkipsTestsOfLastFramesVisibleNodes)
+{
+    const BoxRow row(16);
+    const Strategy vfc = make_strategy("vfc", {*row.h, *row.renderer});
+    VisibleNodeList coherence(1000);
+    TraversalOptions options;
+    options.coherence = &coherence;
+    const Frame frame(row.camera, 32, 32);
+    const FrameStats first = render_hierarchy(*row.renderer, *row.h, *vfc.culler, frame, options);
+    const FrameStats second = render_hierarchy(*row.renderer, *row.h, *vfc.culler, frame, options);
+    EXPECT_EQ(first.leaves_drawn, second.leaves_drawn);
+    EXPECT_LT(second.nodes_tested, first.nodes_tested);
+}
