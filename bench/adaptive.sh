@@ -23,7 +23,7 @@ echo
 echo "| tolerance (NOHC/PHC) | mean ms | x vfc | x floor | triangles | culling efficiency | wrong pixels per frame |"
 echo "|---|---|---|---|---|---|---|"
 for t in "${tolerances[@]}"; do
-    n=ou-shared; [ "$t" = 0 ] || n="ou-shared:tolerance=$t"
+    n="ou-shared:tolerance=$t"
     w=$(field "$s" "$n" wrong_pixels_per_frame); [ "$w" = "-" ] && w="0 (conservative)"
     echo "| $t | $(field "$s" "$n" mean_ms) | $(field "$s" "$n" vs_vfc) | $(field "$s" "$n" x_floor) |" \
          "$(field "$s" "$n" triangles) | $(field "$s" "$n" efficiency_percent)% | $w |"

@@ -24,7 +24,7 @@ echo
 echo "| tolerance (map pixels) | mean ms | x vfc | x floor | triangles | culling efficiency | visible leaves culled | wrong pixels per frame |"
 echo "|---|---|---|---|---|---|---|---|"
 for t in "${tolerances[@]}"; do
-    n=om-ps; [ "$t" = 0 ] || n="om-ps:tolerance=$t"
+    n="om-ps:tolerance=$t"
     w=$(field "$s" "$n" wrong_pixels_per_frame); [ "$w" = "-" ] && w="0 (conservative)"
     echo "| $t | $(field "$s" "$n" mean_ms) | $(field "$s" "$n" vs_vfc) | $(field "$s" "$n" x_floor) |" \
          "$(field "$s" "$n" triangles) | $(field "$s" "$n" efficiency_percent)% |" \

@@ -71,7 +71,7 @@ struct Options {
                  "                   [--png-every N] [--oracle on|off] [--out DIR]\n"
                  "--set applies to every chosen strategy that has the setting. --coherence (temporal coherence)\n"
                  "and --switch-off (least share of triangles occlusion tests must cull; 0 never switches off)\n"
-                 "apply to the strategies that test occlusion. ideal needs the oracle.\n\nstrategies:\n%s",
+                 "apply to the strategies that query the rasterizer. ideal needs the oracle.\n\nstrategies:\n%s",
                  strategies_help().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
@@ -261,10 +261,10 @@ int main(int argc, char **argv)
         std::vector<Run> runs;
         for (const std::string &spec : o.strategies) {
             Run r{make_strategy(spec, context, o.common), {}, {}, {}};
-            // The traversal's policies, for the families that test occlusion.
-            if (r.strategy.choice.family->tests_occlusion && o.coherence)
+            // The traversal's policies, for the families whose tests query the rasterizer.
+            if (r.strategy.choice.family->queries_rasterizer && o.coherence)
                 r.coherence.emplace();
-            if (r.strategy.choice.family->tests_occlusion && o.switch_off > 0.0) {
+            if (r.strategy.choice.family->queries_rasterizer && o.switch_off > 0.0) {
                 SwitchOff::Settings s;
                 s.min_gain = o.switch_off;
                 r.switch_off.emplace(s);
@@ -290,14 +290,18 @@ int main(int argc, char **argv)
         glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
         const std::size_t bytes = std::size_t(o.size) * std::size_t(o.size) * 4;
         // Every strategy renders frame f before any renders frame f + 1, so
-        // that the machine's load, which drifts, weighs on all of them alike.
+        // that the machine's load, which drifts, weighs on all of them alike;
+        // and the order rotates from frame to frame, because the strategy
+        // that follows another's frame (or the oracle's) pays for what that
+        // left behind in the caches and the rasterizer.
         for (std::size_t f = 0; f < route.size(); ++f) {
             // The oracle's answer first, untimed: ideal draws from it.
             std::optional<VisibilityTruth> truth;
             if (oracle)
                 truth = oracle->see(route[f], o.size, o.size);
             const Frame frame(route[f], o.size, o.size, truth ? &*truth : nullptr);
-            for (Run &run : runs) {
+            for (std::size_t k = 0; k < runs.size(); ++k) {
+                Run &run = runs[(k + f) % runs.size()];
                 TraversalOptions traversal;
                 traversal.batch = std::size_t(o.batch);
                 traversal.coherence = run.coherence ? &*run.coherence : nullptr;

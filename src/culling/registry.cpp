@@ -53,31 +53,6 @@ std::pair<std::string, std::string> split_assignment(const std::string &item)
 
 }  // namespace
 
-std::string StrategyChoice::label() const
-{
-    const std::string extra = settings.changed();
-    // A preset's own settings are part of its name; show only what differs.
-    Settings preset(name, &family->settings);
-    for (const StrategyPreset &p : family->presets)
-        if (p.name == name)
-            preset.set_all(p.settings);
-    const std::string base = preset.changed();
-    if (extra == base)
-        return name;
-    std::string shown;
-    std::string item;
-    for (std::size_t i = 0; i <= extra.size(); ++i) {
-        if (i == extra.size() || extra[i] == ':') {
-            if (!item.empty() && (":" + base + ":").find(":" + item + ":") == std::string::npos)
-                shown += ":" + item;
-            item.clear();
-        } else {
-            item += extra[i];
-        }
-    }
-    return name + shown;
-}
-
 StrategyChoice choose_strategy(const std::string &spec, const std::vector<std::string> &common)
 {
     const auto colon = spec.find(':');
@@ -85,7 +60,7 @@ StrategyChoice choose_strategy(const std::string &spec, const std::vector<std::s
     if (name.empty())
         throw std::invalid_argument("empty strategy name in '" + spec + "'");
     const Found found = find(name);
-    StrategyChoice choice{name, found.family, Settings(name, &found.family->settings)};
+    StrategyChoice choice{name, spec, found.family, Settings(name, &found.family->settings)};
     if (found.preset)
         choice.settings.set_all(found.preset->settings);
     for (const std::string &c : common) {
@@ -137,7 +112,7 @@ std::string strategies_help()
     std::string h;
     for (const StrategyFamily &f : strategy_families()) {
         h += "  " + f.name + ": " + f.summary + "\n      " + f.paper + "; " +
-             (f.conservative ? "conservative" : "approximate") + (f.tests_occlusion ? ", tests occlusion" : "") +
+             (f.conservative ? "conservative" : "approximate") + (f.queries_rasterizer ? ", queries the rasterizer" : "") +
              (f.needs_truth ? ", needs the oracle" : "") + "\n";
         for (const StrategyPreset &p : f.presets)
             if (!p.former_name)

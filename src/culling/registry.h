@@ -37,7 +37,11 @@ struct StrategyFamily {
     std::string paper;     // the paper and sections it implements
     std::string summary;
     bool conservative = true;      // never removes a visible pixel with tolerance=0
-    bool tests_occlusion = false;  // the traversal's temporal coherence and switch-off apply
+    // Its tests are occlusion queries the rasterizer answers, each waiting
+    // for the frame drawn so far: the traversal's temporal coherence and
+    // adaptive switch-off (traversal/policies.h), which save tests, apply.
+    // Tests on the CPU cost too little to trade culling for.
+    bool queries_rasterizer = false;
     bool needs_truth = false;      // culls with the oracle's answer (Frame::truth)
     std::vector<SettingSpec> settings;
     std::vector<StrategyPreset> presets;
@@ -48,11 +52,13 @@ const std::vector<StrategyFamily> &strategy_families();
 
 // A strategy chosen by name, its settings parsed, not yet built.
 struct StrategyChoice {
-    std::string name;   // as given, without settings
+    std::string name;   // the family or preset, without settings
+    std::string spec;   // as given: the name and its own settings (not the common ones)
     const StrategyFamily *family;
     Settings settings;
     bool conservative() const { return family->conservative && settings.exact(); }
-    std::string label() const;   // name, and the settings that differ from the preset's
+    // How results name the strategy: as it was given.
+    const std::string &label() const { return spec; }
 };
 
 // Parses "NAME[:key=value...]"; `common` ("key=value") apply where the

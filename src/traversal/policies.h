@@ -2,7 +2,7 @@
 // state, kept per strategy and hierarchy. Both only decide where occlusion
 // tests are worth their cost; neither changes a pixel, so a conservative
 // strategy stays conservative under them. The walkthrough applies them to
-// the strategies whose family tests occlusion (culling/registry.h).
+// the strategies whose tests query the rasterizer (culling/registry.h).
 #pragma once
 
 #include <cstdint>

@@ -156,7 +156,7 @@ StrategyFamily occlusion_unit_family()
     f.name = "ou";
     f.paper = "Bartz, Meissner and Huettner 1998, sections 3 and 5";
     f.summary = "hierarchical occlusion tests of node boxes with GL_MESAX_occlusion_unit, one tile per box";
-    f.tests_occlusion = true;
+    f.queries_rasterizer = true;
     f.settings = {
         choice_setting("passes", {"disjoint", "shared"},
                        "boxes share a pass only where their footprints are disjoint, or always"),

@@ -84,9 +84,9 @@ TEST(Registry, EveryNameBuildsAConservativeStrategyAtDefaults)
 
 TEST(Registry, TraitsComeFromTheFamily)
 {
-    EXPECT_TRUE(choose_strategy("ou").family->tests_occlusion);
-    EXPECT_TRUE(choose_strategy("om-fh").family->tests_occlusion);
-    EXPECT_FALSE(choose_strategy("vfc").family->tests_occlusion);
+    EXPECT_TRUE(choose_strategy("ou-shared").family->queries_rasterizer);
+    EXPECT_FALSE(choose_strategy("om-fh").family->queries_rasterizer);
+    EXPECT_FALSE(choose_strategy("vfc").family->queries_rasterizer);
     EXPECT_TRUE(choose_strategy("ideal").family->needs_truth);
     EXPECT_FALSE(choose_strategy("none").family->needs_truth);
     // A tolerance makes an approximation; 0 is exact again.
@@ -116,6 +116,7 @@ TEST(Registry, PresetsAndFormerNames)
     // Labels show what differs from the preset.
     EXPECT_EQ(choose_strategy("om-ps:occluders=8").label(), "om-ps:occluders=8");
     EXPECT_EQ(choose_strategy("om:selection=fh").label(), "om:selection=fh");
+    EXPECT_EQ(choose_strategy("om-mos", {"database=/data/city.db"}).label(), "om-mos") << "files are not in labels";
 }
 
 TEST(Registry, SettingsAndCommonSettings)
