@@ -114,9 +114,15 @@ std::string strategies_help()
         h += "  " + f.name + ": " + f.summary + "\n      " + f.paper + "; " +
              (f.conservative ? "conservative" : "approximate") + (f.queries_rasterizer ? ", queries the rasterizer" : "") +
              (f.needs_truth ? ", needs the oracle" : "") + "\n";
-        for (const StrategyPreset &p : f.presets)
+        std::string former;
+        for (const StrategyPreset &p : f.presets) {
             if (!p.former_name)
-                h += "      " + p.name + " = " + f.name + ":" + p.settings + "\n";
+                h += "      " + p.name + " = " + f.name + (p.settings.empty() ? "" : ":" + p.settings) + "\n";
+            else
+                former += (former.empty() ? "" : ", ") + p.name;
+        }
+        if (!former.empty())
+            h += "      (former names, still accepted: " + former + ")\n";
         for (const SettingSpec &s : f.settings)
             h += "      " + s.describe() + "\n";
     }

@@ -23,7 +23,7 @@ std::string SettingSpec::describe() const
 {
     std::string d = name + "=" + (default_value.empty() ? "FILE" : default_value) + " (";
     switch (kind) {
-    case Kind::integer:
+    case Kind::integer: d += std::to_string(long(min)) + ".." + std::to_string(long(max)); break;
     case Kind::number: d += format_number(min) + ".." + format_number(max); break;
     case Kind::choice:
         for (std::size_t i = 0; i < choices.size(); ++i)
