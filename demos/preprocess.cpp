@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "camera/route.h"
 #include "cli/arguments.h"
 #include "cli/progress.h"
 #include "gl/extensions.h"
@@ -134,9 +135,7 @@ int build(const Options &o)
     auto step = [](float extent, int n) { return n > 1 ? extent / float(n - 1) : 0.0f; };
     g.spacing = {step(size.x, o.grid.x), step(size.y, o.grid.y), step(size.z, o.grid.z)};
     g.origin = {lo.x, lo.y + o.eye_height, lo.z};
-    // The walkthrough's street-level lens (camera/route.cpp).
-    Camera lens;
-    lens.far_plane = 2.0f * glm::length(size);
+    const Camera lens = street_level_lens(scene.bounds, 1.0f);
 
     // With --cache the database is named by what it depends on, and made
     // only once.

@@ -94,6 +94,15 @@ std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, fl
 
 }  // namespace
 
+Camera street_level_lens(const Aabb &bounds, float aspect)
+{
+    Camera c;
+    c.aspect = aspect;
+    c.near_plane = 0.5f;
+    c.far_plane = 2.0f * glm::length(bounds.extent());
+    return c;
+}
+
 std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, const CityOptions &city, int frames,
                                float aspect)
 {
@@ -123,8 +132,7 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
     std::vector<Camera> route;
     for (int f = 0; f < frames; ++f) {
         const float t = frames == 1 ? 0.0f : float(f) / float(frames - 1);
-        Camera c;
-        c.aspect = aspect;
+        Camera c = street_level_lens(bounds, aspect);
         if (name == "open") {
             c.position = {bounds.min.x + size.x * (0.2f + 0.6f * t), 150.0f, bounds.min.z - 0.2f * size.z};
             c.target = {bounds.min.x + 0.5f * size.x, 0.0f, bounds.min.z + 0.6f * size.z};
@@ -141,17 +149,13 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
             // nearest buildings hide most of the city in the frustum.
             c.position = {grid_origin.x + 2.5f * city.block_size * t, 1.7f, grid_origin.y + city.block_size};
             c.target = {centre.x, 1.7f, centre.z};
-            c.far_plane = 2.0f * glm::length(size);
         } else {
             // Along the middle street: "street" looks down it (a long open
             // sight line between facades), "medium" 35 degrees across it.
             c.position = {bounds.min.x + size.x * (0.1f + 0.8f * t), 1.7f, street_z};
             const float angle = name == "street" ? 0.0f : glm::radians(35.0f);
             c.target = c.position + glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
-            c.far_plane = 2.0f * glm::length(size);
         }
-        if (name != "open")
-            c.near_plane = 0.5f;
         route.push_back(c);
     }
     return route;

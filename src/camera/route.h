@@ -27,6 +27,11 @@
 
 namespace occu {
 
+// The lens of the street-level routes (dense, street, medium), which
+// occluder preprocessing places its views with: 60 degrees, near plane
+// 0.5 m, far plane twice the scene's diagonal.
+Camera street_level_lens(const Aabb &bounds, float aspect);
+
 // `name`: dense, street, medium, open, orbit, random:N:SEED, or a route file's path. Throws
 // std::invalid_argument (unknown name) or std::runtime_error (a file it
 // cannot read or parse, naming the file and line).

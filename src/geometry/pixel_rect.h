@@ -4,7 +4,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace occu {
 
@@ -32,5 +34,29 @@ struct PixelRect {
     }
     bool operator==(const PixelRect &o) const { return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1; }
 };
+
+// Groups of at most `limit` of `members` (indices into `rects`), greedy in
+// the order given: each rectangle joins the first group it fits, where it
+// fits when the group has room and, unless `overlap` is allowed, overlaps
+// none of the group's rectangles. The groups of occlusion passes, one
+// tile per rectangle, so that no tile counts another's fragments.
+inline std::vector<std::vector<std::size_t>> disjoint_groups(const std::vector<PixelRect> &rects,
+                                                             std::vector<std::size_t> members, std::size_t limit,
+                                                             bool overlap = false)
+{
+    std::vector<std::vector<std::size_t>> groups;
+    while (!members.empty()) {
+        std::vector<std::size_t> group, later;
+        for (std::size_t i : members) {
+            bool fits = group.size() < limit;
+            for (std::size_t k = 0; fits && !overlap && k < group.size(); ++k)
+                fits = !rects[i].overlaps(rects[group[k]]);
+            (fits ? group : later).push_back(i);
+        }
+        groups.push_back(std::move(group));
+        members.swap(later);
+    }
+    return groups;
+}
 
 }  // namespace occu

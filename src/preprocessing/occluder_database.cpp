@@ -17,10 +17,19 @@ namespace {
 
 constexpr float two_pi = 6.28318530718f;
 
+// Heading d of `directions`: at angle 2 pi d / directions from +x towards +z.
 glm::vec3 heading(int d, int directions)
 {
     const float a = two_pi * float(d) / float(directions);
     return {std::cos(a), 0.0f, std::sin(a)};
+}
+
+// The camera's view direction as a heading angle in [0, 2 pi).
+float heading_angle(const Camera &camera)
+{
+    const glm::vec3 f = camera.target - camera.position;
+    const float angle = std::atan2(f.z, f.x);
+    return angle < 0.0f ? angle + two_pi : angle;
 }
 
 // FNV-1a: stable across runs and machines.
@@ -113,11 +122,7 @@ std::uint32_t OccluderGrid::nearest_view(const Camera &camera) const
         const float t = spacing[a] > 0.0f ? (camera.position[a] - origin[a]) / spacing[a] : 0.0f;
         cell[a] = std::clamp(int(std::lround(t)), 0, points[a] - 1);
     }
-    const glm::vec3 f = camera.target - camera.position;
-    float angle = std::atan2(f.z, f.x);
-    if (angle < 0.0f)
-        angle += two_pi;
-    const int d = int(std::lround(angle / two_pi * float(directions))) % directions;
+    const int d = int(std::lround(heading_angle(camera) / two_pi * float(directions))) % directions;
     const std::uint32_t point = std::uint32_t((cell.z * points.y + cell.y) * points.x + cell.x);
     return point * std::uint32_t(directions) + std::uint32_t(d);
 }
@@ -150,11 +155,7 @@ std::vector<std::uint32_t> OccluderDatabase::occluders_for(const Camera &camera)
     if (!first)
         return {};
     // The neighbouring heading on the side the camera turns to.
-    const glm::vec3 f = camera.target - camera.position;
-    float angle = std::atan2(f.z, f.x);
-    if (angle < 0.0f)
-        angle += two_pi;
-    const float t = angle / two_pi * float(dirs) - float(v % dirs);
+    const float t = heading_angle(camera) / two_pi * float(dirs) - float(v % dirs);
     const float wrapped = t > float(dirs) / 2.0f ? t - float(dirs) : t;   // heading 0 seen from just below 2 pi
     const std::uint32_t d1 = (v % dirs + (wrapped >= 0.0f ? 1 : dirs - 1)) % dirs;
     const auto second = dirs > 1 ? views.find(v - v % dirs + d1) : views.end();

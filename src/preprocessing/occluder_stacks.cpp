@@ -14,28 +14,6 @@ namespace {
 
 constexpr std::size_t group_limit = 64;
 
-// Groups of up to 64 occludees with pairwise disjoint footprints, greedy in
-// the order given: one verbose tile each, so no tile counts another's pixels.
-std::vector<std::vector<std::size_t>> disjoint_groups(const std::vector<Occludee> &occludees)
-{
-    std::vector<std::size_t> pending(occludees.size());
-    for (std::size_t i = 0; i < pending.size(); ++i)
-        pending[i] = i;
-    std::vector<std::vector<std::size_t>> groups;
-    while (!pending.empty()) {
-        std::vector<std::size_t> group, later;
-        for (std::size_t i : pending) {
-            const bool fits = group.size() < group_limit && std::none_of(group.begin(), group.end(), [&](std::size_t j) {
-                                  return occludees[i].rect.overlaps(occludees[j].rect);
-                              });
-            (fits ? group : later).push_back(i);
-        }
-        groups.push_back(std::move(group));
-        pending.swap(later);
-    }
-    return groups;
-}
-
 // Each occludee's nearest depth over its footprint, drawn as a window-aligned
 // quad (identity matrices: NDC in, window depth out); 0 elsewhere.
 void draw_occludee_depths(const std::vector<Occludee> &occludees, const std::vector<std::size_t> &group,
@@ -126,7 +104,15 @@ ViewOccluders build_occluder_stacks(const SceneRenderer &renderer, const Hierarc
     glDisable(GL_CULL_FACE);   // the stack wants every covered pixel, back faces too
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glEnable(GL_DEPTH_TEST);
-    for (const std::vector<std::size_t> &group : disjoint_groups(view.occludees)) {
+    // Groups of up to 64 occludees with pairwise disjoint footprints: one
+    // verbose tile each, so no tile counts another's pixels.
+    std::vector<PixelRect> rects;
+    std::vector<std::size_t> all;
+    for (const Occludee &o : view.occludees) {
+        all.push_back(rects.size());
+        rects.push_back(o.rect);
+    }
+    for (const std::vector<std::size_t> &group : disjoint_groups(rects, std::move(all), group_limit)) {
         draw_occludee_depths(view.occludees, group, res);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_FALSE);

@@ -76,8 +76,7 @@ std::string small_city_database(const SmallCity &small)
     PreprocessOptions pre;
     pre.stacks.resolution = 32;
     db.provenance = DatabaseProvenance::current(*small.h, pre.describe(), 32);
-    Camera lens;
-    lens.far_plane = 2.0f * glm::length(small.scene.bounds.extent());
+    const Camera lens = street_level_lens(small.scene.bounds, 1.0f);
     for (std::uint32_t v = 0; v < db.grid.view_count(); ++v)
         db.views[v] = select_occluders_for_view(*small.renderer, *small.h, db.grid.view_camera(v, lens), pre);
     const std::string path = ::testing::TempDir() + "occu-small-city-occluders.db";

@@ -53,19 +53,9 @@ public:
             rects_[i] = footprint->rect;
             pending.push_back(i);
         }
-        // Greedy passes of boxes with pairwise disjoint footprints (or any, shared).
-        while (!pending.empty()) {
-            std::vector<std::size_t> pass, later;
-            for (std::size_t i : pending) {
-                const bool fits = pass.size() < tiles_per_pass_ &&
-                                  (shared_passes_ || std::none_of(pass.begin(), pass.end(), [&](std::size_t j) {
-                                       return rects_[i].overlaps(rects_[j]);
-                                   }));
-                (fits ? pass : later).push_back(i);
-            }
+        // Passes of boxes with pairwise disjoint footprints (or any, shared).
+        for (const std::vector<std::size_t> &pass : disjoint_groups(rects_, std::move(pending), tiles_per_pass_, shared_passes_))
             run_pass(tests, pass);
-            pending.swap(later);
-        }
     }
 
     CullerStats stats() const override { return stats_; }

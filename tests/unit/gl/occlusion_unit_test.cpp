@@ -40,7 +40,10 @@ TEST(OcclusionUnit, BriefRecordsAreNamedAndExact)
     const gl::OcclusionUnit unit;
     EXPECT_GE(unit.max_tiles(), 64);
     pixel_exact_projection(64, 64);
-    std::vector<std::uint8_t> before(ctx.pixels(), ctx.pixels() + 64 * 64 * 4);
+    glClearColor(0.25f, 0.5f, 0.75f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glFinish();
+    const std::vector<std::uint8_t> before(ctx.pixels(), ctx.pixels() + 64 * 64 * 4);
     gl::OcclusionPass pass(unit, gl::OcclusionMode::brief, {{0, 0, 32, 64}, {32, 0, 64, 64}});
     rectangle(10, 20, 40, 30);   // 22 x 10 pixels in tile 0, 8 x 10 in tile 1
     const auto &records = pass.end();
