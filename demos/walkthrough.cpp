@@ -189,7 +189,7 @@ std::string file_name(const std::string &label)
     return s;
 }
 
-void write_summary(const Options &o, const std::vector<Run> &runs, std::size_t triangles_in_scene)
+void write_summary(const Options &o, const std::vector<Run> &runs)
 {
     auto mean_of = [&runs](const char *family) {
         for (const Run &r : runs)
@@ -230,7 +230,6 @@ void write_summary(const Options &o, const std::vector<Run> &runs, std::size_t t
                     (x_floor == "-" ? x_floor : x_floor + "x").c_str(), efficiency, std::strcmp(efficiency, "-") ? "%" : " ",
                     o.oracle ? std::to_string(r.visible_culled).c_str() : "-", wrong, r.setup_ms / n, r.test_ms / n);
     }
-    (void)triangles_in_scene;
     if (!csv.flush())
         throw std::runtime_error("cannot write '" + path + "'");
     std::printf("\nvs vfc: vfc's mean ms / the strategy's; x floor: the strategy's mean ms / ideal's (the oracle's\n"
@@ -238,6 +237,121 @@ void write_summary(const Options &o, const std::vector<Run> &runs, std::size_t t
                 "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png\n",
                 o.out.c_str(), o.out.c_str(), o.out.c_str());
 }
+
+// The strategies with their traversal policies: temporal coherence and
+// switch-off for the families whose tests query the rasterizer.
+std::vector<Run> make_runs(const Options &o, const StrategyContext &context)
+{
+    std::vector<Run> runs;
+    for (const std::string &spec : o.strategies) {
+        Run r{make_strategy(spec, context, o.common), {}, {}, {}};
+        if (r.strategy.choice.family->queries_rasterizer && o.coherence)
+            r.coherence.emplace();
+        if (r.strategy.choice.family->queries_rasterizer && o.switch_off > 0.0) {
+            SwitchOff::Settings s;
+            s.min_gain = o.switch_off;
+            r.switch_off.emplace(s);
+        }
+        runs.push_back(std::move(r));
+    }
+    return runs;
+}
+
+// One row per strategy and frame.
+class FramesCsv {
+public:
+    explicit FramesCsv(const std::string &path) : path_(path), out_(path)
+    {
+        if (!out_)
+            throw std::runtime_error("cannot write '" + path + "'");
+        out_ << "strategy,route,frame,ms,triangles,leaves_drawn,nodes_tested,passes,view_culled,occluded,"
+                "culled_percent,oracle_visible_leaves,oracle_occluded_leaves,occluded_leaves_culled,"
+                "visible_leaves_culled,wrong_pixels,setup_ms,test_ms\n";
+    }
+    void row(const Run &run, const std::string &route, std::size_t frame, const Drawn &d, std::size_t scene_triangles,
+             const VisibilityTruth *truth, const CullingQuality &q, std::uint64_t wrong)
+    {
+        const FrameStats &st = d.stats;
+        out_ << run.label() << ',' << route << ',' << frame << ',' << d.ms << ',' << st.triangles << ','
+             << st.leaves_drawn << ',' << st.nodes_tested << ',' << st.passes << ',' << st.nodes_view_culled << ','
+             << st.nodes_occluded << ','
+             << 100.0 * (1.0 - double(st.triangles) / double(std::max<std::size_t>(1, scene_triangles))) << ','
+             << (truth ? truth->visible.size() : 0) << ',' << q.occluded << ',' << q.occluded_culled << ','
+             << q.visible_culled << ',' << wrong << ',' << st.setup_ms << ',' << st.test_ms << '\n';
+    }
+    void close()
+    {
+        if (!out_.flush())
+            throw std::runtime_error("cannot write '" + path_ + "'");
+    }
+
+private:
+    std::string path_;
+    std::ofstream out_;
+};
+
+// Everything one walkthrough renders with.
+struct Walk {
+    const Options &o;
+    const Scene &scene;
+    const Hierarchy &hierarchy;
+    const SceneRenderer &renderer;
+    gl::OffscreenContext &ctx;
+    const Strategy &reference;   // none: the unculled frame
+    FramesCsv &csv;
+
+    // Strategy `run` draws frame f; what it did joins its totals, frames.csv and the images.
+    void draw(Run &run, std::size_t f, const Frame &frame)
+    {
+        TraversalOptions traversal;
+        traversal.batch = std::size_t(o.batch);
+        traversal.coherence = run.coherence ? &*run.coherence : nullptr;
+        traversal.switch_off = run.switch_off ? &*run.switch_off : nullptr;
+        const Drawn d = draw_frame(renderer, hierarchy, *run.strategy.culler, frame, traversal);
+        run.ms.push_back(d.ms);
+        run.triangles += double(d.stats.triangles);
+        run.passes += d.stats.passes;
+        run.setup_ms += d.stats.setup_ms;
+        run.test_ms += d.stats.test_ms;
+        const std::uint64_t wrong = run.strategy.choice.conservative() ? 0 : wrong_pixels(frame);
+        run.wrong_pixels += wrong;
+        if (o.png_every > 0 && f % std::size_t(o.png_every) == 0)
+            write_images(run, f, frame.camera, d.stats.drawn);
+        CullingQuality q;
+        if (frame.truth) {
+            q = compare_with_truth(*frame.truth, d.stats.drawn);
+            run.occluded += q.occluded;
+            run.occluded_culled += q.occluded_culled;
+            run.visible_culled += q.visible_culled;
+        }
+        csv.row(run, o.route, f, d, scene.triangle_count(), frame.truth, q, wrong);
+    }
+
+    // Pixels of the frame just drawn that differ from the unculled frame
+    // (drawn untimed, after the measured one); the culled frame is put back.
+    std::uint64_t wrong_pixels(const Frame &frame)
+    {
+        const std::size_t bytes = std::size_t(o.size) * std::size_t(o.size) * 4;
+        const std::vector<std::uint8_t> culled(ctx.pixels(), ctx.pixels() + bytes);
+        draw_frame(renderer, hierarchy, *reference.culler, frame, TraversalOptions{});
+        std::uint64_t wrong = 0;
+        for (std::size_t i = 0; i < bytes; i += 4)
+            wrong += std::memcmp(&culled[i], ctx.pixels() + i, 4) != 0;
+        std::memcpy(ctx.pixels_mutable(), culled.data(), bytes);
+        return wrong;
+    }
+
+    void write_images(const Run &run, std::size_t f, const Camera &camera, const std::vector<std::uint32_t> &drawn)
+    {
+        char number[24];
+        std::snprintf(number, sizeof(number), "%04zu", f);
+        const std::string base = o.out + "/" + file_name(run.label());
+        write_png(base + "-" + number + ".png", o.size, o.size, ctx.pixels());
+        render_top_view(hierarchy, camera, drawn);
+        glFinish();
+        write_png(base + "-top-" + number + ".png", o.size, o.size, ctx.pixels());
+    }
+};
 
 }  // namespace
 
@@ -258,37 +372,20 @@ int main(int argc, char **argv)
         gl::OffscreenContext ctx(o.size, o.size);
         SceneRenderer renderer(scene, hierarchy);
         const StrategyContext context{hierarchy, renderer};
-        std::vector<Run> runs;
-        for (const std::string &spec : o.strategies) {
-            Run r{make_strategy(spec, context, o.common), {}, {}, {}};
-            // The traversal's policies, for the families whose tests query the rasterizer.
-            if (r.strategy.choice.family->queries_rasterizer && o.coherence)
-                r.coherence.emplace();
-            if (r.strategy.choice.family->queries_rasterizer && o.switch_off > 0.0) {
-                SwitchOff::Settings s;
-                s.min_gain = o.switch_off;
-                r.switch_off.emplace(s);
-            }
-            runs.push_back(std::move(r));
-        }
-        std::filesystem::create_directories(o.out);
-        std::ofstream frames_csv(o.out + "/frames.csv");
-        if (!frames_csv)
-            throw std::runtime_error("cannot write '" + o.out + "/frames.csv'");
-        frames_csv << "strategy,route,frame,ms,triangles,leaves_drawn,nodes_tested,passes,view_culled,occluded,"
-                      "culled_percent,oracle_visible_leaves,oracle_occluded_leaves,occluded_leaves_culled,"
-                      "visible_leaves_culled,wrong_pixels,setup_ms,test_ms\n";
-        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s\n", scene.triangle_count(),
-                    hierarchy.leaf_count(), o.route.c_str(), route.size(), o.size, o.size, ctx.renderer().c_str());
-
+        std::vector<Run> runs = make_runs(o, context);
+        const Strategy reference = make_strategy("none", context);
         std::optional<Oracle> oracle;
         if (o.oracle)
             oracle.emplace(renderer, hierarchy);
-        const Strategy reference = make_strategy("none", context);
+        std::filesystem::create_directories(o.out);
+        FramesCsv csv(o.out + "/frames.csv");
+        Walk walk{o, scene, hierarchy, renderer, ctx, reference, csv};
+        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s\n", scene.triangle_count(),
+                    hierarchy.leaf_count(), o.route.c_str(), route.size(), o.size, o.size, ctx.renderer().c_str());
+
         glEnable(GL_DEPTH_TEST);
         glEnable(GL_CULL_FACE);
         glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
-        const std::size_t bytes = std::size_t(o.size) * std::size_t(o.size) * 4;
         // Every strategy renders frame f before any renders frame f + 1, so
         // that the machine's load, which drifts, weighs on all of them alike;
         // and the order rotates from frame to frame, because the strategy
@@ -300,57 +397,12 @@ int main(int argc, char **argv)
             if (oracle)
                 truth = oracle->see(route[f], o.size, o.size);
             const Frame frame(route[f], o.size, o.size, truth ? &*truth : nullptr);
-            for (std::size_t k = 0; k < runs.size(); ++k) {
-                Run &run = runs[(k + f) % runs.size()];
-                TraversalOptions traversal;
-                traversal.batch = std::size_t(o.batch);
-                traversal.coherence = run.coherence ? &*run.coherence : nullptr;
-                traversal.switch_off = run.switch_off ? &*run.switch_off : nullptr;
-                const Drawn d = draw_frame(renderer, hierarchy, *run.strategy.culler, frame, traversal);
-                run.ms.push_back(d.ms);
-                run.triangles += double(d.stats.triangles);
-                run.passes += d.stats.passes;
-                run.setup_ms += d.stats.setup_ms;
-                run.test_ms += d.stats.test_ms;
-                // Approximate strategies: count the pixels that differ from
-                // the unculled frame (drawn untimed, after the measured one).
-                std::uint64_t wrong = 0;
-                if (!run.strategy.choice.conservative()) {
-                    const std::vector<std::uint8_t> culled(ctx.pixels(), ctx.pixels() + bytes);
-                    draw_frame(renderer, hierarchy, *reference.culler, frame, TraversalOptions{});
-                    for (std::size_t i = 0; i < bytes; i += 4)
-                        wrong += std::memcmp(&culled[i], ctx.pixels() + i, 4) != 0;
-                    run.wrong_pixels += wrong;
-                    std::memcpy(ctx.pixels_mutable(), culled.data(), bytes);   // the PNG shows the culled frame
-                }
-                if (o.png_every > 0 && f % std::size_t(o.png_every) == 0) {
-                    char number[24];
-                    std::snprintf(number, sizeof(number), "%04zu", f);
-                    const std::string base = o.out + "/" + file_name(run.label());
-                    write_png(base + "-" + number + ".png", o.size, o.size, ctx.pixels());
-                    render_top_view(hierarchy, route[f], d.stats.drawn);
-                    glFinish();
-                    write_png(base + "-top-" + number + ".png", o.size, o.size, ctx.pixels());
-                }
-                CullingQuality q;
-                if (truth) {
-                    q = compare_with_truth(*truth, d.stats.drawn);
-                    run.occluded += q.occluded;
-                    run.occluded_culled += q.occluded_culled;
-                    run.visible_culled += q.visible_culled;
-                }
-                const FrameStats &st = d.stats;
-                frames_csv << run.label() << ',' << o.route << ',' << f << ',' << d.ms << ',' << st.triangles << ','
-                           << st.leaves_drawn << ',' << st.nodes_tested << ',' << st.passes << ','
-                           << st.nodes_view_culled << ',' << st.nodes_occluded << ','
-                           << 100.0 * (1.0 - double(st.triangles) / double(std::max<std::size_t>(1, scene.triangle_count())))
-                           << ',' << (truth ? truth->visible.size() : 0) << ',' << q.occluded << ','
-                           << q.occluded_culled << ',' << q.visible_culled << ',' << wrong << ',' << st.setup_ms << ','
-                           << st.test_ms << '\n';
-            }
+            for (std::size_t k = 0; k < runs.size(); ++k)
+                walk.draw(runs[(k + f) % runs.size()], f, frame);
             progress("frames", long(f + 1), long(route.size()));
         }
-        write_summary(o, runs, scene.triangle_count());
+        csv.close();
+        write_summary(o, runs);
         return 0;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "walkthrough: %s\n", e.what());
