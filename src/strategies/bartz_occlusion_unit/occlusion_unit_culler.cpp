@@ -1,11 +1,10 @@
 #include "strategies/bartz_occlusion_unit/family.h"
 
 #include <algorithm>
-#include <cmath>
 #include <optional>
 
 #include "gl/occlusion_unit.h"
-#include "gl/state.h"
+#include "render/occlusion_proxy.h"
 #include "render/scene_renderer.h"
 #include "spatial/hierarchy.h"
 
@@ -87,35 +86,13 @@ private:
 
     void run_pass(std::vector<NodeTest> &tests, const std::vector<std::size_t> &members)
     {
-        const Camera &camera = frame_->camera;
-        // Back faces culled (the paper's precondition for meaningful counts).
-        // The proxy must pass wherever what it holds would: content can lie
-        // on the box's faces, and far away a few centimetres are below both
-        // the depth buffer's and float z's resolution. So the test uses
-        // LEQUAL and a polygon offset of a few depth units towards the eye,
-        // and the box grows by about a pixel at its distance, so that
-        // snapping and edge rules at the silhouette cannot drop a pixel the
-        // content covers.
-        gl::AttribScope state(GL_ENABLE_BIT | GL_DEPTH_BUFFER_BIT | GL_POLYGON_BIT);
-        glEnable(GL_CULL_FACE);
-        glCullFace(GL_BACK);
-        glDepthFunc(GL_LEQUAL);
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(-1.0f, -4.0f);
+        const ProxyTestState proxy_state;   // render/occlusion_proxy.h
         gl::OcclusionPass pass(unit_, gl::OcclusionMode::brief, tiles_for(members));
-        const float metres_per_pixel =
-            2.0f * std::tan(glm::radians(camera.fovy_degrees) * 0.5f) / float(std::max(frame_->height, 1));
         for (std::size_t i : members) {
-            if (leaf_triangles_ && tests[i].leaf) {
+            if (leaf_triangles_ && tests[i].leaf)
                 renderer_.draw_leaf_flat(tests[i].node);
-                continue;
-            }
-            Aabb grown = tests[i].box;
-            const glm::vec3 nearest = glm::clamp(camera.position, grown.min, grown.max);
-            const float margin = 0.01f + 1.5f * metres_per_pixel * glm::length(nearest - camera.position);
-            grown.min -= glm::vec3(margin);
-            grown.max += glm::vec3(margin);
-            SceneRenderer::draw_box(grown);
+            else
+                draw_proxy_box(tests[i].box, frame_->camera, frame_->height);
         }
         const std::vector<gl::OcclusionRecord> &records = pass.end();
         ++stats_.passes;
