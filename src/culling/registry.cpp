@@ -2,26 +2,7 @@
 
 #include <stdexcept>
 
-#include "strategies/baselines/family.h"
-#include "strategies/bartz_occlusion_unit/family.h"
-#include "strategies/moller_haines_hp_occlusion_test/family.h"
-#include "strategies/poon_wang_opacity_maps/family.h"
-
 namespace occu {
-
-// The registry: one line per family, in the order help lists them.
-const std::vector<StrategyFamily> &strategy_families()
-{
-    static const std::vector<StrategyFamily> families = {
-        strategies::no_culling_family(),        // none
-        strategies::frustum_culling_family(),   // vfc
-        strategies::ideal_family(),             // ideal: the oracle's visible leaves, the floor
-        strategies::occlusion_unit_family(),    // ou: Bartz, Meissner and Huettner 1998
-        strategies::hp_occlusion_test_family(), // hp: Moeller and Haines, the HP occlusion test
-        strategies::opacity_map_family(),       // om: Poon and Wang
-    };
-    return families;
-}
 
 namespace {
 

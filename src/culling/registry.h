@@ -1,6 +1,6 @@
 // The strategy registry: every culling strategy the programs can run, one
-// entry per family (src/culling/registry.cpp), each from its own folder
-// under src/strategies/. Programs learn strategies, their papers and their
+// entry per family (the list: src/strategies/registry.cpp), each from its
+// own folder under src/strategies/. Programs learn strategies, their papers and their
 // settings from here; a family parses its own settings.
 //
 // A strategy is named on the command line as NAME[:key=value...], NAME a
