@@ -1,0 +1,72 @@
+/*
+ * GL_MESAX_occlusion_unit is exposed in compatibility contexts only
+ * (section "Dependencies on the compatibility profile"): in a core context
+ * its enums are unknown, so the Gets of its state raise INVALID_ENUM and
+ * leave the caller's memory alone, and the extension is not listed.
+ *
+ * The harness makes compatibility contexts; this test makes its own 3.2
+ * core context with OSMesa.
+ *
+ * Subtests:
+ *   core-extension-not-listed          not among GL_EXTENSIONS (GetStringi)
+ *   core-get-max-tiles-invalid-enum    GetIntegerv(MAX_OCCLUSION_TILES_MESAX)
+ *   core-get-tile-count-invalid-enum   GetIntegerv(OCCLUSION_TILE_COUNT_MESAX)
+ *   core-getfloat-invalid-enum         GetFloatv of both
+ *   compat-get-max-tiles-at-least-64   in a compatibility context the same Get works
+ */
+#include <GL/osmesa.h>
+
+#include "ou_util.h"
+
+static bool
+get_is_invalid_enum(GLenum pname, bool as_float)
+{
+    GLint i = -12345;
+    GLfloat f = -12345.0f;
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    if (as_float)
+        glGetFloatv(pname, &f);
+    else
+        glGetIntegerv(pname, &i);
+    const GLenum error = glGetError();
+    const bool untouched = as_float ? f == -12345.0f : i == -12345;
+    if (error != GL_INVALID_ENUM || !untouched)
+        printf("Get 0x%x: error 0x%x, value %s\n", pname, error, untouched ? "untouched" : "written");
+    return error == GL_INVALID_ENUM && untouched;
+}
+
+int main(int argc, char **argv)
+{
+    /* First a compatibility context, where the extension must be. */
+    ou_init(argc, argv, 8, 8);
+    GLint max_tiles = 0;
+    glGetIntegerv(GL_MAX_OCCLUSION_TILES_MESAX, &max_tiles);
+    subtest(max_tiles >= 64 && glGetError() == GL_NO_ERROR, "compat-get-max-tiles-at-least-64");
+
+    static const int attribs[] = {
+        OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+        OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 2, 0,
+    };
+    OSMesaContext core = OSMesaCreateContextAttribs(attribs, NULL);
+    static unsigned char pixels[8 * 8 * 4];
+    if (!core || !OSMesaMakeCurrent(core, pixels, GL_UNSIGNED_BYTE, 8, 8)) {
+        /* softpipe and llvmpipe both make 3.2 core contexts. */
+        printf("could not make a 3.2 core context on %s\n", ou_driver_is_patched() ? "the patched driver" : "this driver");
+        piglit_report_result(ou_driver_is_patched() ? PIGLIT_FAIL : PIGLIT_SKIP);
+    }
+    PFNGLGETSTRINGIPROC GetStringi = (PFNGLGETSTRINGIPROC)piglit_get_proc_address("glGetStringi");
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    bool listed = false;
+    for (GLint k = 0; k < count; ++k)
+        listed = listed || strcmp((const char *)GetStringi(GL_EXTENSIONS, (GLuint)k), "GL_MESAX_occlusion_unit") == 0;
+    subtest(count > 0 && !listed, "core-extension-not-listed");
+    subtest(get_is_invalid_enum(GL_MAX_OCCLUSION_TILES_MESAX, false), "core-get-max-tiles-invalid-enum");
+    subtest(get_is_invalid_enum(GL_OCCLUSION_TILE_COUNT_MESAX, false), "core-get-tile-count-invalid-enum");
+    subtest(get_is_invalid_enum(GL_MAX_OCCLUSION_TILES_MESAX, true) &&
+                get_is_invalid_enum(GL_OCCLUSION_TILE_COUNT_MESAX, true),
+            "core-getfloat-invalid-enum");
+    OSMesaDestroyContext(core);
+    piglit_report_result(result);
+}
