@@ -1,0 +1,81 @@
+/*
+ * GL_MESAX_occlusion_unit: a fragment whose depth is not a number (a shader
+ * writing NaN to gl_FragDepth) is recorded with depth 0 (section 5.X: NaN
+ * records as 0, the nearest depth, so that a record's zmin never claims a
+ * visible fragment is farther than it may be), and the record stays well
+ * formed: zmin <= zmax whenever NOHC > 0.
+ *
+ * The depth test is on with ALWAYS, so that every fragment passes and the
+ * shader's depth is the depth the test uses; depth writes are off.
+ *
+ * Subtests:
+ *   all-nan-records-zero          a 16 x 16 quad, every fragment NaN:
+ *                                 NOHC 256, zmin = zmax = 0
+ *   nan-beside-finite             left half NaN, right half 0.75: zmin 0,
+ *                                 zmax the record value of 0.75
+ *   finite-only-unchanged         every fragment 0.75: zmin = zmax = 0.75
+ */
+#include "ou_util.h"
+
+#define S 16
+
+static GLuint
+program_for(const char *depth_expression)
+{
+    char source[512];
+    snprintf(source, sizeof(source),
+             "#version 110\n"
+             "uniform float zero;\n"
+             "void main() {\n"
+             "  float nan = zero / zero;\n"
+             "  gl_FragDepth = %s;\n"
+             "  gl_FragColor = vec4(1.0);\n"
+             "}\n",
+             depth_expression);
+    return piglit_build_fragment_program(source);
+}
+
+static bool
+check(const char *name, const char *depth_expression, GLuint zmin, GLuint zmax)
+{
+    const GLuint program = program_for(depth_expression);
+    if (!program) {
+        printf("%s: the GLSL 1.10 shader did not build\n", name);
+        subtest(false, name);
+        return false;
+    }
+    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    PFNGLGETUNIFORMLOCATIONPROC GetUniformLocation =
+        (PFNGLGETUNIFORMLOCATIONPROC)piglit_get_proc_address("glGetUniformLocation");
+    PFNGLUNIFORM1FPROC Uniform1f = (PFNGLUNIFORM1FPROC)piglit_get_proc_address("glUniform1f");
+    UseProgram(program);
+    Uniform1f(GetUniformLocation(program, "zero"), 0.0f);
+
+    GLuint record[8];
+    GLuint *buffers[1] = {record};
+    GLsizei sizes[1] = {8};
+    OcclusionBuffersMESAX(1, sizes, buffers);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    ou_rect(0, 0, S, S, 0.5f);
+    glRenderMode(GL_RENDER);
+    UseProgram(0);
+    const bool ok = record[OU_NOHC] == S * S && record[OU_ZMIN] == zmin && record[OU_ZMAX] == zmax &&
+                    record[OU_ZMIN] <= record[OU_ZMAX];
+    if (!ok)
+        printf("%s: NOHC %u zmin 0x%08x zmax 0x%08x, expected %u 0x%08x 0x%08x\n", name, record[OU_NOHC],
+               record[OU_ZMIN], record[OU_ZMAX], S * S, zmin, zmax);
+    subtest(ok && piglit_check_gl_error(GL_NO_ERROR), name);
+    return ok;
+}
+
+int main(int argc, char **argv)
+{
+    ou_init(argc, argv, S, S);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_FALSE);
+    check("all-nan-records-zero", "nan", 0, 0);
+    check("nan-beside-finite", "gl_FragCoord.x < 8.0 ? nan : 0.75", 0, ou_depth(0.75));
+    check("finite-only-unchanged", "0.75", ou_depth(0.75), ou_depth(0.75));
+    piglit_report_result(result);
+}
