@@ -7,6 +7,9 @@
 // comparison can fail). Runs on the driver meson selects with GALLIUM_DRIVER.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -79,7 +82,8 @@ std::string small_city_database(const SmallCity &small)
     const Camera lens = street_level_lens(small.scene.bounds, 1.0f);
     for (std::uint32_t v = 0; v < db.grid.view_count(); ++v)
         db.views[v] = select_occluders_for_view(*small.renderer, *small.h, db.grid.view_camera(v, lens), pre);
-    const std::string path = ::testing::TempDir() + "occu-small-city-occluders.db";
+    // Per process: meson runs this binary once per driver, at the same time.
+    const std::string path = ::testing::TempDir() + "occu-small-city-occluders-" + std::to_string(getpid()) + ".db";
     db.save(path);
     return path;
 }
@@ -146,6 +150,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     EXPECT_LE(drawn["ou:proxy=triangles:max-test-area=1/16"], drawn["ou:max-test-area=1/16"])
         << "triangles as proxies should cull at least what boxes do";
     EXPECT_LE(drawn["ideal/16"], drawn["ou:max-test-area=1/1"]) << "nothing culls more than the floor";
+    std::remove(database.c_str());
     // A query counts the whole grown proxy, a tile only the box's footprint:
     // hp sees at least the fragments ou does, so it draws about as much or more.
     EXPECT_GE(drawn["hp/16"], drawn["ou:max-test-area=1/16"] * 99 / 100);
