@@ -20,6 +20,7 @@ BUILD_PACKAGES=(
 # To run the piglit regression run on the patched driver.
 TEST_PACKAGES=(
     piglit
+    assimp-testmodels   # real models the demos must refuse (BoxWithInfinites.glb: infinite vertices)
 )
 # To count instructions in benchmarks (wall time on shared machines is noisy).
 BENCH_PACKAGES=(

@@ -3,12 +3,27 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace occu {
 
 glm::mat4 Camera::view() const
 {
-    return glm::lookAt(position, target, up);
+    // lookAt builds the camera's x axis as normalize(cross(forward, up)),
+    // which is NaN when up is parallel to the view direction (the default
+    // up, +y, looking straight down or up). Then the up vector becomes the
+    // world axis least aligned with the view direction, preferring -z (a
+    // view straight down shows -z at the top, as a map shows north).
+    const glm::vec3 forward = glm::normalize(target - position);
+    glm::vec3 up_vector = up;
+    if (glm::length(glm::cross(forward, glm::normalize(up))) < 1e-3f) {
+        const glm::vec3 axes[3] = {{0.0f, 0.0f, -1.0f}, {0.0f, 1.0f, 0.0f}, {1.0f, 0.0f, 0.0f}};
+        up_vector = axes[0];
+        for (const glm::vec3 &axis : axes)
+            if (std::fabs(glm::dot(axis, forward)) < std::fabs(glm::dot(up_vector, forward)))
+                up_vector = axis;
+    }
+    return glm::lookAt(position, target, up_vector);
 }
 
 glm::mat4 Camera::projection() const

@@ -14,7 +14,7 @@ namespace occu {
 struct Camera {
     glm::vec3 position{0.0f, 1.7f, 0.0f};
     glm::vec3 target{0.0f, 1.7f, -1.0f};
-    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};   // where parallel to the view direction, view() picks a world axis
     float fovy_degrees = 60.0f;
     float aspect = 1.0f;
     float near_plane = 0.5f;

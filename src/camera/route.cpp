@@ -1,12 +1,12 @@
 #include "camera/route.h"
 
 #include <cmath>
+#include <fstream>
 #include <random>
 #include <sstream>
-
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "cli/number_fields.h"
 
 namespace occu {
 
@@ -17,23 +17,36 @@ std::vector<Camera> read_route_file(const std::string &path, float aspect)
     std::ifstream in(path);
     if (!in)
         throw std::runtime_error("cannot read route file '" + path + "'");
+    static const char *const field_names[6] = {"px", "py", "pz", "tx", "ty", "tz"};
     std::vector<Camera> route;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
         line = line.substr(0, line.find('#'));
-        std::istringstream fields(line);
+        const std::string where = path + ":" + std::to_string(number) + ": ";
+        std::istringstream words(line);
+        std::vector<std::string> fields;
+        for (std::string word; words >> word;)
+            fields.push_back(word);
+        if (fields.empty())
+            continue;
+        if (fields.size() != 6)
+            throw std::runtime_error(where + "expected six numbers \"px py pz tx ty tz\", got \"" + line + "\"");
+        float numbers[6];
+        for (int i = 0; i < 6; ++i)
+            if (const std::string why = read_finite_float(fields[i], numbers[i]); !why.empty())
+                throw std::runtime_error(where + field_names[i] + " is '" + fields[i] + "', " + why);
         Camera c;
         c.aspect = aspect;
-        std::string extra;
-        if (!(fields >> std::ws).eof()) {
-            if (!(fields >> c.position.x >> c.position.y >> c.position.z >> c.target.x >> c.target.y >> c.target.z) ||
-                (fields >> extra))
-                throw std::runtime_error(path + ":" + std::to_string(number) +
-                                         ": expected six numbers \"px py pz tx ty tz\", got \"" + line + "\"");
-            if (c.position == c.target)
-                throw std::runtime_error(path + ":" + std::to_string(number) + ": position and target coincide");
-            route.push_back(c);
-        }
+        c.position = {numbers[0], numbers[1], numbers[2]};
+        c.target = {numbers[3], numbers[4], numbers[5]};
+        if (c.position == c.target)
+            throw std::runtime_error(where + "position and target coincide");
+        // The view matrix normalizes target - position: its squared length
+        // must be a finite float, or the view direction is NaN.
+        const glm::vec3 view = c.target - c.position;
+        if (!std::isfinite(glm::dot(view, view)))
+            throw std::runtime_error(where + "position and target are too far apart for float coordinates");
+        route.push_back(c);
     }
     if (route.empty())
         throw std::runtime_error("route file '" + path + "' has no cameras");

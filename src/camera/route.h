@@ -34,7 +34,8 @@ Camera street_level_lens(const Aabb &bounds, float aspect);
 
 // `name`: dense, street, medium, open, orbit, random:N:SEED, or a route file's path. Throws
 // std::invalid_argument (unknown name) or std::runtime_error (a file it
-// cannot read or parse, naming the file and line).
+// cannot read or parse, naming the file and line; a number that is not a
+// finite float, or a camera whose view direction is not, is refused).
 std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds, const CityOptions &city,
                                int frames, float aspect);
 

@@ -2,6 +2,8 @@
 
 #include "preprocessing_code_hash.h"
 
+#include "cli/number_fields.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -258,11 +260,23 @@ OccluderDatabase OccluderDatabase::load(const std::string &path)
             }
         } else if (key == "grid") {
             OccluderGrid &g = db.grid;
-            if (!(fields >> g.origin.x >> g.origin.y >> g.origin.z >> g.spacing.x >> g.spacing.y >> g.spacing.z >>
-                  g.points.x >> g.points.y >> g.points.z >> g.directions) ||
-                g.points.x < 1 || g.points.y < 1 || g.points.z < 1 || g.directions < 1 ||
+            static const char *const coordinate_names[6] = {"OX", "OY", "OZ", "SX", "SY", "SZ"};
+            std::string text;
+            for (int i = 0; i < 6 && fields >> text; ++i) {
+                float value = 0.0f;
+                if (const std::string why = read_finite_float(text, value); !why.empty())
+                    fail(std::string(coordinate_names[i]) + " is '" + text + "', " + why);
+                (i < 3 ? g.origin : g.spacing)[i % 3] = value;
+            }
+            if (!fields || !(fields >> g.points.x >> g.points.y >> g.points.z >> g.directions) || g.points.x < 1 ||
+                g.points.y < 1 || g.points.z < 1 || g.directions < 1 ||
                 double(g.points.x) * g.points.y * g.points.z * g.directions > 1e8)
                 fail("grid wants OX OY OZ SX SY SZ NX NY NZ DIRECTIONS with positive counts");
+            // The last point's views stand at origin + (points - 1) * spacing.
+            for (int a = 0; a < 3; ++a)
+                if (std::fabs(double(g.origin[a]) + double(g.points[a] - 1) * double(g.spacing[a])) >
+                    double(std::numeric_limits<float>::max()))
+                    fail("grid points reach beyond float range along " + std::string(1, "xyz"[a]));
             have_grid = true;
         } else if (key == "view") {
             if (!have_grid)

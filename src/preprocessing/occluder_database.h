@@ -89,7 +89,8 @@ public:
     std::vector<std::uint32_t> occluders_for(const Camera &camera) const;
 
     void save(const std::string &path) const;
-    // Throws std::runtime_error naming the file and line of what is wrong.
+    // Throws std::runtime_error naming the file and line of what is wrong
+    // (a grid number that is not a finite float among it).
     static OccluderDatabase load(const std::string &path);
     // Joins shards; throws if their provenance or grids differ or a view repeats.
     static OccluderDatabase merge(const std::vector<OccluderDatabase> &shards);

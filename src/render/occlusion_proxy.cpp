@@ -16,8 +16,10 @@ ProxyTestState::ProxyTestState() : saved_(GL_ENABLE_BIT | GL_DEPTH_BUFFER_BIT | 
     glPolygonOffset(-1.0f, -4.0f);
 }
 
-void draw_proxy_box(const Aabb &box, const Camera &camera, int viewport_height)
+std::optional<Aabb> proxy_box(const Aabb &box, const Camera &camera, const glm::mat4 &view_projection,
+                              int viewport_height)
 {
+    // Metres per pixel at unit distance from the eye.
     const float metres_per_pixel =
         2.0f * std::tan(glm::radians(camera.fovy_degrees) * 0.5f) / float(std::max(viewport_height, 1));
     Aabb grown = box;
@@ -25,7 +27,16 @@ void draw_proxy_box(const Aabb &box, const Camera &camera, int viewport_height)
     const float margin = 0.01f + 1.5f * metres_per_pixel * glm::length(nearest - camera.position);
     grown.min -= glm::vec3(margin);
     grown.max += glm::vec3(margin);
-    SceneRenderer::draw_box(grown);
+    // project_box is empty for a box that holds the eye or has a corner in
+    // front of the near plane.
+    if (!project_box(view_projection, camera.position, grown))
+        return std::nullopt;
+    return grown;
+}
+
+void draw_proxy_box(const Aabb &proxy)
+{
+    SceneRenderer::draw_box(proxy);
 }
 
 }  // namespace occu

@@ -9,6 +9,8 @@
 // cannot drop a pixel the content covers.
 #pragma once
 
+#include <optional>
+
 #include "camera/camera.h"
 #include "geometry/aabb.h"
 #include "gl/state.h"
@@ -25,8 +27,20 @@ private:
     gl::AttribScope saved_;
 };
 
-// Draws `box` grown by about 1.5 pixels at its distance from the eye of
-// `camera`, in a viewport `viewport_height` pixels high.
-void draw_proxy_box(const Aabb &box, const Camera &camera, int viewport_height);
+// The proxy a test draws for `box`: the box grown by about 1.5 pixels at
+// its distance from the eye of `camera` (whose view-projection matrix is
+// `view_projection`), in a viewport `viewport_height` pixels high. Empty
+// when the grown box holds the eye or reaches in front of the near plane,
+// as it does when a pixel spans more than two thirds of the distance (a
+// viewport of a few pixels, a field of view near 180 degrees) or the box
+// nearly touches the near plane: with back faces culled and the near plane
+// clipping, the proxy would then lose the front faces that cover what the
+// box holds, and the test would find hidden what may be seen. Callers take
+// such a box as visible untested, like a box without a footprint.
+std::optional<Aabb> proxy_box(const Aabb &box, const Camera &camera, const glm::mat4 &view_projection,
+                              int viewport_height);
+
+// Draws a proxy (from proxy_box) with the state of ProxyTestState.
+void draw_proxy_box(const Aabb &proxy);
 
 }  // namespace occu

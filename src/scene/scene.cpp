@@ -1,5 +1,10 @@
 #include "scene/scene.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
 namespace occu {
 
 void Mesh::update_bounds()
@@ -24,6 +29,29 @@ void Scene::update_bounds()
         m.update_bounds();
         bounds.expand(m.bounds);
     }
+}
+
+void require_finite_vertices(const Mesh &mesh, std::size_t mesh_number, const std::string &source)
+{
+    auto finite = [](const glm::vec3 &p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); };
+    const auto first = std::find_if_not(mesh.positions.begin(), mesh.positions.end(), finite);
+    if (first == mesh.positions.end())
+        return;
+    const auto count = std::count_if(first, mesh.positions.end(), [&](const glm::vec3 &p) { return !finite(p); });
+    char coordinates[96];
+    std::snprintf(coordinates, sizeof(coordinates), "(%g, %g, %g)", double(first->x), double(first->y),
+                  double(first->z));
+    const std::string name = mesh.name.empty() ? std::to_string(mesh_number) + " (unnamed)" : "'" + mesh.name + "'";
+    throw std::runtime_error(source + ": vertex " + std::to_string(first - mesh.positions.begin()) + " of mesh " +
+                             name + " is " + coordinates + ", not finite; " + std::to_string(count) + " of " +
+                             std::to_string(mesh.positions.size()) +
+                             " vertices of that mesh are not finite (occu needs finite coordinates)");
+}
+
+void require_finite_vertices(const Scene &scene, const std::string &source)
+{
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        require_finite_vertices(scene.meshes[m], m, source);
 }
 
 void append_box(Mesh &mesh, const Aabb &box)

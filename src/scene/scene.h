@@ -32,6 +32,15 @@ struct Scene {
     void update_bounds();
 };
 
+// Throws std::runtime_error when a vertex coordinate of `scene` is not
+// finite (NaN or infinite): boxes, projections and the hierarchy's splits
+// of such a scene mean nothing. The message begins with `source` (what the
+// scene came from, e.g. its file) and names the first such vertex, its mesh
+// (by name, or by `mesh_number` when it has none) and how many of the
+// mesh's vertices are not finite.
+void require_finite_vertices(const Mesh &mesh, std::size_t mesh_number, const std::string &source);
+void require_finite_vertices(const Scene &scene, const std::string &source);
+
 // Appends an axis-aligned box (12 triangles, outward normals) to `mesh`.
 void append_box(Mesh &mesh, const Aabb &box);
 

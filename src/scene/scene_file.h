@@ -10,7 +10,8 @@ namespace occu {
 // Loads every mesh of the file as triangles (polygons triangulated, normals
 // generated where missing; node transforms applied). Throws
 // std::runtime_error naming the file and assimp's reason when it cannot
-// read it or it holds no triangles.
+// read it or it holds no triangles, and naming the file, mesh and vertex
+// when a vertex coordinate is not finite (require_finite_vertices).
 Scene load_scene(const std::string &path);
 
 }  // namespace occu

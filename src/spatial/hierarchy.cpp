@@ -141,6 +141,11 @@ std::vector<std::uint32_t> leaves_in_frustum(const Hierarchy &hierarchy, const F
 
 Hierarchy Hierarchy::build(const Scene &scene, const HierarchyOptions &options)
 {
+    // Every scene passes here, loaded, generated or made by a program: with
+    // a NaN coordinate the octree's comparisons order nothing (and
+    // std::nth_element's order would be invalid), with an infinite one no
+    // box or projection means anything.
+    require_finite_vertices(scene, "scene given to the hierarchy");
     Hierarchy h;
     std::vector<Item> items;
     items.reserve(scene.triangle_count());

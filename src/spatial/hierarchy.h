@@ -38,6 +38,8 @@ struct HierarchyOptions {
 
 class Hierarchy {
 public:
+    // Throws std::runtime_error when a vertex coordinate is not finite
+    // (scene/scene.h: require_finite_vertices).
     static Hierarchy build(const Scene &scene, const HierarchyOptions &options = {});
 
     const std::vector<HierarchyNode> &nodes() const { return nodes_; }

@@ -25,25 +25,13 @@
 #include "scene/city.h"
 #include "traversal/traversal.h"
 
+#include "frame_comparison.h"
+
 using namespace occu;
+using occu::integration::draw_frame;
+using occu::integration::DrawnFrame;
 
 namespace {
-
-struct Drawn {
-    std::vector<std::uint8_t> pixels;
-    std::uint64_t triangles;
-};
-
-Drawn draw(const gl::OffscreenContext &ctx, const SceneRenderer &renderer, const Hierarchy &h, Culler &culler,
-           const Frame &frame, const TraversalOptions &options)
-{
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    gl::load_camera(frame.camera);
-    const FrameStats s = render_hierarchy(renderer, h, culler, frame, options);
-    glFinish();
-    const std::size_t n = std::size_t(ctx.width()) * std::size_t(ctx.height()) * 4;
-    return {std::vector<std::uint8_t>(ctx.pixels(), ctx.pixels() + n), s.triangles};
-}
 
 // A city of 4x4 blocks in leaves of at most 128 triangles, drawn into a
 // 128x128 context with depth test and back-face culling.
@@ -133,8 +121,8 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
             for (std::size_t f = 0; f < cameras.size(); ++f) {
                 const VisibilityTruth truth = oracle.see(cameras[f], 128, 128);
                 const Frame frame(cameras[f], 128, 128, &truth);
-                const Drawn reference = draw(small.ctx, renderer, h, *none.culler, frame, {});
-                const Drawn culled = draw(small.ctx, renderer, h, *s.culler, frame, options);
+                const DrawnFrame reference = draw_frame(small.ctx, renderer, h, *none.culler, frame, {});
+                const DrawnFrame culled = draw_frame(small.ctx, renderer, h, *s.culler, frame, options);
                 EXPECT_TRUE(reference.pixels == culled.pixels) << route << " frame " << f << ": " << key;
                 drawn[key] += culled.triangles;
                 if (v.spec == "none")
@@ -173,8 +161,8 @@ TEST(ConservativeCulling, FramesEqualUnculledFramesFarAway)
     std::uint64_t drawn_none = 0, drawn_ou = 0;
     for (std::size_t f = 0; f < cameras.size(); ++f) {
         const Frame frame(cameras[f], 256, 256);
-        const Drawn reference = draw(ctx, renderer, h, *none.culler, frame, {});
-        const Drawn culled = draw(ctx, renderer, h, *ou.culler, frame, {});
+        const DrawnFrame reference = draw_frame(ctx, renderer, h, *none.culler, frame, {});
+        const DrawnFrame culled = draw_frame(ctx, renderer, h, *ou.culler, frame, {});
         EXPECT_TRUE(reference.pixels == culled.pixels) << "open frame " << f;
         drawn_none += reference.triangles;
         drawn_ou += culled.triangles;

@@ -37,6 +37,7 @@ public:
     {
         const Frame &f = *frame_;
         rects_.assign(tests.size(), PixelRect{});
+        proxies_.assign(tests.size(), Aabb{});
         std::vector<std::size_t> pending;
         const double viewport_area = double(f.width) * double(f.height);
         for (std::size_t i = 0; i < tests.size(); ++i) {
@@ -49,6 +50,13 @@ public:
             const auto footprint = f.footprint(t.box);
             if (!footprint || double(footprint->rect.area()) > max_test_area_ * viewport_area)
                 continue;   // visible untested
+            if (!(leaf_triangles_ && t.leaf)) {
+                // A box whose proxy cannot be drawn whole is visible untested.
+                const auto proxy = proxy_box(t.box, f.camera, f.view_projection, f.height);
+                if (!proxy)
+                    continue;
+                proxies_[i] = *proxy;
+            }
             rects_[i] = footprint->rect;
             pending.push_back(i);
         }
@@ -92,7 +100,7 @@ private:
             if (leaf_triangles_ && tests[i].leaf)
                 renderer_.draw_leaf_flat(tests[i].node);
             else
-                draw_proxy_box(tests[i].box, frame_->camera, frame_->height);
+                draw_proxy_box(proxies_[i]);
         }
         const std::vector<gl::OcclusionRecord> &records = pass.end();
         ++stats_.passes;
@@ -111,6 +119,7 @@ private:
     std::optional<Frame> frame_;
     GLint origin_x_ = 0, origin_y_ = 0;
     std::vector<PixelRect> rects_;
+    std::vector<Aabb> proxies_;   // per test: what a box test draws (proxy_box)
     CullerStats stats_;
 };
 

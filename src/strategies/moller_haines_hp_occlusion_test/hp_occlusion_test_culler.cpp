@@ -38,13 +38,19 @@ public:
     {
         const Frame &f = *frame_;
         std::vector<std::size_t> queried;
+        proxies_.clear();
         for (std::size_t i = 0; i < tests.size(); ++i) {
             NodeTest &t = tests[i];
             t.result = Visibility::visible;
-            if (f.frustum.classify(t.box) == Frustum::Side::outside)
+            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
                 t.result = Visibility::view_culled;
-            else if (f.footprint(t.box))
-                queried.push_back(i);
+            } else if (f.footprint(t.box)) {
+                // A box whose proxy cannot be drawn whole is visible untested.
+                if (const auto proxy = proxy_box(t.box, f.camera, f.view_projection, f.height)) {
+                    queried.push_back(i);
+                    proxies_.push_back(*proxy);
+                }
+            }
         }
         if (queried.empty())
             return;
@@ -60,7 +66,7 @@ public:
             glDepthMask(GL_FALSE);
             for (std::size_t k = 0; k < queried.size(); ++k) {
                 BeginQuery_(GL_SAMPLES_PASSED, queries_[k]);
-                draw_proxy_box(tests[queried[k]].box, f.camera, f.height);
+                draw_proxy_box(proxies_[k]);
                 EndQuery_(GL_SAMPLES_PASSED);
             }
         }
@@ -81,6 +87,7 @@ private:
     PFNGLENDQUERYPROC EndQuery_;
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv_;
     std::vector<GLuint> queries_;
+    std::vector<Aabb> proxies_;   // of the queried boxes, in order
     std::optional<Frame> frame_;
     CullerStats stats_;
 };

@@ -31,6 +31,15 @@ printf 'v 0 0 0\nv 1 0 0\nf 1 2 99\n' > "$dir/broken.obj"
 printf 'this is not a scene\n' > "$dir/garbage.gltf"
 printf '0 1.7 0 1 1.7\n' > "$dir/short.route"
 printf 'hello\n' > "$dir/bad.db"
+# Non-finite numbers: a vertex, a route camera, a database grid spacing.
+printf 'o wall\nv 0 0 0\nv 1 0 0\nv 1 nan 0\nf 1 2 3\n' > "$dir/nan.obj"
+printf '0 1.7 0 10 1.7 0\n0 1.7 0 nan 1.7 0\n' > "$dir/nan.route"
+printf '0 0 5 0 0 0\n' > "$dir/box.route"
+printf 'occu-occluder-database 2\nalgorithm minimum-occluder-set c\noptions x\nresolution 32\nscene f 1 2\nmesa m\ngrid 0 0 0 1 inf 1 2 1 2 4\n' > "$dir/inf.db"
+# Debian's assimp-testmodels (tools/deps.sh test installs it): a box whose
+# vertices include infinities.
+infinite_box=$(dpkg -L assimp-testmodels 2>/dev/null | grep '/BoxWithInfinites\.glb$' | head -n 1)
+[ -n "$infinite_box" ] || { echo "FAIL: assimp-testmodels is not installed (BoxWithInfinites.glb)"; failures=$((failures + 1)); }
 # A real database, of the city in leaves of 256 triangles.
 "$preprocess" build --out "$dir/small.db" --grid 2,1,2 --directions 1 >/dev/null 2>&1 || echo "could not make small.db"
 
@@ -51,6 +60,12 @@ expect_error "random:N:SEED" "$walkthrough" --frames 1 --route random:0:1
 expect_error "broken.obj" "$walkthrough" --frames 1 --scene "$dir/broken.obj"
 expect_error "garbage.gltf" "$walkthrough" --frames 1 --scene "$dir/garbage.gltf"
 expect_error "no-such-scene.obj" "$walkthrough" --frames 1 --scene "$dir/no-such-scene.obj"
+expect_error "nan.obj': vertex 2 of mesh 'wall' is (1, nan, 0)" "$walkthrough" --frames 1 --scene "$dir/nan.obj"
+[ -z "$infinite_box" ] || expect_error "BoxWithInfinites.glb': vertex" "$walkthrough" --frames 1 \
+    --strategies vfc --oracle off --png-every 0 --out "$dir/walk" --scene "$infinite_box" --route "$dir/box.route"
+expect_error "nan.route:2: tx is 'nan'" "$walkthrough" --frames 1 --route "$dir/nan.route"
+expect_error "inf.db:7: SY is 'inf'" "$walkthrough" --frames 1 --strategies om-mos --occluder-db "$dir/inf.db"
+expect_error "inf.db:7: SY is 'inf'" "$preprocess" views --out "$dir/x.route" "$dir/inf.db"
 expect_error "short.route" "$walkthrough" --frames 1 --route "$dir/short.route"
 expect_error "map-divisor" "$walkthrough" --strategies om-ps:map-divisor=0
 expect_error "--nonsense" "$walkthrough" --nonsense 1

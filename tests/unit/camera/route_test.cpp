@@ -103,3 +103,47 @@ TEST(Route, RandomRoutesAreReproducibleAndInsideTheBounds)
     EXPECT_THROW(make_route("orbit", Aabb::of({0, 0, 0}, {inf, 1, 1}), CityOptions{}, 3, 1.0f), std::invalid_argument);
     EXPECT_THROW(make_route("orbit", Aabb{}, CityOptions{}, 3, 1.0f), std::invalid_argument);
 }
+
+namespace {
+// What make_route says when it refuses a route file holding `text`, or ""
+// when it reads it. The file is named per process: meson runs this binary
+// once per driver, at the same time.
+std::string route_file_refusal(const std::string &name, const std::string &text, std::string &path)
+{
+    path = ::testing::TempDir() + "occu_" + std::to_string(getpid()) + "_" + name;
+    std::ofstream(path) << text;
+    std::string message;
+    try {
+        make_route(path, Aabb{}, CityOptions{}, 1, 1.0f);
+    } catch (const std::runtime_error &e) {
+        message = e.what();
+    }
+    std::remove(path.c_str());
+    return message;
+}
+}  // namespace
+
+TEST(Route, FileNumbersThatAreNotFiniteAreRefusedNamingFileLineAndNumber)
+{
+    // nan and inf are what strtod reads; 1e39 is beyond float range, so
+    // the camera's float coordinate would be infinite.
+    for (const std::string bad : {"nan", "inf", "-infinity", "1e39"}) {
+        SCOPED_TRACE(bad);
+        std::string path;
+        const std::string message =
+            route_file_refusal("not-finite.route", "0 1.7 0 10 1.7 0\n0 1.7 0 " + bad + " 1.7 0\n", path);
+        EXPECT_NE(message.find(path + ":2"), std::string::npos) << message;
+        EXPECT_NE(message.find("tx is '" + bad + "'"), std::string::npos) << message;
+        EXPECT_NE(message.find("not a finite number"), std::string::npos) << message;
+    }
+}
+
+TEST(Route, FileCameraWhoseViewDirectionOverflowsIsRefused)
+{
+    // Each coordinate is a finite float, but target - position is not: the
+    // camera's view direction, and so its view matrix, would be NaN.
+    std::string path;
+    const std::string message = route_file_refusal("overflow.route", "# far apart\n3e38 0 0 -3e38 0 0\n", path);
+    EXPECT_NE(message.find(path + ":2"), std::string::npos) << message;
+    EXPECT_NE(message.find("too far apart"), std::string::npos) << message;
+}

@@ -4,6 +4,7 @@
 // scene or hierarchy is refused naming the difference; views are found by
 // nearest point and heading.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -154,6 +155,38 @@ TEST(OccluderDatabase, MalformedFilesNameFileAndLine)
               std::string::npos);
     EXPECT_NE(error_of(::testing::TempDir() + "no-such-db.txt").find("cannot open"), std::string::npos);
     EXPECT_EQ(error_of(temp_file("db-ok.txt", header + "# a comment\nview 3 1 2 3\n")), "");
+}
+
+namespace {
+const std::string provenance_records = "occu-occluder-database 2\n"
+                                       "algorithm minimum-occluder-set 0123456789ab\noptions resolution=32\n"
+                                       "resolution 32\nscene 00000000deadbeef 10 100\nmesa 22.3.6/x\n";
+}  // namespace
+
+TEST(OccluderDatabase, GridNumbersThatAreNotFiniteAreRefusedNamingFileLineAndNumber)
+{
+    // nan and inf are what strtod reads; 1e39 is beyond float range, so
+    // the grid's float coordinate would be infinite.
+    const std::string path_prefix = "db-not-finite-" + std::to_string(::getpid()) + "-";
+    for (const std::string bad : {"nan", "-inf", "1e39"}) {
+        SCOPED_TRACE(bad);
+        const std::string path = temp_file(path_prefix + bad, provenance_records + "grid 0 0 0 1 " + bad + " 1 2 1 2 4\n");
+        const std::string message = error_of(path);
+        EXPECT_NE(message.find(path + ":7"), std::string::npos) << message;
+        EXPECT_NE(message.find("SY is '" + bad + "'"), std::string::npos) << message;
+        EXPECT_NE(message.find("not a finite number"), std::string::npos) << message;
+    }
+}
+
+TEST(OccluderDatabase, GridWhosePointsOverflowIsRefused)
+{
+    // Every number is a finite float, but the fourth point along x lies at
+    // 3 * 3e38: its cameras would stand at infinity.
+    const std::string path = temp_file("db-overflow-" + std::to_string(::getpid()),
+                                       provenance_records + "grid 0 0 0 3e38 1 1 4 1 1 4\n");
+    const std::string message = error_of(path);
+    EXPECT_NE(message.find(path + ":7"), std::string::npos) << message;
+    EXPECT_NE(message.find("beyond float range"), std::string::npos) << message;
 }
 
 TEST(OccluderDatabase, NearestViewByPointAndHeading)

@@ -48,3 +48,46 @@ TEST(LoadScene, ErrorsNameTheFile)
     }
     std::remove(bad.c_str());
 }
+
+namespace {
+// What load_scene says when it refuses `path`, or "" when it loads it.
+std::string refusal_of(const std::string &path)
+{
+    try {
+        load_scene(path);
+    } catch (const std::runtime_error &e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST(LoadScene, InfiniteVertexIsRefusedNamingFileMeshAndVertex)
+{
+    // 1e39 is beyond float range: the importer reads it as infinity.
+    const std::string path = temp("infinite.obj");
+    {
+        std::ofstream f(path);
+        f << "o wall\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 1e39 1 0\nf 1 2 3\nf 1 3 4\n";
+    }
+    const std::string message = refusal_of(path);
+    std::remove(path.c_str());
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("'wall'"), std::string::npos) << message;
+    EXPECT_NE(message.find("vertex"), std::string::npos) << message;
+    EXPECT_NE(message.find("not finite"), std::string::npos) << message;
+}
+
+TEST(LoadScene, NanVertexIsRefusedNamingFileMeshAndVertex)
+{
+    const std::string path = temp("nan.obj");
+    {
+        std::ofstream f(path);
+        f << "o wall\nv 0 0 0\nv 1 0 0\nv 1 nan 0\nf 1 2 3\n";
+    }
+    const std::string message = refusal_of(path);
+    std::remove(path.c_str());
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("'wall'"), std::string::npos) << message;
+    EXPECT_NE(message.find("nan"), std::string::npos) << message;
+}

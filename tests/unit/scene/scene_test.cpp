@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
 #include "scene/city.h"
 
 using namespace occu;
@@ -22,6 +27,57 @@ TEST(AppendBox, TwelveTrianglesWoundOutwards)
     }
     EXPECT_EQ(m.bounds.min, box.min);
     EXPECT_EQ(m.bounds.max, box.max);
+}
+
+namespace {
+// Two meshes of one box each; the second is called "roof".
+Scene two_boxes()
+{
+    Scene s;
+    s.meshes.resize(2);
+    append_box(s.meshes[0], Aabb::of({0, 0, 0}, {1, 1, 1}));
+    append_box(s.meshes[1], Aabb::of({0, 1, 0}, {1, 2, 1}));
+    s.meshes[1].name = "roof";
+    s.update_bounds();
+    return s;
+}
+
+std::string refusal_of(const Scene &scene)
+{
+    try {
+        require_finite_vertices(scene, "scene 'house.obj'");
+    } catch (const std::runtime_error &e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST(RequireFiniteVertices, NanCoordinateIsRefusedNamingSourceMeshAndVertex)
+{
+    Scene s = two_boxes();
+    s.meshes[1].positions[5].y = std::numeric_limits<float>::quiet_NaN();
+    const std::string message = refusal_of(s);
+    EXPECT_NE(message.find("house.obj"), std::string::npos) << message;
+    EXPECT_NE(message.find("'roof'"), std::string::npos) << message;
+    EXPECT_NE(message.find("vertex 5"), std::string::npos) << message;
+    EXPECT_NE(message.find("not finite"), std::string::npos) << message;
+}
+
+TEST(RequireFiniteVertices, InfiniteCoordinatesAreRefusedWithTheirCount)
+{
+    Scene s = two_boxes();
+    s.meshes[0].positions[2].x = std::numeric_limits<float>::infinity();
+    s.meshes[0].positions[7].z = -std::numeric_limits<float>::infinity();
+    const std::string message = refusal_of(s);
+    EXPECT_NE(message.find("vertex 2"), std::string::npos) << message;
+    EXPECT_NE(message.find("inf"), std::string::npos) << message;
+    EXPECT_NE(message.find("2 of 24 vertices"), std::string::npos) << message;
+}
+
+TEST(RequireFiniteVertices, FiniteSceneIsAccepted)
+{
+    EXPECT_EQ(refusal_of(two_boxes()), "");
 }
 
 TEST(City, DefaultIsAbout300kTrianglesAndDeterministic)

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <set>
+#include <stdexcept>
 
 #include "scene/city.h"
 
@@ -85,4 +87,21 @@ TEST(Hierarchy, CoincidentTrianglesEndInOneLeafInsteadOfRecursingForever)
     const Hierarchy h = Hierarchy::build(s);
     EXPECT_EQ(h.triangles().size(), 12000u);
     EXPECT_LE(h.nodes().size(), 64u);
+}
+
+// A NaN coordinate makes every comparison of the octree's split false, and
+// std::nth_element with such an order is undefined: the hierarchy refuses
+// the scene instead of building over it.
+TEST(Hierarchy, RefusesASceneWithAVertexThatIsNotFinite)
+{
+    Scene s;
+    Mesh m;
+    for (int i = 0; i < 100; ++i)
+        append_box(m, Aabb::of({float(i), 0, 0}, {float(i) + 0.5f, 1, 1}));
+    m.positions[40].x = std::numeric_limits<float>::quiet_NaN();
+    s.meshes.push_back(m);
+    s.update_bounds();
+    HierarchyOptions o;
+    o.max_leaf_triangles = 8;
+    EXPECT_THROW(Hierarchy::build(s, o), std::runtime_error);
 }
