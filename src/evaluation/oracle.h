@@ -1,7 +1,9 @@
 // The exact-visibility oracle: which leaves of the hierarchy contribute at
 // least one pixel to a frame, from an ID buffer (every leaf in the frustum
-// drawn in its own flat colour into the oracle's own framebuffer, then read
-// back). Culling efficiency is measured against it, as Poon and Wang
+// drawn in its own flat colour, then read back). It draws into the bound
+// framebuffer, the one the frames are drawn into, so that its pixels are
+// the frame's (render/id_buffer.h says why), and overwrites its colour and
+// depth: callers draw their frames after it. Culling efficiency is measured against it, as Poon and Wang
 // (section 6) compare with the exact visible set, and the `ideal` reference
 // strategy draws exactly its visible leaves.
 #pragma once
@@ -22,7 +24,10 @@ struct VisibilityTruth {
 
 class Oracle {
 public:
-    Oracle(const SceneRenderer &renderer, const Hierarchy &hierarchy) : hierarchy_(hierarchy), ids_(renderer) {}
+    Oracle(const SceneRenderer &renderer, const Hierarchy &hierarchy)
+        : hierarchy_(hierarchy), ids_(renderer, IdBuffer::Target::bound_framebuffer)
+    {
+    }
     VisibilityTruth see(const Camera &camera, int width, int height);
 
 private:

@@ -7,12 +7,17 @@ namespace occu {
 std::vector<std::uint32_t> IdBuffer::render(const Camera &camera, const std::vector<std::uint32_t> &leaves, int width,
                                             int height)
 {
-    if (!target_)
-        target_.emplace(width, height);
-    target_->resize(width, height);
+    std::optional<gl::Framebuffer::Bind> bind;
+    if (target_kind_ == Target::own_framebuffer) {
+        if (!target_)
+            target_.emplace(width, height);
+        target_->resize(width, height);
+        bind.emplace(*target_);
+    }
     std::vector<std::uint8_t> pixels(std::size_t(width) * std::size_t(height) * 4);
     {
-        gl::Framebuffer::Bind bind(*target_);
+        gl::AttribScope viewport(GL_VIEWPORT_BIT);
+        glViewport(0, 0, width, height);
         gl::AttribScope state(GL_ENABLE_BIT | GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_SCISSOR_BIT |
                               GL_CURRENT_BIT);
         gl::MatrixScope matrices;

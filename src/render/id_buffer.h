@@ -18,8 +18,20 @@ namespace occu {
 
 class IdBuffer {
 public:
+    // Where the IDs are drawn: a framebuffer object of the ID buffer's own
+    // (the caller's framebuffer is untouched), or the framebuffer bound
+    // when render() is called (its colour and depth are overwritten): the
+    // one frames are drawn into, whose rasterization an exact answer must
+    // share (softpipe rasterizes a window-system framebuffer upside down
+    // from unsnapped vertices, so an edge pixel can fall otherwise in a
+    // framebuffer object).
+    enum class Target { own_framebuffer, bound_framebuffer };
+
     // Needs a current context; draws with `renderer`.
-    explicit IdBuffer(const SceneRenderer &renderer) : renderer_(renderer) {}
+    explicit IdBuffer(const SceneRenderer &renderer, Target target = Target::own_framebuffer)
+        : renderer_(renderer), target_kind_(target)
+    {
+    }
 
     // Draws `leaves` as seen by `camera` into width x height pixels and
     // returns, per pixel (rows bottom-up), the leaf index + 1 seen there, 0
@@ -29,6 +41,7 @@ public:
 
 private:
     const SceneRenderer &renderer_;
+    Target target_kind_;
     std::optional<gl::Framebuffer> target_;
 };
 

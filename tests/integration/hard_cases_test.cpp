@@ -168,9 +168,6 @@ struct HardCase {
     // Nothing is in view: the unculled frame is all background.
     bool empty_frame = false;
     Premise premise;   // what makes the case the one it is named for
-    // Strategies not run on softpipe, each for a measured failure of the
-    // driver given where it is set.
-    std::set<std::string> left_out_on_softpipe;
 };
 
 // --- premises ----------------------------------------------------------------------
@@ -439,20 +436,10 @@ HardCase looking_straight_up_case()
     HardCase c = looking_straight_down_case();
     c.camera = camera({0, 0.5f, -12}, {0, 20, -12});
     c.camera.fovy_degrees = 120.0f;
-    // On softpipe `ideal` loses 16 pixels of one pillar, along the image's
-    // diagonal from (127, 0) to (112, 15): the pillar's vertical edges
-    // project onto that diagonal, through pixel centres. The oracle draws
-    // its ID buffer into a framebuffer object; the frame goes to OSMesa's
-    // framebuffer, which Mesa rasterizes upside down (stored top row
-    // first). softpipe sets up edges from unsnapped float vertices, so the
-    // flip's rounding puts those centres inside the edge in one framebuffer
-    // and outside in the other: drawn alone, the pillar covers them in
-    // OSMesa's framebuffer and not in an object (it does in an object when
-    // drawn mirrored in y). The oracle misses the pillar, and `ideal` draws
-    // only what the oracle sees. llvmpipe snaps vertices to 1/256 pixel and
-    // covers the same pixels in both. A difference of the driver between
-    // framebuffers, not of a strategy's test.
-    c.left_out_on_softpipe = {"ideal"};
+    // The pillars' vertical edges project onto the image's diagonal,
+    // through pixel centres: the oracle must rasterize them as the frame
+    // does (softpipe covers such a centre in one framebuffer orientation and
+    // not in the other; the oracle draws into the frame's framebuffer).
     return c;
 }
 
@@ -622,12 +609,7 @@ TEST_P(HardCaseTest, EveryConservativeStrategyDrawsTheUnculledFrame)
     const StrategyContext context{h, renderer};
     const Strategy none = make_strategy("none", context);
     std::map<std::size_t, DrawnFrame> unculled;
-    const bool softpipe = ctx.renderer().find("softpipe") != std::string::npos;
     for (const Variant &v : conservative_variants()) {
-        if (softpipe && c.left_out_on_softpipe.count(v.spec)) {
-            std::printf("%s left out on softpipe (see the case)\n", v.spec.c_str());
-            continue;
-        }
         TraversalOptions options;
         options.batch = v.batch;
         if (!unculled.count(v.batch)) {
