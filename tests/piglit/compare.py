@@ -3,6 +3,8 @@
 
 A test of Debian's piglit fails the check when its result is worse than the
 baseline's (Debian's unpatched Mesa of the same version on the same test).
+A test that reports subtests is checked per subtest too, as 'TEST@SUBTEST':
+a test whose baseline is a fail for one subtest still guards the others.
 occu's own tests (group 'occu@') have no baseline: they must pass or skip.
 Prints one line per failed check and ends with 'piglit: N passed, N failed'.
 
@@ -18,12 +20,23 @@ RANK = {'pass': 0, 'warn': 1, 'skip': 2, 'notrun': 2, 'fail': 3,
         'crash': 4, 'timeout': 4, 'incomplete': 4, 'dmesg-warn': 1, 'dmesg-fail': 3}
 
 
+def flatten(tests):
+    """Result per test, and per subtest as 'TEST@SUBTEST'."""
+    results = {}
+    for name, test in tests.items():
+        results[name] = test['result']
+        for sub, result in (test.get('subtests') or {}).items():
+            if sub != '__type__':
+                results[f'{name}@{sub}'] = result
+    return results
+
+
 def load_results(path):
     for name, opener in (('results.json.bz2', bz2.open), ('results.json', open)):
         full = os.path.join(path, name)
         if os.path.exists(full):
             with opener(full, 'rt') as f:
-                return {k: v['result'] for k, v in json.load(f)['tests'].items()}
+                return flatten(json.load(f)['tests'])
     sys.exit(f'compare.py: no results.json(.bz2) in {path}')
 
 
@@ -74,7 +87,11 @@ def main():
             print(f'FAIL {name}: {got} ({why})')
     for name in sorted(set(baseline) - set(results)):
         failed += 1
-        print(f'FAIL {name}: in the baseline but not run (regression.list and baseline.txt disagree)')
+        test = next((t for t in results if name.startswith(t + '@') and t in baseline), None)
+        if test:
+            print(f'FAIL {name}: subtest not reported (its test: {results[test]})')
+        else:
+            print(f'FAIL {name}: in the baseline but not run (regression.list and baseline.txt disagree)')
     print(f'piglit: {passed} passed, {failed} failed')
     return 1 if failed else 0
 

@@ -28,11 +28,13 @@ trap 'rm -rf "$work"' EXIT
 env -u __EGL_VENDOR_LIBRARY_FILENAMES -u LIBGL_DRIVERS_PATH -u LD_LIBRARY_PATH \
     piglit run -p surfaceless_egl -l quiet "$work/regression.xml.gz" "$work/results" >/dev/null
 
-/usr/bin/python3 - "$work/results" "$here/baseline.txt" "$version" <<'PY'
+/usr/bin/python3 - "$work/results" "$here/baseline.txt" "$version" "$here" <<'PY'
 import bz2, json, os, sys
-results_dir, out, version = sys.argv[1:]
+results_dir, out, version, here = sys.argv[1:]
+sys.path.insert(0, here)
+from compare import flatten   # a line per test and per subtest, as compare.py reads them
 with bz2.open(os.path.join(results_dir, 'results.json.bz2'), 'rt') as f:
-    results = {k: v['result'] for k, v in json.load(f)['tests'].items()}
+    results = flatten(json.load(f)['tests'])
 reasons = {}
 if os.path.exists(out):
     for line in open(out):
@@ -46,6 +48,7 @@ with open(out, 'w') as f:
 # Made with tests/piglit/record-baseline.sh; checked by tests/piglit/compare.py, which fails a
 # run of the patched Mesa on any result worse than the one here.
 # Format: RESULT NAME [# reason]; every expected non-pass says why.
+# A test that reports subtests also has a line per subtest, NAME@SUBTEST.
 ''')
     for name in sorted(results):
         r = results[name]
