@@ -1,0 +1,153 @@
+/*
+ * GL_MESAX_occlusion_unit: the draw framebuffer of an occlusion pass is
+ * fixed for the pass (Errors): binding another framebuffer for drawing,
+ * attaching an image to the draw framebuffer, or reallocating a
+ * renderbuffer attached to it generates INVALID_OPERATION and changes
+ * nothing, so the tiles keep counting the framebuffer they were set for.
+ * Binding for reading, or binding the draw framebuffer again, is allowed;
+ * after the pass all of these work again.
+ *
+ * Subtests:
+ *   bind-other-draw-invalid-operation   BindFramebuffer(DRAW or FRAMEBUFFER)
+ *                                       of another object; the binding stays
+ *                                       and a 8 x 8 draw counts 64
+ *   bind-read-allowed                   BindFramebuffer(READ) of another
+ *   bind-same-draw-allowed              the draw framebuffer again
+ *   attach-renderbuffer-invalid-operation
+ *   attach-texture-invalid-operation
+ *   reallocate-attached-invalid-operation  RenderbufferStorage of the
+ *                                       attached colour buffer; its width stays
+ *   all-allowed-after-pass
+ */
+#include "ou_util.h"
+
+static PFNGLGENFRAMEBUFFERSPROC GenFramebuffers;
+static PFNGLBINDFRAMEBUFFERPROC BindFramebuffer;
+static PFNGLGENRENDERBUFFERSPROC GenRenderbuffers;
+static PFNGLBINDRENDERBUFFERPROC BindRenderbuffer;
+static PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage;
+static PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer;
+static PFNGLFRAMEBUFFERTEXTURE2DPROC FramebufferTexture2D;
+static PFNGLGETRENDERBUFFERPARAMETERIVPROC GetRenderbufferParameteriv;
+
+static GLuint fbo[2], colour[2], depth, texture;
+static GLuint record[8];
+
+static GLuint
+make_fbo(int i)
+{
+    GenFramebuffers(1, &fbo[i]);
+    GenRenderbuffers(1, &colour[i]);
+    BindRenderbuffer(GL_RENDERBUFFER, colour[i]);
+    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 32, 32);
+    BindFramebuffer(GL_FRAMEBUFFER, fbo[i]);
+    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour[i]);
+    return fbo[i];
+}
+
+static void
+begin_pass(void)
+{
+    GLuint *buffers[1] = {record};
+    GLsizei sizes[1] = {8};
+    const GLint tile[4] = {0, 0, 32, 32};
+    OcclusionBuffersMESAX(1, sizes, buffers);
+    ScissorsMESAX(1, tile);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+}
+
+static GLuint
+end_pass(void)
+{
+    glRenderMode(GL_RENDER);
+    ScissorsMESAX(0, NULL);
+    return record[OU_NOHC];
+}
+
+static GLint
+draw_binding(void)
+{
+    GLint b = -1;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &b);
+    return b;
+}
+
+int main(int argc, char **argv)
+{
+    ou_init(argc, argv, 32, 32);
+    GenFramebuffers = (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
+    BindFramebuffer = (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
+    GenRenderbuffers = (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
+    BindRenderbuffer = (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
+    RenderbufferStorage = (PFNGLRENDERBUFFERSTORAGEPROC)piglit_get_proc_address("glRenderbufferStorage");
+    FramebufferRenderbuffer = (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
+    FramebufferTexture2D = (PFNGLFRAMEBUFFERTEXTURE2DPROC)piglit_get_proc_address("glFramebufferTexture2D");
+    GetRenderbufferParameteriv =
+        (PFNGLGETRENDERBUFFERPARAMETERIVPROC)piglit_get_proc_address("glGetRenderbufferParameteriv");
+    glDisable(GL_DEPTH_TEST);
+    make_fbo(1);
+    make_fbo(0);   /* bound */
+    GenRenderbuffers(1, &depth);
+    BindRenderbuffer(GL_RENDERBUFFER, depth);
+    RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, 32, 32);
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 32, 32, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    while (glGetError() != GL_NO_ERROR)
+        ;
+
+    begin_pass();
+    BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo[1]);
+    bool ok = glGetError() == GL_INVALID_OPERATION;
+    BindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
+    ok = ok && glGetError() == GL_INVALID_OPERATION && draw_binding() == (GLint)fbo[0];
+    ou_rect(4, 4, 12, 12, 0.5f);
+    subtest(end_pass() == 64 && ok, "bind-other-draw-invalid-operation");
+
+    begin_pass();
+    BindFramebuffer(GL_READ_FRAMEBUFFER, fbo[1]);
+    ok = glGetError() == GL_NO_ERROR;
+    BindFramebuffer(GL_READ_FRAMEBUFFER, fbo[0]);
+    end_pass();
+    subtest(ok, "bind-read-allowed");
+
+    begin_pass();
+    BindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
+    ok = glGetError() == GL_NO_ERROR;
+    ou_rect(4, 4, 12, 12, 0.5f);
+    subtest(end_pass() == 64 && ok, "bind-same-draw-allowed");
+
+    begin_pass();
+    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    GLint type = -1;
+    PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC GetAttachment = (PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC)
+        piglit_get_proc_address("glGetFramebufferAttachmentParameteriv");
+    ok = glGetError() == GL_INVALID_OPERATION;
+    end_pass();
+    GetAttachment(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    subtest(ok && type == GL_NONE, "attach-renderbuffer-invalid-operation");
+
+    begin_pass();
+    FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, texture, 0);
+    ok = glGetError() == GL_INVALID_OPERATION;
+    end_pass();
+    GetAttachment(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    subtest(ok && type == GL_NONE, "attach-texture-invalid-operation");
+
+    begin_pass();
+    BindRenderbuffer(GL_RENDERBUFFER, colour[0]);
+    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 64, 64);
+    ok = glGetError() == GL_INVALID_OPERATION;
+    ou_rect(0, 0, 32, 32, 0.5f);
+    const GLuint whole = end_pass();
+    GLint width = 0;
+    GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &width);
+    subtest(ok && width == 32 && whole == 32 * 32, "reallocate-attached-invalid-operation");
+
+    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, texture, 0);
+    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 32, 32);
+    BindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
+    subtest(glGetError() == GL_NO_ERROR && draw_binding() == (GLint)fbo[1], "all-allowed-after-pass");
+    piglit_report_result(result);
+}
