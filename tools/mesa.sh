@@ -25,23 +25,6 @@ case ${1:-} in
     *) die "tools/mesa.sh: unknown option '$1' (expected --unpatched or nothing)" ;;
 esac
 
-# The build: gallium's software rasterizers only (softpipe, llvmpipe on LLVM 15),
-# OSMesa, and EGL (surfaceless is always built with EGL) behind glvnd so that
-# unmodified programs linked to libGL/libEGL reach this Mesa. Nothing else.
-MESA_OPTIONS=(
-    --buildtype=release -Db_ndebug=true
-    -Dplatforms= -Dgallium-drivers=swrast -Dvulkan-drivers=
-    -Dllvm=enabled -Dshared-llvm=enabled -Ddraw-use-llvm=true
-    -Dosmesa=true -Degl=enabled -Dglvnd=true -Dglx=disabled -Dgbm=disabled
-    -Dgles1=disabled -Dgles2=enabled -Dopengl=true -Dshared-glapi=enabled
-    -Ddri3=disabled -Dxlib-lease=disabled
-    -Dgallium-vdpau=disabled -Dgallium-va=disabled -Dgallium-xa=disabled
-    -Dgallium-omx=disabled -Dgallium-nine=false -Dgallium-opencl=disabled
-    -Dgallium-rusticl=false -Dvideo-codecs=
-    -Dmicrosoft-clc=disabled -Dintel-clc=disabled -Dspirv-to-dxil=false
-    -Dvalgrind=disabled -Dlibunwind=disabled -Dlmsensors=disabled -Dselinux=false
-    -Dbuild-tests=false -Dtools=
-)
 
 series_file=$OCCU_ROOT/patches/mesa/series
 patches=()
