@@ -1,0 +1,101 @@
+/*
+ * GL_MESAX_occlusion_unit with layout(early_fragment_tests): the tests come
+ * before the shader, as in RENDER mode, so a discard in the shader removes
+ * nothing from PHC and NOHC, and an occlusion query active during a pass
+ * counts what it counts in RENDER mode (section "Dependencies on
+ * ARB_shader_image_load_store ..."). The shader discards every other
+ * column of a 64 x 64 quad.
+ *
+ * Subtests:
+ *   early-tests-counts-ignore-discard     NOHC = PHC = 4096
+ *   samples-passed-in-pass-equals-render  GL_SAMPLES_PASSED during a brief
+ *                                         pass equals GL_RENDER's
+ *   late-tests-counts-see-discard         without the layout: NOHC 2048
+ */
+#include "ou_util.h"
+
+#define S 64
+
+static PFNGLUSEPROGRAMPROC UseProgram;
+static PFNGLGENQUERIESPROC GenQueries;
+static PFNGLBEGINQUERYPROC BeginQuery;
+static PFNGLENDQUERYPROC EndQuery;
+static PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv;
+
+static GLuint
+samples_passed(GLenum mode, GLuint *record)
+{
+    GLuint query, samples = 0;
+    GenQueries(1, &query);
+    GLuint *buffers[1] = {record};
+    GLsizei sizes[1] = {8};
+    if (mode != GL_RENDER) {
+        OcclusionBuffersMESAX(1, sizes, buffers);
+        glRenderMode(mode);
+    }
+    BeginQuery(GL_SAMPLES_PASSED, query);
+    ou_rect(0, 0, S, S, 0.5f);
+    EndQuery(GL_SAMPLES_PASSED);
+    if (mode != GL_RENDER)
+        glRenderMode(GL_RENDER);
+    GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+    return samples;
+}
+
+static GLuint
+build(bool early)
+{
+    char source[512];
+    snprintf(source, sizeof(source),
+             "#version 150 compatibility\n"
+             "#extension GL_ARB_shader_image_load_store : require\n"
+             "%s"
+             "out vec4 colour;\n"
+             "void main() {\n"
+             "  if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard;\n"
+             "  colour = vec4(1.0);\n"
+             "}\n",
+             early ? "layout(early_fragment_tests) in;\n" : "");
+    return piglit_build_fragment_program(source);
+}
+
+int main(int argc, char **argv)
+{
+    ou_init(argc, argv, S, S);
+    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    const GLuint early = build(true), late = build(false);
+    if (!early || !late) {
+        printf("a shader with layout(early_fragment_tests) or ARB_shader_image_load_store did not build\n");
+        subtest(false, "early-tests-counts-ignore-discard");
+        piglit_report_result(result);
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glDepthMask(GL_FALSE);   /* every draw meets the cleared depth */
+
+    GLuint record[8];
+    UseProgram(early);
+    const GLuint render = samples_passed(GL_RENDER, record);
+    const GLuint in_pass = samples_passed(GL_BRIEF_OCCLUSION_MESAX, record);
+    const bool counts = record[OU_NOHC] == S * S && record[OU_PHC] == S * S;
+    if (!counts)
+        printf("early tests: NOHC %u PHC %u, expected %d\n", record[OU_NOHC], record[OU_PHC], S * S);
+    subtest(counts, "early-tests-counts-ignore-discard");
+    if (render != in_pass)
+        printf("SAMPLES_PASSED: %u in GL_RENDER, %u during a pass\n", render, in_pass);
+    subtest(render == in_pass, "samples-passed-in-pass-equals-render");
+
+    UseProgram(late);
+    samples_passed(GL_BRIEF_OCCLUSION_MESAX, record);
+    if (record[OU_NOHC] != S * S / 2)
+        printf("late tests: NOHC %u, expected %d\n", record[OU_NOHC], S * S / 2);
+    subtest(record[OU_NOHC] == S * S / 2, "late-tests-counts-see-discard");
+    UseProgram(0);
+    piglit_report_result(result);
+}
