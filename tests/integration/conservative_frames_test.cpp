@@ -1,5 +1,5 @@
 // Conservative strategies never remove a visible pixel: on short routes of
-// a small city, every frame of every conservative strategy in the registry
+// a small city and random views inside it, every frame of every conservative strategy in the registry
 // (and of its traversal variants: strictly front to back, in batches, with
 // temporal coherence, leaves tested by their triangles, from a minimum
 // occluder set database preprocessed here) equals the unculled frame byte
@@ -116,7 +116,9 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
         options.batch = v.batch;
         options.coherence = v.coherence ? &coherence : nullptr;
         const std::string key = v.spec + "/" + std::to_string(v.batch) + (v.coherence ? "/coherent" : "");
-        for (const char *route : {"dense", "medium", "open"}) {
+        // The city's routes, and random views from inside its bounds (eyes in
+        // buildings and streets alike, looking anywhere).
+        for (const char *route : {"dense", "medium", "open", "random:6:2026"}) {
             const auto cameras = make_route(route, small.scene.bounds, small.city, 5, 1.0f);
             for (std::size_t f = 0; f < cameras.size(); ++f) {
                 const VisibilityTruth truth = oracle.see(cameras[f], 128, 128);
