@@ -20,36 +20,31 @@
  */
 #include "ou_util.h"
 
-static PFNGLGENFRAMEBUFFERSPROC GenFramebuffers;
-static PFNGLBINDFRAMEBUFFERPROC BindFramebuffer;
-static PFNGLGENRENDERBUFFERSPROC GenRenderbuffers;
-static PFNGLBINDRENDERBUFFERPROC BindRenderbuffer;
-static PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage;
-static PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer;
-static PFNGLCHECKFRAMEBUFFERSTATUSPROC CheckFramebufferStatus;
-
+static struct ou_fbo_functions f;
 static GLuint colour, depth;
 
 static void
 storage(int size)
 {
-    BindRenderbuffer(GL_RENDERBUFFER, colour);
-    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, size, size);
-    BindRenderbuffer(GL_RENDERBUFFER, depth);
-    RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, size, size);
+    f.BindRenderbuffer(GL_RENDERBUFFER, colour);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, size, size);
+    f.BindRenderbuffer(GL_RENDERBUFFER, depth);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, size, size);
 }
 
+/* Not ou_make_fbo: checking completeness would validate the framebuffer,
+ * which is what a pass right after binding must do by itself. */
 static GLuint
 make_fbo(int size)
 {
     GLuint fbo;
-    GenFramebuffers(1, &fbo);
-    GenRenderbuffers(1, &colour);
-    GenRenderbuffers(1, &depth);
+    f.GenFramebuffers(1, &fbo);
+    f.GenRenderbuffers(1, &colour);
+    f.GenRenderbuffers(1, &depth);
     storage(size);
-    BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
-    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    f.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
     return fbo;
 }
 
@@ -87,13 +82,7 @@ expect(const char *name, GLuint nohc, GLuint expected)
 int main(int argc, char **argv)
 {
     ou_init(argc, argv, 32, 32);
-    GenFramebuffers = (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
-    BindFramebuffer = (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
-    GenRenderbuffers = (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
-    BindRenderbuffer = (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
-    RenderbufferStorage = (PFNGLRENDERBUFFERSTORAGEPROC)piglit_get_proc_address("glRenderbufferStorage");
-    FramebufferRenderbuffer = (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
-    CheckFramebufferStatus = (PFNGLCHECKFRAMEBUFFERSTATUSPROC)piglit_get_proc_address("glCheckFramebufferStatus");
+    f = ou_fbo_functions();
     glDisable(GL_DEPTH_TEST);
 
     /* The window, drawn once, so that the GL has validated a 32 x 32 framebuffer. */
@@ -108,7 +97,7 @@ int main(int argc, char **argv)
     glViewport(0, 0, 128, 128);
     expect("reallocated-fbo-first-pass-counts-whole", pass_over(128, true), 128 * 128);
 
-    BindFramebuffer(GL_FRAMEBUFFER, 0);
+    f.BindFramebuffer(GL_FRAMEBUFFER, 0);
     ou_rect(0, 0, 32, 32, 0.5f);
     glFinish();
     make_fbo(48);

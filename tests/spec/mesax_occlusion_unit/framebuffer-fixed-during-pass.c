@@ -8,10 +8,10 @@
  * after the pass all of these work again.
  *
  * Subtests:
- *   bind-other-draw-invalid-operation   BindFramebuffer(DRAW or FRAMEBUFFER)
+ *   bind-other-draw-invalid-operation   f.BindFramebuffer(DRAW or FRAMEBUFFER)
  *                                       of another object; the binding stays
  *                                       and a 8 x 8 draw counts 64
- *   bind-read-allowed                   BindFramebuffer(READ) of another
+ *   bind-read-allowed                   f.BindFramebuffer(READ) of another
  *   bind-same-draw-allowed              the draw framebuffer again
  *   attach-renderbuffer-invalid-operation
  *   attach-texture-invalid-operation
@@ -21,29 +21,9 @@
  */
 #include "ou_util.h"
 
-static PFNGLGENFRAMEBUFFERSPROC GenFramebuffers;
-static PFNGLBINDFRAMEBUFFERPROC BindFramebuffer;
-static PFNGLGENRENDERBUFFERSPROC GenRenderbuffers;
-static PFNGLBINDRENDERBUFFERPROC BindRenderbuffer;
-static PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage;
-static PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer;
-static PFNGLFRAMEBUFFERTEXTURE2DPROC FramebufferTexture2D;
-static PFNGLGETRENDERBUFFERPARAMETERIVPROC GetRenderbufferParameteriv;
-
-static GLuint fbo[2], colour[2], depth, texture;
+static struct ou_fbo_functions f;
+static GLuint fbo[2], colour[1], depth, texture;
 static GLuint record[8];
-
-static GLuint
-make_fbo(int i)
-{
-    GenFramebuffers(1, &fbo[i]);
-    GenRenderbuffers(1, &colour[i]);
-    BindRenderbuffer(GL_RENDERBUFFER, colour[i]);
-    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 32, 32);
-    BindFramebuffer(GL_FRAMEBUFFER, fbo[i]);
-    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour[i]);
-    return fbo[i];
-}
 
 static void
 begin_pass(void)
@@ -75,21 +55,17 @@ draw_binding(void)
 int main(int argc, char **argv)
 {
     ou_init(argc, argv, 32, 32);
-    GenFramebuffers = (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
-    BindFramebuffer = (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
-    GenRenderbuffers = (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
-    BindRenderbuffer = (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
-    RenderbufferStorage = (PFNGLRENDERBUFFERSTORAGEPROC)piglit_get_proc_address("glRenderbufferStorage");
-    FramebufferRenderbuffer = (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
-    FramebufferTexture2D = (PFNGLFRAMEBUFFERTEXTURE2DPROC)piglit_get_proc_address("glFramebufferTexture2D");
-    GetRenderbufferParameteriv =
+    f = ou_fbo_functions();
+    PFNGLGETRENDERBUFFERPARAMETERIVPROC GetRenderbufferParameteriv =
         (PFNGLGETRENDERBUFFERPARAMETERIVPROC)piglit_get_proc_address("glGetRenderbufferParameteriv");
     glDisable(GL_DEPTH_TEST);
-    make_fbo(1);
-    make_fbo(0);   /* bound */
-    GenRenderbuffers(1, &depth);
-    BindRenderbuffer(GL_RENDERBUFFER, depth);
-    RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, 32, 32);
+    GLuint unused[2];
+    fbo[1] = ou_make_fbo(&f, 32, 32, 0, false, unused);
+    fbo[0] = ou_make_fbo(&f, 32, 32, 0, false, unused);   /* bound; no depth attached */
+    colour[0] = unused[0];
+    f.GenRenderbuffers(1, &depth);
+    f.BindRenderbuffer(GL_RENDERBUFFER, depth);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, 32, 32);
     glGenTextures(1, &texture);
     glBindTexture(GL_TEXTURE_2D, texture);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 32, 32, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
@@ -97,28 +73,28 @@ int main(int argc, char **argv)
         ;
 
     begin_pass();
-    BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo[1]);
+    f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo[1]);
     bool ok = glGetError() == GL_INVALID_OPERATION;
-    BindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
+    f.BindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
     ok = ok && glGetError() == GL_INVALID_OPERATION && draw_binding() == (GLint)fbo[0];
     ou_rect(4, 4, 12, 12, 0.5f);
     subtest(end_pass() == 64 && ok, "bind-other-draw-invalid-operation");
 
     begin_pass();
-    BindFramebuffer(GL_READ_FRAMEBUFFER, fbo[1]);
+    f.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo[1]);
     ok = glGetError() == GL_NO_ERROR;
-    BindFramebuffer(GL_READ_FRAMEBUFFER, fbo[0]);
+    f.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo[0]);
     end_pass();
     subtest(ok, "bind-read-allowed");
 
     begin_pass();
-    BindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
+    f.BindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
     ok = glGetError() == GL_NO_ERROR;
     ou_rect(4, 4, 12, 12, 0.5f);
     subtest(end_pass() == 64 && ok, "bind-same-draw-allowed");
 
     begin_pass();
-    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
     GLint type = -1;
     PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC GetAttachment = (PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC)
         piglit_get_proc_address("glGetFramebufferAttachmentParameteriv");
@@ -128,15 +104,15 @@ int main(int argc, char **argv)
     subtest(ok && type == GL_NONE, "attach-renderbuffer-invalid-operation");
 
     begin_pass();
-    FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, texture, 0);
+    f.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, texture, 0);
     ok = glGetError() == GL_INVALID_OPERATION;
     end_pass();
     GetAttachment(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
     subtest(ok && type == GL_NONE, "attach-texture-invalid-operation");
 
     begin_pass();
-    BindRenderbuffer(GL_RENDERBUFFER, colour[0]);
-    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 64, 64);
+    f.BindRenderbuffer(GL_RENDERBUFFER, colour[0]);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 64, 64);
     ok = glGetError() == GL_INVALID_OPERATION;
     ou_rect(0, 0, 32, 32, 0.5f);
     const GLuint whole = end_pass();
@@ -144,10 +120,10 @@ int main(int argc, char **argv)
     GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &width);
     subtest(ok && width == 32 && whole == 32 * 32, "reallocate-attached-invalid-operation");
 
-    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, texture, 0);
-    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 32, 32);
-    BindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    f.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, texture, 0);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 32, 32);
+    f.BindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
     subtest(glGetError() == GL_NO_ERROR && draw_binding() == (GLint)fbo[1], "all-allowed-after-pass");
     piglit_report_result(result);
 }

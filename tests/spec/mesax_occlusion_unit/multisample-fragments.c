@@ -43,40 +43,18 @@ int main(int argc, char **argv)
         printf("%s has no 4x multisampling (GL_MAX_SAMPLES %d)\n", (const char *)glGetString(GL_RENDERER), max_samples);
         piglit_report_result(PIGLIT_SKIP);
     }
-    PFNGLGENFRAMEBUFFERSPROC GenFramebuffers = (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
-    PFNGLBINDFRAMEBUFFERPROC BindFramebuffer = (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
-    PFNGLGENRENDERBUFFERSPROC GenRenderbuffers = (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
-    PFNGLBINDRENDERBUFFERPROC BindRenderbuffer = (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
-    PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC Storage =
-        (PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC)piglit_get_proc_address("glRenderbufferStorageMultisample");
-    PFNGLFRAMEBUFFERRENDERBUFFERPROC Attach =
-        (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
-    PFNGLCHECKFRAMEBUFFERSTATUSPROC Status =
-        (PFNGLCHECKFRAMEBUFFERSTATUSPROC)piglit_get_proc_address("glCheckFramebufferStatus");
-    GLuint fbo, rb[2];
-    GenFramebuffers(1, &fbo);
-    GenRenderbuffers(2, rb);
-    BindRenderbuffer(GL_RENDERBUFFER, rb[0]);
-    Storage(GL_RENDERBUFFER, 4, GL_RGBA8, S, S);
-    BindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-    Storage(GL_RENDERBUFFER, 4, GL_DEPTH_COMPONENT24, S, S);
-    BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    Attach(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-    Attach(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
-    if (Status(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        printf("a 4x framebuffer object is incomplete\n");
-        piglit_report_result(PIGLIT_FAIL);
-    }
+    const struct ou_fbo_functions f = ou_fbo_functions();
+    GLuint rb[2];
+    const GLuint fbo = ou_make_fbo(&f, S, S, 4, true, rb);
     /* The rectangle's fragments: drawn in GL_RENDER over black, resolved
      * into a single-sample framebuffer, read back. */
-    PFNGLBLITFRAMEBUFFERPROC Blit = (PFNGLBLITFRAMEBUFFERPROC)piglit_get_proc_address("glBlitFramebuffer");
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     glColor3f(1, 1, 1);
     ou_rect(8, 8, 24, 24, 0.5f);
-    BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    Blit(0, 0, S, S, 0, 0, S, S, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    BindFramebuffer(GL_FRAMEBUFFER, 0);
+    f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    f.BlitFramebuffer(0, 0, S, S, 0, 0, S, S, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    f.BindFramebuffer(GL_FRAMEBUFFER, 0);
     static GLubyte pixels[S * S * 4];
     glReadPixels(0, 0, S, S, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
     GLuint fragments = 0, right_of_occluder = 0;
@@ -85,7 +63,7 @@ int main(int argc, char **argv)
             ++fragments;
             right_of_occluder += i % S >= 16;
         }
-    BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    f.BindFramebuffer(GL_FRAMEBUFFER, fbo);
     printf("the rectangle changes %u pixels, %u right of x = 16\n", fragments, right_of_occluder);
     if (fragments < 256) {
         printf("fewer pixels than the rectangle's 256\n");

@@ -196,4 +196,67 @@ ou_brief_pass(int num_tiles, const GLint *tiles, GLuint (*records)[OU_BRIEF_SIZE
     return r;
 }
 
+/* Framebuffer-object entry points (OpenGL 3.0, ARB_framebuffer_object). */
+struct ou_fbo_functions {
+    PFNGLGENFRAMEBUFFERSPROC GenFramebuffers;
+    PFNGLBINDFRAMEBUFFERPROC BindFramebuffer;
+    PFNGLGENRENDERBUFFERSPROC GenRenderbuffers;
+    PFNGLBINDRENDERBUFFERPROC BindRenderbuffer;
+    PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage;
+    PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC RenderbufferStorageMultisample;
+    PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer;
+    PFNGLFRAMEBUFFERTEXTURE2DPROC FramebufferTexture2D;
+    PFNGLCHECKFRAMEBUFFERSTATUSPROC CheckFramebufferStatus;
+    PFNGLBLITFRAMEBUFFERPROC BlitFramebuffer;
+};
+
+static inline struct ou_fbo_functions
+ou_fbo_functions(void)
+{
+    struct ou_fbo_functions f;
+    f.GenFramebuffers = (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
+    f.BindFramebuffer = (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
+    f.GenRenderbuffers = (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
+    f.BindRenderbuffer = (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
+    f.RenderbufferStorage = (PFNGLRENDERBUFFERSTORAGEPROC)piglit_get_proc_address("glRenderbufferStorage");
+    f.RenderbufferStorageMultisample =
+        (PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC)piglit_get_proc_address("glRenderbufferStorageMultisample");
+    f.FramebufferRenderbuffer =
+        (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
+    f.FramebufferTexture2D = (PFNGLFRAMEBUFFERTEXTURE2DPROC)piglit_get_proc_address("glFramebufferTexture2D");
+    f.CheckFramebufferStatus = (PFNGLCHECKFRAMEBUFFERSTATUSPROC)piglit_get_proc_address("glCheckFramebufferStatus");
+    f.BlitFramebuffer = (PFNGLBLITFRAMEBUFFERPROC)piglit_get_proc_address("glBlitFramebuffer");
+    return f;
+}
+
+/* Makes and binds a framebuffer object of width x height: an RGBA8 colour
+ * renderbuffer and, with `depth`, a 24-bit depth one, of `samples` samples
+ * (0: single-sampled); their names go to renderbuffers[0] and [1]. Fails
+ * the test when the object is incomplete. */
+static inline GLuint
+ou_make_fbo(const struct ou_fbo_functions *f, int width, int height, int samples, bool depth,
+            GLuint renderbuffers[2])
+{
+    GLuint fbo;
+    f->GenFramebuffers(1, &fbo);
+    f->GenRenderbuffers(depth ? 2 : 1, renderbuffers);
+    const GLenum formats[2] = {GL_RGBA8, GL_DEPTH_COMPONENT24};
+    for (int i = 0; i < (depth ? 2 : 1); ++i) {
+        f->BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[i]);
+        if (samples > 0)
+            f->RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, formats[i], width, height);
+        else
+            f->RenderbufferStorage(GL_RENDERBUFFER, formats[i], width, height);
+    }
+    f->BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    f->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffers[0]);
+    if (depth)
+        f->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffers[1]);
+    if (f->CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        printf("a %dx%d framebuffer object of %d samples is incomplete\n", width, height, samples);
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    return fbo;
+}
+
 #endif

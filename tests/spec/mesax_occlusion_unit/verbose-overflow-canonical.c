@@ -112,24 +112,9 @@ int main(int argc, char **argv)
     }
     subtest(same, "same-record-30-times");
 
-    PFNGLGENFRAMEBUFFERSPROC GenFramebuffers = (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
-    PFNGLBINDFRAMEBUFFERPROC BindFramebuffer = (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
-    PFNGLGENRENDERBUFFERSPROC GenRenderbuffers = (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
-    PFNGLBINDRENDERBUFFERPROC BindRenderbuffer = (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
-    PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage =
-        (PFNGLRENDERBUFFERSTORAGEPROC)piglit_get_proc_address("glRenderbufferStorage");
-    PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer =
-        (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
-    GLuint fbo, rb[2];
-    GenFramebuffers(1, &fbo);
-    GenRenderbuffers(2, rb);
-    BindRenderbuffer(GL_RENDERBUFFER, rb[0]);
-    RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, S, S);
-    BindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-    RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, S, S);
-    BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-    FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    const struct ou_fbo_functions f = ou_fbo_functions();
+    GLuint rb[2];
+    ou_make_fbo(&f, S, S, 0, true, rb);
     glClear(GL_DEPTH_BUFFER_BIT);
     prefix_of_true_list("fbo-rows-keep-gl-order", occluded_triangles, 300);
 
