@@ -21,7 +21,9 @@ as_root() {
 
 # The build: gallium's software rasterizers only (softpipe, llvmpipe on LLVM 15),
 # OSMesa, and EGL (surfaceless is always built with EGL) behind glvnd so that
-# unmodified programs linked to libGL/libEGL reach this Mesa. Nothing else.
+# unmodified programs linked to libGL/libEGL reach this Mesa, and Mesa's own unit
+# tests (tools/test runs those of src/mesa/main: the extension table's order, enum
+# strings, formats). Nothing else.
 MESA_OPTIONS=(
     --buildtype=release -Db_ndebug=true
     -Dplatforms= -Dgallium-drivers=swrast -Dvulkan-drivers=
@@ -34,5 +36,5 @@ MESA_OPTIONS=(
     -Dgallium-rusticl=false -Dvideo-codecs=
     -Dmicrosoft-clc=disabled -Dintel-clc=disabled -Dspirv-to-dxil=false
     -Dvalgrind=disabled -Dlibunwind=disabled -Dlmsensors=disabled -Dselinux=false
-    -Dbuild-tests=false -Dtools=
+    -Dbuild-tests=true -Dtools=
 )

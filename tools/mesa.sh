@@ -125,6 +125,13 @@ if ! ninja -C "$build" install >"$top/build-$variant.log" 2>&1; then
     die "Mesa build failed (log: $top/build-$variant.log)"
 fi
 
+# Mesa's own unit tests of src/mesa/main (extension table order, enum strings,
+# formats), kept with the install they were built with: tools/test runs them.
+mkdir -p "$prefix/occu/tests"
+if [ -x "$build/src/mesa/main/tests/main_test" ]; then
+    cp "$build/src/mesa/main/tests/main_test" "$prefix/occu/tests/mesa_main_test"
+fi
+
 # glvnd finds vendors through JSON files; programs are pointed at this one (absolute
 # path, so that no system Mesa is picked instead) with __EGL_VENDOR_LIBRARY_FILENAMES.
 mkdir -p "$prefix/occu"
