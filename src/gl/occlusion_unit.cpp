@@ -41,16 +41,20 @@ OcclusionPass::OcclusionPass(const OcclusionUnit &unit, OcclusionMode mode, cons
     if (list_pixels.size() > 1 && list_pixels.size() != tiles_)
         throw std::invalid_argument("verbose list sizes for " + std::to_string(list_pixels.size()) + " tiles, the pass has " +
                                     std::to_string(tiles_));
-    std::vector<GLuint *> buffers(tiles_);
-    std::vector<GLsizei> sizes(tiles_);
+    // One allocation for the pass: tile i's buffer is sizes[i] words of it
+    // at its own offset (spec, section 5.X), not an allocation per tile.
+    offsets_.assign(tiles_ + 1, 0);
     for (std::size_t i = 0; i < tiles_; ++i) {
         const std::size_t pixels = list_pixels.empty() ? 0 : list_pixels[list_pixels.size() == 1 ? 0 : i];
         // Room for the pairs and the terminator of an overflowed list.
-        const std::size_t size = record_words + (mode == OcclusionMode::verbose ? 2 * pixels + 1 : 0);
-        words_.emplace_back(new GLuint[size]);
-        sizes_.push_back(size);
-        buffers[i] = words_[i].get();
-        sizes[i] = GLsizei(size);
+        offsets_[i + 1] = offsets_[i] + record_words + (mode == OcclusionMode::verbose ? 2 * pixels + 1 : 0);
+    }
+    words_.reset(new GLuint[offsets_[tiles_]]);
+    std::vector<GLuint *> buffers(tiles_);
+    std::vector<GLsizei> sizes(tiles_);
+    for (std::size_t i = 0; i < tiles_; ++i) {
+        buffers[i] = words_.get() + offsets_[i];
+        sizes[i] = GLsizei(offsets_[i + 1] - offsets_[i]);
     }
     std::vector<GLint> rects;
     for (const PixelRect &t : tiles)
@@ -75,7 +79,7 @@ const std::vector<OcclusionRecord> &OcclusionPass::end()
     unit_.Scissors_(0, nullptr);
     records_.resize(tiles_);
     for (std::size_t i = 0; i < tiles_; ++i) {
-        const GLuint *w = words_[i].get();
+        const GLuint *w = words_.get() + offsets_[i];
         OcclusionRecord &r = records_[i];
         r.nohc = w[0];
         r.phc = w[1];
@@ -88,7 +92,7 @@ const std::vector<OcclusionRecord> &OcclusionPass::end()
         if (mode_ != OcclusionMode::verbose)
             continue;
         // All NOHC pairs when they fit, else as many as fit before a terminator.
-        const std::size_t room = (sizes_[i] - record_words) / 2;
+        const std::size_t room = (offsets_[i + 1] - offsets_[i] - record_words) / 2;
         const std::size_t listed = std::min<std::size_t>(r.nohc, room);
         r.overflowed = std::size_t(r.nohc) > room;
         r.pixels.reserve(listed);

@@ -79,8 +79,8 @@ private:
     OcclusionMode mode_;
     std::size_t tiles_;
     bool ended_ = false;
-    std::vector<std::unique_ptr<GLuint[]>> words_;   // the GL writes what is read; no need to clear
-    std::vector<std::size_t> sizes_;
+    std::unique_ptr<GLuint[]> words_;   // every tile's record; the GL writes what is read, no need to clear
+    std::vector<std::size_t> offsets_;  // tile i's record is words_[offsets_[i], offsets_[i + 1])
     std::vector<OcclusionRecord> records_;
 };
 
