@@ -1,0 +1,352 @@
+#include "raster/depth_rasterizer.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "raster/raster_kernels.h"
+
+namespace occu {
+
+namespace {
+
+using raster::max_edges;
+using raster::tile_pixels;
+using raster::tile_size;
+
+// The guard band, in viewports: polygons reaching past twice the viewport
+// on either side are clipped there, so window coordinates stay within a
+// few thousand pixels, where float edge functions are exact enough.
+constexpr double guard = 2.0;
+
+// How far GL may place an edge from where we compute it, in frame pixels:
+// llvmpipe snaps vertices to 1/256 pixel and transforms in its own float
+// order; a sixteenth of a pixel is far above both.
+constexpr double edge_margin = 1.0 / 16.0;
+
+// How much nearer than our plane GL's depth at a sample may be: a 24-bit
+// depth buffer's step (2^-24), float interpolation in GL and here. 2^-20
+// is sixteen such steps.
+constexpr double depth_margin = 1.0 / (1 << 20);
+
+// Relative float error of an edge or depth function evaluated over the
+// buffer: a few roundings of the largest term.
+constexpr double float_error = 4.0 * std::numeric_limits<float>::epsilon();
+
+// Signed distances of clip-space vertex v to the clip planes: near, then
+// the guard band's four sides. Inside where >= 0.
+double plane_distance(const glm::dvec4 &v, int plane)
+{
+    switch (plane) {
+    case 0: return v.z + v.w;
+    case 1: return guard * v.w - v.x;
+    case 2: return guard * v.w + v.x;
+    case 3: return guard * v.w - v.y;
+    default: return guard * v.w + v.y;
+    }
+}
+
+}  // namespace
+
+bool DepthRasterizer::avx2_supported()
+{
+#if defined(__x86_64__) || defined(__i386__)
+    return __builtin_cpu_supports("avx2");
+#else
+    return false;
+#endif
+}
+
+DepthRasterizer::DepthRasterizer(Isa isa) : isa_(isa)
+{
+    if (isa == Isa::avx2 && !avx2_supported())
+        throw std::invalid_argument("the depth rasterizer's AVX2 path needs a CPU with AVX2");
+}
+
+void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, int frame_height,
+                            const Options &options)
+{
+    if (frame_width < 1 || frame_height < 1 || options.divisor < 1)
+        throw std::invalid_argument("depth rasterizer: frame " + std::to_string(frame_width) + " x " +
+                                    std::to_string(frame_height) + " with divisor " + std::to_string(options.divisor) +
+                                    " (each must be at least 1)");
+    options_ = options;
+    view_projection_ = view_projection;
+    frame_width_ = frame_width;
+    frame_height_ = frame_height;
+    width_ = (frame_width + options.divisor - 1) / options.divisor;
+    height_ = (frame_height + options.divisor - 1) / options.divisor;
+    tiles_x_ = (width_ + tile_size - 1) / tile_size;
+    tiles_y_ = (height_ + tile_size - 1) / tile_size;
+    const std::size_t tiles = std::size_t(tiles_x_) * std::size_t(tiles_y_);
+    tiles_.assign(tiles * tile_pixels, 1.0f);
+    tile_max_.assign(tiles, 1.0f);
+    dirty_.assign(tiles, 0);
+    any_dirty_ = false;
+    stats_ = {};
+}
+
+void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::uint32_t *indices,
+                                       std::size_t triangle_count)
+{
+    glm::vec4 clip[3];
+    for (std::size_t t = 0; t < triangle_count; ++t) {
+        for (int i = 0; i < 3; ++i)
+            clip[i] = view_projection_ * glm::vec4(positions[indices[3 * t + std::size_t(i)]], 1.0f);
+        polygon(clip, 3);
+    }
+}
+
+void DepthRasterizer::render_quads(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t quad_count)
+{
+    glm::vec4 clip[4];
+    for (std::size_t q = 0; q < quad_count; ++q) {
+        for (int i = 0; i < 4; ++i)
+            clip[i] = view_projection_ * glm::vec4(positions[indices[4 * q + std::size_t(i)]], 1.0f);
+        polygon(clip, 4);
+    }
+}
+
+void DepthRasterizer::render_box(const Aabb &box)
+{
+    // Corners by Aabb::corner's bits; each face counter-clockwise seen from
+    // outside, so back-face culling after projection keeps the faces that
+    // face the eye (section 5's N . L < 0).
+    static const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    glm::vec4 corners[8];
+    for (int i = 0; i < 8; ++i)
+        corners[i] = view_projection_ * glm::vec4(box.corner(i), 1.0f);
+    glm::vec4 quad[4];
+    for (const auto &face : faces) {
+        for (int i = 0; i < 4; ++i)
+            quad[i] = corners[face[i]];
+        polygon(quad, 4);
+    }
+}
+
+void DepthRasterizer::polygon(const glm::vec4 *clip, int count)
+{
+    ++stats_.polygons;
+    // Outside one clip plane with every vertex (the far plane included):
+    // GL draws nothing of it.
+    unsigned all_out = 63;
+    bool needs_clip = false;
+    for (int i = 0; i < count; ++i) {
+        const glm::vec4 &v = clip[i];
+        unsigned out = 0;
+        out |= (v.x > v.w) << 0 | (v.x < -v.w) << 1 | (v.y > v.w) << 2 | (v.y < -v.w) << 3 | (v.z > v.w) << 4 |
+               (v.z < -v.w) << 5;
+        all_out &= out;
+        const float g = float(guard) * v.w;
+        needs_clip |= v.z < -v.w || v.x > g || v.x < -g || v.y > g || v.y < -g || !(v.w > 0.0f);
+    }
+    if (all_out)
+        return;
+    if (!std::isfinite(clip[0].x + clip[0].y + clip[0].z + clip[0].w))
+        return;   // a non-finite transform (the caller's matrix or position): nothing to draw
+
+    glm::vec2 window[max_edges];
+    float depth[max_edges];
+    const float sx = 0.5f * float(frame_width_) / float(options_.divisor);
+    const float sy = 0.5f * float(frame_height_) / float(options_.divisor);
+    if (!needs_clip) {
+        for (int i = 0; i < count; ++i) {
+            const float inv = 1.0f / clip[i].w;
+            window[i] = {(clip[i].x * inv + 1.0f) * sx, (clip[i].y * inv + 1.0f) * sy};
+            depth[i] = clip[i].z * inv * 0.5f + 0.5f;
+        }
+        rasterize(window, depth, count);
+        return;
+    }
+
+    // Sutherland-Hodgman against the near plane and the guard band, in
+    // double: a clipped vertex lies on its polygon's edge, up to rounding
+    // far below the edge margin.
+    ++stats_.clipped;
+    glm::dvec4 a[max_edges], b[max_edges];
+    int n = count;
+    for (int i = 0; i < count; ++i)
+        a[i] = glm::dvec4(clip[i]);
+    for (int plane = 0; plane < 5 && n > 0; ++plane) {
+        int m = 0;
+        for (int i = 0; i < n; ++i) {
+            const glm::dvec4 &p = a[i], &q = a[(i + 1) % n];
+            const double dp = plane_distance(p, plane), dq = plane_distance(q, plane);
+            if (dp >= 0.0)
+                b[m++] = p;
+            if ((dp >= 0.0) != (dq >= 0.0)) {
+                const double t = dp / (dp - dq);
+                b[m++] = p + t * (q - p);
+            }
+        }
+        n = m;
+        for (int i = 0; i < n; ++i)
+            a[i] = b[i];
+    }
+    if (n < 3)
+        return;
+    for (int i = 0; i < n; ++i) {
+        if (!(a[i].w > 0.0))
+            return;   // only an orthographic view at w <= 0, which draws nothing
+        const double inv = 1.0 / a[i].w;
+        window[i] = {float((a[i].x * inv + 1.0) * double(sx)), float((a[i].y * inv + 1.0) * double(sy))};
+        depth[i] = float(a[i].z * inv * 0.5 + 0.5);
+    }
+    rasterize(window, depth, n);
+}
+
+void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int n)
+{
+    // Front faces wind counter-clockwise in window coordinates (y up).
+    double area = 0.0;
+    glm::vec2 lo = window[0], hi = window[0];
+    float farthest = depth[0];
+    for (int i = 0; i < n; ++i) {
+        const glm::vec2 &p = window[i], &q = window[(i + 1) % n];
+        area += double(p.x) * double(q.y) - double(q.x) * double(p.y);
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+        farthest = std::max(farthest, depth[i]);
+    }
+    if (!(area > 0.0))
+        return;   // a back face or no area
+
+    // Depth pixel X holds samples at X + (i + 0.5) / k, i < k: the frame
+    // pixels' centres. X is covered only if all of them are inside, so X
+    // ranges over [lo - first, hi - last] with first = 0.5 / k and last
+    // = (k - 0.5) / k.
+    const double k = options_.divisor;
+    const double first = 0.5 / k, last = (k - 0.5) / k;
+    raster::PolygonSetup s;
+    s.x0 = std::max(0, int(std::ceil(double(lo.x) - first)));
+    s.y0 = std::max(0, int(std::ceil(double(lo.y) - first)));
+    s.x1 = std::min(width_, int(std::floor(double(hi.x) - last)) + 1);
+    s.y1 = std::min(height_, int(std::floor(double(hi.y) - last)) + 1);
+    if (s.x0 >= s.x1 || s.y0 >= s.y1)
+        return;   // covers no depth pixel wholly
+    ++stats_.rasterized;
+
+    // Coordinates are bounded by the guard band; errors scale with them.
+    const double extent = guard * std::max(width_, height_) + tile_size;
+
+    // Edge e from p to q: E(u, v) = a u + b v + c, >= 0 on the inside.
+    // The smallest E over a pixel's samples is at the sample nearest the
+    // edge's outside: first or last on each axis by the signs of a and b.
+    s.edges = n;
+    for (int e = 0; e < n; ++e) {
+        const glm::dvec2 p(window[e]), q(window[(e + 1) % n]);
+        const double a = p.y - q.y, b = q.x - p.x, c = -(a * p.x + b * p.y);
+        const double folded = c + a * (a > 0.0 ? first : last) + b * (b > 0.0 ? first : last);
+        const double margin = (std::abs(a) + std::abs(b)) * (edge_margin / k) +
+                              float_error * ((std::abs(a) + std::abs(b)) * extent + std::abs(folded));
+        s.ea[e] = float(a);
+        s.eb[e] = float(b);
+        s.ec[e] = float(folded - margin);
+    }
+
+    // Depth: the farthest over the samples, never past the farthest vertex
+    // (a linear function over a convex polygon peaks at a vertex).
+    s.zcap = float(double(farthest) + depth_margin);
+    if (!options_.per_pixel_depth) {
+        s.za = s.zb = 0.0f;
+        s.zc = s.zcap;
+    } else {
+        // The plane through vertex 0 and the pair spanning the largest
+        // triangle with it, then lifted so that no vertex lies above it
+        // (rounding makes a quad's four points not quite coplanar).
+        int best = 1;
+        double best_area = 0.0;
+        const glm::dvec2 o(window[0]);
+        for (int j = 1; j + 1 < n; ++j) {
+            const glm::dvec2 u = glm::dvec2(window[j]) - o, v = glm::dvec2(window[j + 1]) - o;
+            const double twice = u.x * v.y - u.y * v.x;
+            if (twice > best_area) {
+                best_area = twice;
+                best = j;
+            }
+        }
+        const glm::dvec2 u = glm::dvec2(window[best]) - o, v = glm::dvec2(window[best + 1]) - o;
+        const double du = double(depth[best]) - depth[0], dv = double(depth[best + 1]) - depth[0];
+        const double za = (du * v.y - dv * u.y) / best_area, zb = (dv * u.x - du * v.x) / best_area;
+        double zc = double(depth[0]) - za * o.x - zb * o.y;
+        double lift = 0.0;
+        for (int i = 0; i < n; ++i)
+            lift = std::max(lift, double(depth[i]) - (za * window[i].x + zb * window[i].y + zc));
+        zc += lift + za * (za > 0.0 ? last : first) + zb * (zb > 0.0 ? last : first);
+        zc += depth_margin + float_error * ((std::abs(za) + std::abs(zb)) * extent + std::abs(zc));
+        s.za = float(za);
+        s.zb = float(zb);
+        s.zc = float(zc);
+        if (!std::isfinite(s.za) || !std::isfinite(s.zb) || !std::isfinite(s.zc)) {
+            s.za = s.zb = 0.0f;   // a sliver with no usable plane: its farthest vertex
+            s.zc = s.zcap;
+        }
+    }
+
+    const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), tiles_x_, tiles_x_ * tile_size};
+    if (isa_ == Isa::avx2)
+        raster::fill_avx2(s, buffer);
+    else
+        raster::fill_scalar(s, buffer);
+    any_dirty_ = true;
+}
+
+void DepthRasterizer::update_tile_maxima() const
+{
+    for (std::size_t t = 0; t < dirty_.size(); ++t) {
+        if (!dirty_[t])
+            continue;
+        const float *tile = tiles_.data() + t * tile_pixels;
+        float m = tile[0];
+        for (int i = 1; i < tile_pixels; ++i)
+            m = std::max(m, tile[i]);
+        tile_max_[t] = m;
+        dirty_[t] = 0;
+    }
+    any_dirty_ = false;
+}
+
+bool DepthRasterizer::occluded(const PixelRect &frame_rect, float z) const
+{
+    if (!(z == z))
+        return false;   // NaN depth: nothing is known
+    const PixelRect m = frame_rect.clamped({0, 0, frame_width_, frame_height_})
+                            .to_map(options_.divisor)
+                            .clamped({0, 0, width_, height_});
+    if (m.empty())
+        return true;
+    if (any_dirty_)
+        update_tile_maxima();
+    for (int ty = m.y0 / tile_size; ty <= (m.y1 - 1) / tile_size; ++ty)
+        for (int tx = m.x0 / tile_size; tx <= (m.x1 - 1) / tile_size; ++tx) {
+            const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
+            if (tile_max_[t] < z)
+                continue;   // the whole tile, padding included, is nearer
+            const int c0 = std::max(m.x0 - tx * tile_size, 0), c1 = std::min(m.x1 - tx * tile_size, tile_size);
+            const int r0 = std::max(m.y0 - ty * tile_size, 0), r1 = std::min(m.y1 - ty * tile_size, tile_size);
+            const float *tile = tiles_.data() + t * tile_pixels;
+            const bool behind = isa_ == Isa::avx2 ? raster::tile_behind_avx2(tile, c0, c1, r0, r1, z)
+                                                  : raster::tile_behind_scalar(tile, c0, c1, r0, r1, z);
+            if (!behind)
+                return false;
+        }
+    return true;
+}
+
+float DepthRasterizer::depth(int x, int y) const
+{
+    const std::size_t t = std::size_t(y / tile_size) * std::size_t(tiles_x_) + std::size_t(x / tile_size);
+    return tiles_[t * tile_pixels + std::size_t(y % tile_size) * tile_size + std::size_t(x % tile_size)];
+}
+
+void DepthRasterizer::read(std::vector<float> &out) const
+{
+    out.resize(std::size_t(width_) * std::size_t(height_));
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x)
+            out[std::size_t(y) * std::size_t(width_) + std::size_t(x)] = depth(x, y);
+}
+
+}  // namespace occu

@@ -1,0 +1,117 @@
+// A CPU depth rasterizer for occluders, in the manner of Leone et al.,
+// "Implementing Software Occlusion Culling for Real-Time Applications":
+// occluder triangles and quads (quads natively, section 7) go into a
+// downscaled, tiled depth buffer (section 7: a quarter of the frame's
+// pixels by default), and an occludee is a screen rectangle with one depth,
+// its nearest, tested with an early out (section 6).
+//
+// Conventions (the Culler's, culling/culler.h): positions are world space;
+// the view-projection matrix is OpenGL's (clip z in [-w, w]); window depth
+// is in [0, 1], 0 nearest, and the cleared buffer holds 1 (nothing). Front
+// faces wind counter-clockwise on screen, as GL's default, and back faces
+// are skipped (the frame is drawn with back-face culling, so a back face
+// hides nothing there). The buffer has ceil(W / k) x ceil(H / k) depth
+// pixels for a frame of W x H pixels and a divisor k; depth pixel (X, Y)
+// holds the frame pixels [kX, kX + k) x [kY, kY + k), (0, 0) lower left.
+//
+// Conservative by construction, against the frame GL draws at full
+// resolution: a depth pixel is covered by a polygon only when the polygon
+// holds the centres of all k x k frame pixels in it (the samples GL's
+// rasterization uses), less a margin for GL's subpixel snapping and float
+// rounding; its depth is then the polygon's farthest depth over those
+// samples, never nearer than GL's depth at any of them. A polygon that
+// covers no depth pixel wholly leaves the buffer alone: occluders fuse in
+// the buffer (section 3), not within a depth pixel.
+//
+// Clipping (section 5): polygons are clipped against the near plane only
+// where they cross it, so that no vertex has w <= 0; those reaching far
+// outside the viewport are also clipped to a guard band (twice the
+// viewport each way) to keep edge functions in float's exact range. Both
+// clips keep the polygon convex and inside the original.
+//
+// Two depth rules (section 5): per-pixel depth (the plane of the polygon),
+// or one depth per polygon, its farthest vertex: the paper's "optimal
+// choice" for speed, more conservative where a polygon spans much depth.
+//
+// The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
+// the caller); both evaluate the same float expressions in the same order,
+// with no fused multiply-add, so their buffers are equal bit for bit.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "geometry/aabb.h"
+#include "geometry/pixel_rect.h"
+
+namespace occu {
+
+class DepthRasterizer {
+public:
+    enum class Isa { scalar, avx2 };
+    static bool avx2_supported();
+    static Isa best_isa() { return avx2_supported() ? Isa::avx2 : Isa::scalar; }
+
+    struct Options {
+        int divisor = 2;                 // frame pixels per depth pixel, each way
+        bool per_pixel_depth = true;     // false: one farthest depth per polygon
+    };
+
+    // Throws std::invalid_argument for Isa::avx2 on a CPU without it.
+    explicit DepthRasterizer(Isa isa = best_isa());
+
+    // Starts a frame: sizes the buffer for a frame of frame_width x
+    // frame_height pixels (storage is kept between frames) and clears it.
+    // Throws std::invalid_argument for a size or divisor below 1.
+    void begin(const glm::mat4 &view_projection, int frame_width, int frame_height, const Options &options);
+
+    // Triangles: three indices into `positions` each. Quads: four, a
+    // planar convex polygon, counter-clockwise from its front.
+    void render_triangles(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t triangle_count);
+    void render_quads(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t quad_count);
+    // The faces of `box` that face the eye, as quads (Leone, section 5).
+    void render_box(const Aabb &box);
+
+    // Whether every depth pixel under `frame_rect` (frame pixels, clamped
+    // to the frame) is nearer than `z`: an occludee whose nearest window
+    // depth is z is then hidden (section 6). Stops at the first depth
+    // pixel that is not. An empty rectangle is occluded (it has no pixel).
+    bool occluded(const PixelRect &frame_rect, float z) const;
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    int divisor() const { return options_.divisor; }
+    Isa isa() const { return isa_; }
+    float depth(int x, int y) const;
+    // The buffer row by row, (0, 0) lower left: for pyramids and pictures.
+    void read(std::vector<float> &depth) const;
+
+    struct Stats {
+        std::uint64_t polygons = 0;      // submitted (triangles and quads)
+        std::uint64_t rasterized = 0;    // that covered at least one depth pixel's bounding box
+        std::uint64_t clipped = 0;       // that needed the near plane or the guard band
+    };
+    const Stats &stats() const { return stats_; }
+
+private:
+    void polygon(const glm::vec4 *clip, int count);
+    void rasterize(const glm::vec2 *window, const float *depth, int count);
+    void update_tile_maxima() const;
+
+    Isa isa_;
+    Options options_;
+    glm::mat4 view_projection_{1.0f};
+    int frame_width_ = 0, frame_height_ = 0;
+    int width_ = 0, height_ = 0;    // depth pixels
+    int tiles_x_ = 0, tiles_y_ = 0;  // 8 x 8 tiles
+    std::vector<float> tiles_;       // tile by tile, each 8 rows of 8
+    mutable std::vector<float> tile_max_;        // farthest depth per tile
+    mutable std::vector<std::uint8_t> dirty_;    // tile written since its maximum was taken
+    mutable bool any_dirty_ = false;
+    Stats stats_;
+};
+
+}  // namespace occu

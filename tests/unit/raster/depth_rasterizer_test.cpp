@@ -1,0 +1,277 @@
+// The CPU depth rasterizer against GL: every depth pixel it covers is
+// covered in GL's full-resolution rendering of the same polygons, with
+// GL's depth no farther than the rasterizer's at every frame pixel in it;
+// its scalar and AVX2 loops agree bit for bit; its rectangle test equals a
+// brute-force scan of the buffer.
+#include "raster/depth_rasterizer.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "camera/camera.h"
+#include "gl/gl_headers.h"
+#include "gl/offscreen_context.h"
+
+using namespace occu;
+
+namespace {
+
+constexpr int frame_size = 128;
+
+Camera test_camera()
+{
+    Camera c;
+    c.position = {0, 0, 0};
+    c.target = {0, 0, -1};
+    c.near_plane = 0.1f;
+    c.far_plane = 50.0f;
+    return c;
+}
+
+struct Polygons {
+    std::vector<glm::vec3> positions;
+    std::vector<std::uint32_t> triangles, quads;   // indices, 3 and 4 each
+};
+
+// Random triangles and planar convex quads in front of (and some across)
+// the near plane, large and small, either winding.
+Polygons random_polygons(std::mt19937 &rng, int count)
+{
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    Polygons p;
+    for (int i = 0; i < count; ++i) {
+        const glm::vec3 centre{unit(rng) * 6 - 3, unit(rng) * 6 - 3, -0.05f - unit(rng) * 10};
+        const float size = 0.05f + unit(rng) * unit(rng) * 8.0f;
+        const glm::vec3 a = glm::normalize(glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f});
+        glm::vec3 b = glm::cross(a, glm::normalize(glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f}));
+        b = glm::normalize(b);
+        const bool quad = unit(rng) < 0.5f;
+        const int corners = quad ? 4 : 3;
+        // Points on an ellipse in increasing angle: a convex polygon.
+        float angle = unit(rng) * 6.28f;
+        const float ra = size * (0.3f + unit(rng)), rb = size * (0.3f + unit(rng));
+        const auto first = std::uint32_t(p.positions.size());
+        for (int k = 0; k < corners; ++k) {
+            angle += (6.28f / float(corners)) * (0.6f + 0.4f * unit(rng));
+            p.positions.push_back(centre + a * (ra * std::cos(angle)) + b * (rb * std::sin(angle)));
+        }
+        auto &indices = quad ? p.quads : p.triangles;
+        for (int k = 0; k < corners; ++k)
+            indices.push_back(first + std::uint32_t(k));
+    }
+    return p;
+}
+
+void rasterize(DepthRasterizer &r, const Polygons &p, const glm::mat4 &vp, const DepthRasterizer::Options &o)
+{
+    r.begin(vp, frame_size, frame_size, o);
+    r.render_triangles(p.positions.data(), p.triangles.data(), p.triangles.size() / 3);
+    r.render_quads(p.positions.data(), p.quads.data(), p.quads.size() / 4);
+}
+
+// GL's depth of the same polygons at full resolution, back faces culled.
+std::vector<float> gl_depth(const Polygons &p, const Camera &camera)
+{
+    glViewport(0, 0, frame_size, frame_size);
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixf(&camera.projection()[0][0]);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadMatrixf(&camera.view()[0][0]);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_CULL_FACE);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT | GL_COLOR_BUFFER_BIT);
+    glBegin(GL_TRIANGLES);
+    for (std::uint32_t i : p.triangles)
+        glVertex3fv(&p.positions[i].x);
+    glEnd();
+    glBegin(GL_QUADS);
+    for (std::uint32_t i : p.quads)
+        glVertex3fv(&p.positions[i].x);
+    glEnd();
+    std::vector<float> depth(std::size_t(frame_size) * frame_size);
+    glReadPixels(0, 0, frame_size, frame_size, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    return depth;
+}
+
+struct Comparison {
+    long covered = 0;        // depth pixels the rasterizer covers
+    long gl_covered = 0;     // frame pixels GL covers
+    long violations = 0;     // frame pixels under a covered depth pixel where GL is farther or empty
+    std::string first;
+};
+
+Comparison compare(const DepthRasterizer &r, const std::vector<float> &gl)
+{
+    Comparison c;
+    for (float d : gl)
+        c.gl_covered += d < 1.0f;
+    const int k = r.divisor();
+    for (int y = 0; y < r.height(); ++y)
+        for (int x = 0; x < r.width(); ++x) {
+            const float cpu = r.depth(x, y);
+            if (!(cpu < 1.0f))
+                continue;
+            ++c.covered;
+            for (int fy = y * k; fy < std::min(frame_size, (y + 1) * k); ++fy)
+                for (int fx = x * k; fx < std::min(frame_size, (x + 1) * k); ++fx) {
+                    const float g = gl[std::size_t(fy) * frame_size + std::size_t(fx)];
+                    if (!(g <= cpu)) {
+                        if (!c.violations)
+                            c.first = "depth pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") = " +
+                                      std::to_string(cpu) + ", GL at (" + std::to_string(fx) + ", " +
+                                      std::to_string(fy) + ") = " + std::to_string(g);
+                        ++c.violations;
+                    }
+                }
+        }
+    return c;
+}
+
+class DepthRasterizerAgainstGl : public ::testing::TestWithParam<int> {};
+
+TEST_P(DepthRasterizerAgainstGl, CoversOnlyWhatGlCoversAndNeverNearer)
+{
+    const int divisor = GetParam();
+    gl::OffscreenContext ctx(frame_size, frame_size);
+    const Camera camera = test_camera();
+    const glm::mat4 vp = camera.view_projection();
+    std::mt19937 rng(1234u + unsigned(divisor));
+    DepthRasterizer r;
+    long covered = 0, gl_covered = 0;
+    for (int per_pixel = 0; per_pixel < 2; ++per_pixel)
+        for (int trial = 0; trial < 120; ++trial) {
+            // One polygon alone, then scenes of many that fuse.
+            const Polygons p = random_polygons(rng, trial % 4 == 0 ? 25 : 1);
+            rasterize(r, p, vp, {divisor, per_pixel == 1});
+            const Comparison c = compare(r, gl_depth(p, camera));
+            ASSERT_EQ(c.violations, 0) << "divisor " << divisor << (per_pixel ? " per-pixel" : " per-polygon")
+                                       << " trial " << trial << ": " << c.first;
+            covered += c.covered;
+            gl_covered += c.gl_covered;
+        }
+    // Conservative, and not trivially: the covered depth pixels hold a
+    // fair share of what GL covers (the rest is lost at polygon edges).
+    EXPECT_GT(double(covered) * divisor * divisor, 0.5 * double(gl_covered));
+}
+
+INSTANTIATE_TEST_SUITE_P(Divisors, DepthRasterizerAgainstGl, ::testing::Values(1, 2, 3, 4),
+                         [](const auto &info) { return "divisor_" + std::to_string(info.param); });
+
+TEST(DepthRasterizer, ScalarAndAvx2BuffersAreEqualBitForBit)
+{
+    if (!DepthRasterizer::avx2_supported())
+        GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
+    const glm::mat4 vp = test_camera().view_projection();
+    std::mt19937 rng(99);
+    DepthRasterizer scalar(DepthRasterizer::Isa::scalar), avx2(DepthRasterizer::Isa::avx2);
+    std::vector<float> a, b;
+    long covered = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        const Polygons p = random_polygons(rng, 1 + trial % 40);
+        const DepthRasterizer::Options o{1 + trial % 4, trial % 3 != 0};
+        rasterize(scalar, p, vp, o);
+        rasterize(avx2, p, vp, o);
+        scalar.read(a);
+        avx2.read(b);
+        ASSERT_EQ(a.size(), b.size());
+        ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << "trial " << trial;
+        for (float d : a)
+            covered += d < 1.0f;
+        for (int i = 0; i < 50; ++i) {
+            std::uniform_int_distribution<int> coord(-4, frame_size + 4);
+            const PixelRect rect{coord(rng), coord(rng), coord(rng), coord(rng)};
+            const float z = std::uniform_real_distribution<float>(0.9f, 1.0f)(rng);
+            ASSERT_EQ(scalar.occluded(rect, z), avx2.occluded(rect, z));
+        }
+    }
+    EXPECT_GT(covered, 10000) << "the comparison saw covered pixels";
+}
+
+TEST(DepthRasterizer, RectangleTestEqualsAScanOfTheBuffer)
+{
+    const glm::mat4 vp = test_camera().view_projection();
+    std::mt19937 rng(7);
+    for (auto isa : {DepthRasterizer::Isa::scalar, DepthRasterizer::best_isa()}) {
+        DepthRasterizer r(isa);
+        std::vector<float> buffer;
+        int occluded = 0, visible = 0;
+        for (int trial = 0; trial < 60; ++trial) {
+            const int k = 1 + trial % 3;
+            rasterize(r, random_polygons(rng, 60), vp, {k, true});
+            r.read(buffer);
+            for (int i = 0; i < 200; ++i) {
+                std::uniform_int_distribution<int> coord(-8, frame_size + 8);
+                int x0 = coord(rng), x1 = coord(rng), y0 = coord(rng), y1 = coord(rng);
+                if (x0 > x1)
+                    std::swap(x0, x1);
+                if (y0 > y1)
+                    std::swap(y0, y1);
+                const PixelRect rect{x0, y0, x0 + (x1 - x0) / (1 + i % 8), y0 + (y1 - y0) / (1 + i % 8)};
+                const float z = std::uniform_real_distribution<float>(0.95f, 1.0f)(rng);
+                const PixelRect m = rect.clamped({0, 0, frame_size, frame_size}).to_map(k).clamped(
+                    {0, 0, r.width(), r.height()});
+                bool expected = true;
+                for (int y = m.y0; y < m.y1; ++y)
+                    for (int x = m.x0; x < m.x1; ++x)
+                        expected &= buffer[std::size_t(y) * std::size_t(r.width()) + std::size_t(x)] < z;
+                ASSERT_EQ(r.occluded(rect, z), expected) << "trial " << trial << " rect " << rect.x0 << ","
+                                                         << rect.y0 << "-" << rect.x1 << "," << rect.y1;
+                (expected ? occluded : visible)++;
+            }
+        }
+        EXPECT_GT(occluded, 500);
+        EXPECT_GT(visible, 500);
+    }
+}
+
+TEST(DepthRasterizer, ABoxShowsTheFacesThatFaceTheEyeAndNothingFromInside)
+{
+    const Camera camera = test_camera();
+    DepthRasterizer r;
+    r.begin(camera.view_projection(), frame_size, frame_size, {});
+    r.render_box(Aabb::of({-1, -1, -6}, {1, 1, -4}));
+    // Its front face at z = -4 covers the middle of the view.
+    const float middle = r.depth(r.width() / 2, r.height() / 2);
+    EXPECT_LT(middle, 1.0f);
+    EXPECT_TRUE(r.occluded({60, 60, 68, 68}, middle + 1e-3f));
+    EXPECT_FALSE(r.occluded({60, 60, 68, 68}, middle - 1e-3f));
+    // From inside a box, every face is a back face.
+    r.begin(camera.view_projection(), frame_size, frame_size, {});
+    r.render_box(Aabb::of({-5, -5, -5}, {5, 5, 5}));
+    EXPECT_FALSE(r.occluded({0, 0, frame_size, frame_size}, 0.999f));
+}
+
+TEST(DepthRasterizer, PerPolygonDepthIsNeverNearerThanPerPixel)
+{
+    const glm::mat4 vp = test_camera().view_projection();
+    std::mt19937 rng(5);
+    DepthRasterizer pixel, polygon;
+    std::vector<float> a, b;
+    long farther = 0;
+    for (int trial = 0; trial < 50; ++trial) {
+        const Polygons p = random_polygons(rng, 10);
+        rasterize(pixel, p, vp, {2, true});
+        rasterize(polygon, p, vp, {2, false});
+        pixel.read(a);
+        polygon.read(b);
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            ASSERT_GE(b[i], a[i]) << "trial " << trial << " pixel " << i;
+            farther += b[i] > a[i];
+        }
+    }
+    EXPECT_GT(farther, 0) << "one depth per polygon is the coarser rule";
+}
+
+TEST(DepthRasterizer, RefusesSizesBelowOne)
+{
+    DepthRasterizer r;
+    EXPECT_THROW(r.begin(glm::mat4(1.0f), 0, 10, {}), std::invalid_argument);
+    EXPECT_THROW(r.begin(glm::mat4(1.0f), 10, 10, {0, true}), std::invalid_argument);
+}
+
+}  // namespace
