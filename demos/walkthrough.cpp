@@ -371,7 +371,7 @@ int main(int argc, char **argv)
 
         gl::OffscreenContext ctx(o.size, o.size);
         SceneRenderer renderer(scene, hierarchy);
-        const StrategyContext context{hierarchy, renderer};
+        const StrategyContext context{scene, hierarchy, renderer};
         std::vector<Run> runs = make_runs(o, context);
         const Strategy reference = make_strategy("none", context);
         std::optional<Oracle> oracle;

@@ -18,10 +18,12 @@
 namespace occu {
 
 class Hierarchy;
+struct Scene;
 class SceneRenderer;
 
 // What every strategy may use, given once for all its frames.
 struct StrategyContext {
+    const Scene &scene;              // the meshes the hierarchy was built over
     const Hierarchy &hierarchy;
     const SceneRenderer &renderer;   // draws occluders and proxies (needs the GL context)
 };

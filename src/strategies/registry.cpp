@@ -5,7 +5,7 @@
 
 #include "strategies/bartz_occlusion_unit/family.h"
 #include "strategies/baselines/family.h"
-#include "strategies/moller_haines_hp_occlusion_test/family.h"
+#include "strategies/moller_haines_occlusion_culling/family.h"
 #include "strategies/poon_wang_opacity_maps/family.h"
 
 namespace occu {

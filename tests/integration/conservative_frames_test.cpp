@@ -89,7 +89,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     const SmallCity small;
     const Hierarchy &h = *small.h;
     const SceneRenderer &renderer = *small.renderer;
-    const StrategyContext context{h, renderer};
+    const StrategyContext context{small.scene, h, renderer};
     const std::string database = small_city_database(small);
     glClearColor(0, 0, 0, 0);
 
@@ -157,7 +157,7 @@ TEST(ConservativeCulling, FramesEqualUnculledFramesFarAway)
     SceneRenderer renderer(scene, h);
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
-    const StrategyContext context{h, renderer};
+    const StrategyContext context{scene, h, renderer};
     const Strategy none = make_strategy("none", context), ou = make_strategy("ou:max-test-area=1", context);
     const auto cameras = make_route("open", scene.bounds, city, 3, 1.0f);
     std::uint64_t drawn_none = 0, drawn_ou = 0;

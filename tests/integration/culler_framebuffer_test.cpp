@@ -23,7 +23,7 @@ TEST(Cullers, LeaveTheCallersFramebufferAndStateAlone)
     const Scene scene = generate_city(city);
     const Hierarchy h = Hierarchy::build(scene);
     SceneRenderer renderer(scene, h);
-    const StrategyContext context{h, renderer};
+    const StrategyContext context{scene, h, renderer};
     const Camera camera = make_route("dense", scene.bounds, city, 1, 1.0f)[0];
     Oracle oracle(renderer, h);
     const VisibilityTruth truth = oracle.see(camera, 96, 96);

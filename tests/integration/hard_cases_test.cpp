@@ -606,7 +606,7 @@ TEST_P(HardCaseTest, EveryConservativeStrategyDrawsTheUnculledFrame)
     // where faces tie in depth the leaf drawn first keeps the pixel, and
     // batches change which leaf that is (with batches of one, leaves are
     // drawn in order of distance whatever is culled).
-    const StrategyContext context{h, renderer};
+    const StrategyContext context{c.scene, h, renderer};
     const Strategy none = make_strategy("none", context);
     std::map<std::size_t, DrawnFrame> unculled;
     for (const Variant &v : conservative_variants()) {

@@ -67,7 +67,7 @@ TEST(Registry, EveryFamilyNamesItsPaperAndFactory)
 TEST(Registry, EveryNameBuildsAConservativeStrategyAtDefaults)
 {
     const OneBox box;
-    const StrategyContext context{*box.h, *box.renderer};
+    const StrategyContext context{box.scene, *box.h, *box.renderer};
     for (const std::string &n : strategy_names()) {
         const StrategyChoice c = choose_strategy(n);
         EXPECT_TRUE(c.conservative()) << n;
@@ -162,7 +162,7 @@ TEST(Registry, BadNamesSettingsAndValuesAreRefusedNamingThem)
 TEST(Baselines, VfcCullsOnlyWhatTheFrustumExcludes)
 {
     const OneBox box;
-    const StrategyContext context{*box.h, *box.renderer};
+    const StrategyContext context{box.scene, *box.h, *box.renderer};
     Camera c;
     c.position = {0, 0, 0};
     c.target = {0, 0, -1};
@@ -183,7 +183,7 @@ TEST(Baselines, VfcCullsOnlyWhatTheFrustumExcludes)
 TEST(Baselines, IdealDrawsTheOraclesVisibleLeavesAndNeedsTheOracle)
 {
     const OneBox box;
-    const StrategyContext context{*box.h, *box.renderer};
+    const StrategyContext context{box.scene, *box.h, *box.renderer};
     Camera c;
     c.position = {0.5f, 0.5f, 5};
     c.target = {0.5f, 0.5f, 0};

@@ -66,7 +66,7 @@ TEST(Traversal, NoTestsBelowANodeTheCullerGaveUpOn)
     const Hierarchy &h = *row.h;
     ASSERT_GT(h.leaf_count(), 8u);
     GiveUpAtTheRoot give_up;
-    const Strategy vfc = make_strategy("vfc", {h, *row.renderer});
+    const Strategy vfc = make_strategy("vfc", {row.scene, h, *row.renderer});
     const Frame frame(row.camera, 32, 32);
     const FrameStats s = render_hierarchy(*row.renderer, h, give_up, frame);
     const FrameStats v = render_hierarchy(*row.renderer, h, *vfc.culler, frame);
@@ -83,7 +83,7 @@ TEST(Traversal, NoTestsBelowANodeTheCullerGaveUpOn)
 TEST(Traversal, SwitchedOffProbesBackOff)
 {
     const BoxRow row(8);
-    const Strategy none = make_strategy("none", {*row.h, *row.renderer});   // never finds anything occluded
+    const Strategy none = make_strategy("none", {row.scene, *row.h, *row.renderer});   // never finds anything occluded
     SwitchOff switch_off;
     TraversalOptions options;
     options.switch_off = &switch_off;
@@ -100,7 +100,7 @@ TEST(Traversal, SwitchedOffProbesBackOff)
 TEST(Traversal, VisibleNodeListSkipsTestsOfLastFramesVisibleNodes)
 {
     const BoxRow row(16);
-    const Strategy vfc = make_strategy("vfc", {*row.h, *row.renderer});
+    const Strategy vfc = make_strategy("vfc", {row.scene, *row.h, *row.renderer});
     VisibleNodeList coherence(1000);
     TraversalOptions options;
     options.coherence = &coherence;

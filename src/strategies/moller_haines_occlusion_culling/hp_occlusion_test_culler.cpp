@@ -1,4 +1,4 @@
-#include "strategies/moller_haines_hp_occlusion_test/family.h"
+#include "strategies/moller_haines_occlusion_culling/family.h"
 
 #include <optional>
 #include <stdexcept>
