@@ -9,6 +9,8 @@
 //                   [--shard I/N] [--driver llvmpipe|softpipe]
 //   occu-preprocess merge --out FILE SHARD...
 //   occu-preprocess views --out ROUTE [--every K] DATABASE
+//   occu-preprocess skins --out FILE [--scene FILE] [--city-copies N] [--voxel-size V]
+//                   [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]
 //
 // --cache DIR names the database by its key (DatabaseProvenance::key: the
 // preprocessing code, options, scene, hierarchy, Mesa build and grid),
@@ -32,11 +34,22 @@
 // The scene options must match the walkthrough's: the database records
 // what it was made for (occluder_database.h), and the walkthrough refuses a
 // database made for another scene, hierarchy, map resolution or Mesa.
+//
+// `skins` makes the occluder skins of the scene's meshes (Leone et al.,
+// section 4; preprocessing/occluder_skins.h, which describes the file and the
+// options: voxel edge in metres, boxes per mesh, the smallest box in m^3 and
+// where boxes start growing). Pure geometry: no GL, no Mesa. Meshes without
+// skins (not watertight, no interior at that voxel size) are listed on
+// stderr and recorded in the file; they do not make the command fail.
+// --shard I/N takes the meshes m with m % N == I - 1. `merge` joins skin
+// shards as well: it tells the two kinds of file by their first line, and
+// all its shards must be of the kind of the first.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -47,6 +60,7 @@
 #include "gl/extensions.h"
 #include "gl/offscreen_context.h"
 #include "preprocessing/occluder_database.h"
+#include "preprocessing/occluder_skins.h"
 #include "preprocessing/view_preprocessing.h"
 #include "render/scene_renderer.h"
 #include "scene/city.h"
@@ -64,7 +78,9 @@ namespace {
                  "                       [--selection marginal|static] [--pixels-per-occluder P]\n"
                  "                       [--shard I/N] [--driver llvmpipe|softpipe]\n"
                  "       occu-preprocess merge --out FILE SHARD...\n"
-                 "       occu-preprocess views --out ROUTE [--every K] DATABASE\n",
+                 "       occu-preprocess views --out ROUTE [--every K] DATABASE\n"
+                 "       occu-preprocess skins --out FILE [--scene FILE] [--city-copies N] [--voxel-size V]\n"
+                 "                       [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
     std::exit(error.empty() ? 0 : 2);
 }
@@ -77,10 +93,40 @@ struct Options {
     occu::PreprocessOptions pre;
     std::vector<std::string> inputs;   // merge, views
     int every = 1;                     // views
+    occu::SkinOptions skins;           // skins
 };
+
+// Whether `path` begins as a skin database (occluder_skins.h) does.
+bool is_skin_database(const std::string &path)
+{
+    std::ifstream in(path);
+    std::string line, word;
+    while (std::getline(in, line)) {
+        if (const auto hash = line.find('#'); hash != std::string::npos)
+            line.erase(hash);
+        if (std::istringstream(line) >> word)
+            return word == "occu-occluder-skins";
+    }
+    return false;
+}
+
+int merge_skins(const Options &o)
+{
+    std::vector<occu::OccluderSkinDatabase> shards;
+    for (const auto &path : o.inputs)
+        shards.push_back(occu::OccluderSkinDatabase::load(path));
+    const auto db = occu::OccluderSkinDatabase::merge(shards, o.inputs);
+    db.save(o.out);
+    std::printf("%s: skins of %zu of %u meshes from %zu shards\n", o.out.c_str(), db.mesh_count(),
+                db.provenance.meshes, shards.size());
+    return db.mesh_count() == db.provenance.meshes ? 0
+                                                   : (std::fprintf(stderr, "occu-preprocess: meshes missing\n"), 1);
+}
 
 int merge(const Options &o)
 {
+    if (is_skin_database(o.inputs.front()))
+        return merge_skins(o);
     std::vector<occu::OccluderDatabase> shards;
     for (const auto &path : o.inputs)
         shards.push_back(occu::OccluderDatabase::load(path));
@@ -200,22 +246,50 @@ int build(const Options &o)
     return 0;
 }
 
+int skins(const Options &o)
+{
+    using namespace occu;
+    CityOptions city;
+    city.copies = o.city_copies;
+    const Scene scene = o.scene.empty() ? generate_city(city) : load_scene(o.scene);
+    std::printf("scene: %zu meshes, %zu triangles; %s; shard %d/%d\n", scene.meshes.size(), scene.triangle_count(),
+                o.skins.describe().c_str(), o.shard, o.shards);
+    const auto start = std::chrono::steady_clock::now();
+    const OccluderSkinDatabase db =
+        OccluderSkinDatabase::make(scene, o.skins, o.shard, o.shards,
+                                   [](std::size_t done, std::size_t total) { progress("skins", long(done), long(total)); });
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    db.save(o.out);
+    const std::size_t listed = 20;
+    std::size_t k = 0;
+    for (const auto &[mesh, reason] : db.skipped)
+        if (k++ < listed)
+            std::fprintf(stderr, "occu-preprocess: no skins for %s\n",
+                         SkinReport{mesh, scene.meshes[mesh].name, reason}.message().c_str());
+    if (db.skipped.size() > listed)
+        std::fprintf(stderr, "occu-preprocess: and %zu more meshes without skins (listed in %s)\n",
+                     db.skipped.size() - listed, o.out.c_str());
+    std::printf("%s: %zu meshes in %.2f s: %zu boxes on %zu meshes, %zu meshes without skins\n", o.out.c_str(),
+                db.mesh_count(), s, db.box_count(), db.skins.size(), db.skipped.size());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
 {
     if (argc < 2)
-        usage("give a command: build, merge or views");
+        usage("give a command: build, merge, views or skins");
     const std::string command = argv[1];
     if (command == "-h" || command == "--help")
         usage("");
-    if (command != "build" && command != "merge" && command != "views")
-        usage("unknown command '" + command + "' (build, merge or views)");
+    if (command != "build" && command != "merge" && command != "views" && command != "skins")
+        usage("unknown command '" + command + "' (build, merge, views or skins)");
     Options o;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
         if (a.rfind("--", 0) != 0) {
-            if (command == "build")
+            if (command == "build" || command == "skins")
                 usage("unexpected argument '" + a + "'");
             o.inputs.push_back(a);
             continue;
@@ -228,6 +302,18 @@ int main(int argc, char **argv)
             else if (command == "views" && a == "--every") o.every = int(occu::integer_option(a, v, 1, 1 << 20));
             else if (command == "views") usage("views takes only --out, --every and a database, not " + a);
             else if (command == "merge") usage("merge takes only --out and shard files, not " + a);
+            else if (command == "skins" && a == "--voxel-size")
+                o.skins.voxel_size = float(occu::number_option(a, v, 0.0, 1000.0, true));
+            else if (command == "skins" && a == "--max-boxes") o.skins.max_boxes = int(occu::integer_option(a, v, 1, 1 << 20));
+            else if (command == "skins" && a == "--min-volume") o.skins.min_volume = float(occu::number_option(a, v, 0.0, 1e12));
+            else if (command == "skins" && a == "--start") {
+                if (v != "densest" && v != "first")
+                    usage("--start wants densest or first, got '" + v + "'");
+                o.skins.start = v == "densest" ? occu::SkinOptions::Start::densest : occu::SkinOptions::Start::first;
+            }
+            else if (command == "skins" && a != "--scene" && a != "--city-copies" && a != "--shard")
+                usage("skins takes only --out, --scene, --city-copies, --voxel-size, --max-boxes, --min-volume, "
+                      "--start and --shard, not " + a);
             else if (a == "--scene") o.scene = v;
             else if (a == "--driver") o.driver = v;
             else if (a == "--city-copies") o.city_copies = int(occu::integer_option(a, v, 1, 64));
@@ -272,7 +358,7 @@ int main(int argc, char **argv)
     if (command == "views" && o.inputs.size() != 1)
         usage("views needs one database");
     try {
-        return command == "merge" ? merge(o) : command == "views" ? views(o) : build(o);
+        return command == "merge" ? merge(o) : command == "views" ? views(o) : command == "skins" ? skins(o) : build(o);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "occu-preprocess: %s\n", e.what());
         return 1;
