@@ -70,8 +70,9 @@ struct Options {
                  "                   [--leaf-triangles N] [--batch N] [--coherence on|off] [--switch-off F]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR]\n"
                  "--set applies to every chosen strategy that has the setting. --coherence (temporal coherence)\n"
-                 "and --switch-off (least share of triangles occlusion tests must cull; 0 never switches off)\n"
-                 "apply to the strategies that query the rasterizer. ideal needs the oracle.\n\nstrategies:\n%s",
+                 "applies to the strategies that query the rasterizer; --switch-off (least share of triangles\n"
+                 "occlusion tests must cull; 0 never switches off) to those and to the strategies that draw\n"
+                 "occluders each frame. ideal needs the oracle.\n\nstrategies:\n%s",
                  strategies_help().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
@@ -238,8 +239,9 @@ void write_summary(const Options &o, const std::vector<Run> &runs)
                 o.out.c_str(), o.out.c_str(), o.out.c_str());
 }
 
-// The strategies with their traversal policies: temporal coherence and
-// switch-off for the families whose tests query the rasterizer.
+// The strategies with their traversal policies: temporal coherence for the
+// families whose tests query the rasterizer, switch-off for those and for
+// the families that draw occluders every frame.
 std::vector<Run> make_runs(const Options &o, const StrategyContext &context)
 {
     std::vector<Run> runs;
@@ -247,7 +249,8 @@ std::vector<Run> make_runs(const Options &o, const StrategyContext &context)
         Run r{make_strategy(spec, context, o.common), {}, {}, {}};
         if (r.strategy.choice.family->queries_rasterizer && o.coherence)
             r.coherence.emplace();
-        if (r.strategy.choice.family->queries_rasterizer && o.switch_off > 0.0) {
+        const StrategyFamily &family = *r.strategy.choice.family;
+        if ((family.queries_rasterizer || family.draws_occluders) && o.switch_off > 0.0) {
             SwitchOff::Settings s;
             s.min_gain = o.switch_off;
             r.switch_off.emplace(s);

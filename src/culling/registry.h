@@ -44,6 +44,10 @@ struct StrategyFamily {
     // adaptive switch-off (traversal/policies.h), which save tests, apply.
     // Tests on the CPU cost too little to trade culling for.
     bool queries_rasterizer = false;
+    // Its begin_frame draws occluders (on the CPU or into a framebuffer of
+    // its own) every frame: the adaptive switch-off, which saves that work
+    // where occlusion culls little, applies.
+    bool draws_occluders = false;
     bool needs_truth = false;      // culls with the oracle's answer (Frame::truth)
     std::vector<SettingSpec> settings;
     std::vector<StrategyPreset> presets;

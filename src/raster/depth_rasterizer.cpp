@@ -199,24 +199,19 @@ void DepthRasterizer::polygon(const glm::vec4 *clip, int count)
 
 void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int n)
 {
-    // Front faces wind counter-clockwise in window coordinates (y up).
-    double area = 0.0;
     glm::vec2 lo = window[0], hi = window[0];
     float farthest = depth[0];
-    for (int i = 0; i < n; ++i) {
-        const glm::vec2 &p = window[i], &q = window[(i + 1) % n];
-        area += double(p.x) * double(q.y) - double(q.x) * double(p.y);
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
+    for (int i = 1; i < n; ++i) {
+        lo = glm::min(lo, window[i]);
+        hi = glm::max(hi, window[i]);
         farthest = std::max(farthest, depth[i]);
     }
-    if (!(area > 0.0))
-        return;   // a back face or no area
 
     // Depth pixel X holds samples at X + (i + 0.5) / k, i < k: the frame
     // pixels' centres. X is covered only if all of them are inside, so X
     // ranges over [lo - first, hi - last] with first = 0.5 / k and last
-    // = (k - 0.5) / k.
+    // = (k - 0.5) / k. Most triangles of a detailed mesh cover no depth
+    // pixel wholly and end here, before any other setup.
     const double k = options_.divisor;
     const double first = 0.5 / k, last = (k - 0.5) / k;
     raster::PolygonSetup s;
@@ -225,7 +220,16 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     s.x1 = std::min(width_, int(std::floor(double(hi.x) - last)) + 1);
     s.y1 = std::min(height_, int(std::floor(double(hi.y) - last)) + 1);
     if (s.x0 >= s.x1 || s.y0 >= s.y1)
-        return;   // covers no depth pixel wholly
+        return;
+
+    // Front faces wind counter-clockwise in window coordinates (y up).
+    double area = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const glm::vec2 &p = window[i], &q = window[i + 1 == n ? 0 : i + 1];
+        area += double(p.x) * double(q.y) - double(q.x) * double(p.y);
+    }
+    if (!(area > 0.0))
+        return;   // a back face or no area
     ++stats_.rasterized;
 
     // Coordinates are bounded by the guard band; errors scale with them.
@@ -236,7 +240,7 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     // edge's outside: first or last on each axis by the signs of a and b.
     s.edges = n;
     for (int e = 0; e < n; ++e) {
-        const glm::dvec2 p(window[e]), q(window[(e + 1) % n]);
+        const glm::dvec2 p(window[e]), q(window[e + 1 == n ? 0 : e + 1]);
         const double a = p.y - q.y, b = q.x - p.x, c = -(a * p.x + b * p.y);
         const double folded = c + a * (a > 0.0 ? first : last) + b * (b > 0.0 ? first : last);
         const double margin = (std::abs(a) + std::abs(b)) * (edge_margin / k) +

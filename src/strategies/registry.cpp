@@ -5,6 +5,7 @@
 
 #include "strategies/bartz_occlusion_unit/family.h"
 #include "strategies/baselines/family.h"
+#include "strategies/leone_occluder_skins/family.h"
 #include "strategies/moller_haines_occlusion_culling/family.h"
 #include "strategies/poon_wang_opacity_maps/family.h"
 
@@ -18,7 +19,10 @@ const std::vector<StrategyFamily> &strategy_families()
         strategies::ideal_family(),             // ideal: the oracle's visible leaves, the floor
         strategies::occlusion_unit_family(),    // ou: Bartz, Meissner and Huettner 1998
         strategies::hp_occlusion_test_family(), // hp: Moeller and Haines, the HP occlusion test
+        strategies::hierarchical_z_buffer_family(),       // hzb: Moeller and Haines (Greene)
+        strategies::hierarchical_occlusion_map_family(),  // hom: Moeller and Haines (Zhang)
         strategies::opacity_map_family(),       // om: Poon and Wang
+        strategies::occluder_skins_family(),    // skins: Leone et al.
     };
     return families;
 }

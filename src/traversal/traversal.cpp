@@ -41,7 +41,10 @@ public:
             coherence->begin_frame(nodes_.size());
         testing_ = !options_.switch_off || options_.switch_off->begin_frame();
         stats_.occlusion_tested = testing_;
-        watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(frame_); });
+        // A frame switched off costs the strategy nothing: no occluders
+        // drawn, no tests (the traversal culls to the frustum itself).
+        if (testing_)
+            watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(frame_); });
         push(0);
         std::vector<NodeTest> batch;
         while (!front_.empty()) {
@@ -92,9 +95,12 @@ private:
             const bool assumed = !testing_ || untested(n) ||
                                  (options_.coherence && !(options_.switch_off && options_.switch_off->probing()) &&
                                   options_.coherence->assumed_visible(n));
-            if (assumed && frame_.frustum.classify(nodes_[n].bounds) != Frustum::Side::outside) {
-                settle(n, Visibility::visible, !untested(n));
-                continue;
+            if (assumed) {
+                const bool outside = frame_.frustum.classify(nodes_[n].bounds) == Frustum::Side::outside;
+                if (!outside || !testing_) {
+                    settle(n, outside ? Visibility::view_culled : Visibility::visible, !untested(n));
+                    continue;
+                }
             }
             NodeTest t;
             t.node = n;
@@ -124,7 +130,8 @@ private:
             stats_.triangles += renderer_.draw_leaf(node);
             ++stats_.leaves_drawn;
             stats_.drawn.push_back(node);
-            culler_.rendered(node);
+            if (testing_)
+                culler_.rendered(node);
             return;
         }
         // Sized on the first "do not test below": strategies that never

@@ -1,6 +1,9 @@
-// Möller and Haines, "Occlusion Culling Algorithms" (Real-Time Rendering),
-// "VISUALIZE fx's Hardware Implementation": Hewlett-Packard's occlusion
-// test (Bartz et al. 1998, section 2 and reference [8]). Before a complex
+// Möller and Haines, "Occlusion Culling Algorithms" (Real-Time Rendering):
+// three of the algorithms the chapter describes, one family each.
+//
+// hp  (hp_occlusion_test_culler.cpp) "VISUALIZE fx's Hardware
+// Implementation": Hewlett-Packard's occlusion test (Bartz et al. 1998,
+// section 2 and reference [8]). Before a complex
 // object is drawn, the pixels of its bounding box are scan-converted and
 // depth tested without being drawn; if none would be visible the object
 // is culled. The answer is one flag per box, so every box is its own query
@@ -13,6 +16,27 @@
 // and then reads them, so the rasterizer works through the batch before
 // the first answer is needed. Boxes without a footprint (they hold the eye
 // or cross the near plane) are visible untested.
+//
+// hzb (hierarchical_z_buffer_culler.cpp) "Hierarchical Z-Buffering and the
+// Hierarchical Visibility Algorithm" (Greene, Kass and Miller): a Z-pyramid
+// (maps/z_pyramid.h), each level the farthest of 2x2 below, built per frame
+// from the occluder skins' CPU depth buffer (raster/depth_rasterizer.h;
+// Leone et al.'s occluders) or, source=last-frame, from the depth of the
+// leaves the last frame drew, rendered in this frame's view and read back
+// (the two-pass scheme of GPU culling). Boxes, front to back, are tested
+// from the coarsest level that encloses their footprint in 2x2 texels,
+// descending only where a texel is not nearer than the box.
+//
+// hom (hierarchical_occlusion_map_culler.cpp) "Hierarchical Occlusion Map"
+// (Zhang, Manocha, Hudson and Hoff): occluders chosen by size and distance
+// from an occluder set (the skins: large, few polygons, tight boxes, the
+// criteria the chapter gives), a budget of them per frame that may adapt
+// to how much is culled, rendered white on black at low resolution as the
+// occlusion map (maps/hierarchical_occlusion_map.h), its pyramid by
+// averaging; the overlap test with opacity thresholds O_{k+1} = (3 + O_k)/4
+// (O_0 = 1 - tolerance; exact at tolerance 0), then the depth test against
+// the depth estimation buffer, regions holding their occluders' farthest
+// depth (each occluder polygon's farthest vertex, Zhang's estimate).
 #pragma once
 
 #include "culling/registry.h"
@@ -20,5 +44,7 @@
 namespace occu::strategies {
 
 StrategyFamily hp_occlusion_test_family();
+StrategyFamily hierarchical_z_buffer_family();
+StrategyFamily hierarchical_occlusion_map_family();
 
 }  // namespace occu::strategies

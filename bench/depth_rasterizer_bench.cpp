@@ -1,0 +1,112 @@
+// occu-bench-raster: the CPU depth rasterizer's throughput on the city's
+// routes, its scalar and AVX2 loops side by side in one process.
+//
+//   occu-bench-raster [FRAMES] [SIZE]
+//
+// For each route frame, every triangle of every leaf in the frustum (what
+// Intel's Masked Occlusion Culling renders as occluders when it takes
+// every kept leaf) is rasterized into a buffer for a SIZE x SIZE frame
+// (default 512) at divisors 1 and 2, and the route's skins (Leone et al.)
+// as a second load. Each (route, divisor, path) is the best of 5 rounds
+// over all its frames, the paths alternating round by round, because the
+// machine is shared. Prints CSV:
+//   route,load,divisor,isa,polygons,ms_per_frame,million_polygons_per_second
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "camera/route.h"
+#include "culling/culler.h"
+#include "occluders/skin_occluders.h"
+#include "raster/depth_rasterizer.h"
+#include "scene/city.h"
+#include "spatial/hierarchy.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using occu::DepthRasterizer;
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    const int frames = argc > 1 ? std::atoi(argv[1]) : 30;
+    const int size = argc > 2 ? std::atoi(argv[2]) : 512;
+    if (frames < 1 || size < 1) {
+        std::fprintf(stderr, "usage: occu-bench-raster [FRAMES >= 1] [SIZE >= 1]\n");
+        return 2;
+    }
+    const occu::CityOptions city;
+    const occu::Scene scene = occu::generate_city(city);
+    const occu::Hierarchy hierarchy = occu::Hierarchy::build(scene);
+    occu::SkinOccluders skins(scene, "", 8);
+    std::vector<DepthRasterizer::Isa> isas{DepthRasterizer::Isa::scalar};
+    if (DepthRasterizer::avx2_supported())
+        isas.push_back(DepthRasterizer::Isa::avx2);
+
+    std::printf("route,load,divisor,isa,polygons,ms_per_frame,million_polygons_per_second\n");
+    for (const char *route : {"dense", "street", "medium", "open"}) {
+        const auto cameras = occu::make_route(route, scene.bounds, city, frames, 1.0f);
+        // Per frame, the triangles of the leaves in the frustum, gathered
+        // once: positions and indices of one mesh at a time.
+        struct Batch {
+            const occu::Mesh *mesh;
+            std::vector<std::uint32_t> indices;
+        };
+        std::vector<std::vector<Batch>> loads(cameras.size());
+        std::uint64_t triangles = 0;
+        for (std::size_t f = 0; f < cameras.size(); ++f) {
+            const occu::Frustum frustum(cameras[f].view_projection());
+            for (std::uint32_t leaf : occu::leaves_in_frustum(hierarchy, frustum)) {
+                const occu::HierarchyNode &n = hierarchy.nodes()[leaf];
+                for (std::uint32_t i = n.first_triangle; i < n.first_triangle + n.triangle_count; ++i) {
+                    const occu::TriangleRef &t = hierarchy.triangles()[i];
+                    const occu::Mesh *mesh = &scene.meshes[t.mesh];
+                    if (loads[f].empty() || loads[f].back().mesh != mesh)
+                        loads[f].push_back({mesh, {}});
+                    auto &idx = loads[f].back().indices;
+                    idx.insert(idx.end(), mesh->indices.begin() + t.first_index,
+                               mesh->indices.begin() + t.first_index + 3);
+                    ++triangles;
+                }
+            }
+        }
+        for (const char *load : {"leaf-triangles", "skins"}) {
+            const bool leaf_triangles = load[0] == 'l';
+            for (int divisor : {1, 2, 64}) {
+                std::vector<double> best(isas.size(), 1e30);
+                std::uint64_t polygons = 0;
+                for (int round = 0; round < 5; ++round)
+                    for (std::size_t i = 0; i < isas.size(); ++i) {
+                        DepthRasterizer r(isas[i]);
+                        const auto t0 = Clock::now();
+                        for (std::size_t f = 0; f < cameras.size(); ++f) {
+                            const occu::Frame frame(cameras[f], size, size);
+                            r.begin(frame.view_projection, size, size, {divisor, true});
+                            if (leaf_triangles)
+                                for (const Batch &b : loads[f])
+                                    r.render_triangles(b.mesh->positions.data(), b.indices.data(),
+                                                       b.indices.size() / 3);
+                            else
+                                skins.render(frame, r, 0);
+                            polygons += r.stats().polygons;
+                        }
+                        best[i] = std::min(best[i],
+                                           std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+                    }
+                polygons /= 5 * isas.size();
+                for (std::size_t i = 0; i < isas.size(); ++i)
+                    std::printf("%s,%s,%d,%s,%llu,%.3f,%.1f\n", route, load, divisor,
+                                isas[i] == DepthRasterizer::Isa::avx2 ? "avx2" : "scalar",
+                                (unsigned long long)(polygons / cameras.size()), best[i] / double(cameras.size()),
+                                double(polygons) / (best[i] * 1e3));
+            }
+        }
+        (void)triangles;
+    }
+    return 0;
+}

@@ -1,0 +1,39 @@
+// Occluder skins at run time (Leone et al., section 5): the skins of the
+// scene's meshes (preprocessing/occluder_skins.h), frustum-culled each
+// frame, the largest on screen first, and their faces that face the eye
+// rasterized as quads into a CPU depth buffer (raster/depth_rasterizer.h).
+// Shared by the strategies that take their occluders from skins.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "culling/culler.h"
+#include "raster/depth_rasterizer.h"
+#include "scene/scene.h"
+
+namespace occu {
+
+class SkinOccluders {
+public:
+    // From the skin database at `database` (refused, naming why, when made
+    // for another scene), or with an empty path made from `scene` now with
+    // the default SkinOptions. Each mesh keeps its first `boxes_per_mesh`
+    // boxes (the largest first).
+    SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh);
+
+    // Renders the skins in `frame`'s frustum into `raster` (begun for the
+    // frame), at most `limit` of them (0: all), by the solid angle their
+    // boxes subtend, largest first. Returns how many it rendered.
+    std::size_t render(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
+
+    std::size_t size() const { return boxes_.size(); }
+
+private:
+    std::vector<Aabb> boxes_;
+    std::vector<std::pair<float, std::uint32_t>> chosen_;
+};
+
+}  // namespace occu

@@ -1,0 +1,25 @@
+// Leone, Barbagallo, Banquiero, Agromayor and Bursztyn, "Implementing
+// Software Occlusion Culling for Real-Time Applications": occlusion
+// culling on the CPU against a downscaled depth buffer.
+//   occluders=skins  the occluder skins of section 4 (a few boxes inside
+//                    each mesh, preprocessed: preprocessing/occluder_skins.h),
+//                    frustum-culled, the largest on screen first, their
+//                    faces that face the eye rasterized as quads (section 5);
+//   occluders=drawn  the triangles of the leaves already drawn this frame,
+//                    front to back, as a z-buffer fills (the way of Intel's
+//                    Masked Occlusion Culling), for comparison on the same
+//                    frames.
+// A node is tested by its screen rectangle at its nearest depth, with an
+// early out at the first depth pixel not nearer (section 6). The depth
+// buffer (raster/depth_rasterizer.h) is conservative by construction at
+// any map-divisor, with per-pixel depth or one farthest depth per polygon
+// (section 5's "optimal choice").
+#pragma once
+
+#include "culling/registry.h"
+
+namespace occu::strategies {
+
+StrategyFamily occluder_skins_family();
+
+}  // namespace occu::strategies

@@ -1,0 +1,108 @@
+#include "strategies/leone_occluder_skins/family.h"
+
+#include <memory>
+#include <optional>
+
+#include "occluders/skin_occluders.h"
+#include "raster/depth_rasterizer.h"
+#include "spatial/hierarchy.h"
+
+namespace occu::strategies {
+
+namespace {
+
+class OccluderSkinCuller final : public Culler {
+public:
+    OccluderSkinCuller(const StrategyContext &context, const Settings &settings)
+        : scene_(context.scene), hierarchy_(context.hierarchy), drawn_(settings.text("occluders") == "drawn"),
+          limit_(std::size_t(settings.integer("max-occluders")))
+    {
+        options_.divisor = int(settings.integer("map-divisor"));
+        options_.per_pixel_depth = settings.text("depth") == "pixel";
+        if (!drawn_)
+            skins_.emplace(context.scene, settings.text("skin-database"), int(settings.integer("skin-boxes")));
+    }
+
+    void begin_frame(const Frame &frame) override
+    {
+        frame_.emplace(frame);
+        raster_.begin(frame.view_projection, frame.width, frame.height, options_);
+        if (skins_)
+            skins_->render(frame, raster_, limit_);
+        stats_.passes = 1;
+    }
+
+    void test(std::vector<NodeTest> &tests) override
+    {
+        const Frame &f = *frame_;
+        for (NodeTest &t : tests) {
+            t.result = Visibility::visible;
+            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
+                t.result = Visibility::view_culled;
+                continue;
+            }
+            const auto footprint = f.footprint(t.box);
+            if (!footprint)
+                continue;   // holds the eye or crosses the near plane
+            // Behind every occluder pixel, with a margin for the box's float z.
+            if (raster_.occluded(footprint->rect, footprint->window_z_near - 1e-6f))
+                t.result = Visibility::occluded;
+        }
+    }
+
+    void rendered(std::uint32_t node) override
+    {
+        if (!drawn_)
+            return;
+        const HierarchyNode &n = hierarchy_.nodes()[node];
+        const auto &triangles = hierarchy_.triangles();
+        for (std::uint32_t i = n.first_triangle; i < n.first_triangle + n.triangle_count; ++i) {
+            const Mesh &mesh = scene_.meshes[triangles[i].mesh];
+            raster_.render_triangles(mesh.positions.data(), mesh.indices.data() + triangles[i].first_index, 1);
+        }
+    }
+
+    CullerStats stats() const override { return stats_; }
+
+private:
+    const Scene &scene_;
+    const Hierarchy &hierarchy_;
+    bool drawn_;
+    std::size_t limit_;
+    DepthRasterizer::Options options_;
+    DepthRasterizer raster_;
+    std::optional<SkinOccluders> skins_;
+    std::optional<Frame> frame_;
+    CullerStats stats_;
+};
+
+}  // namespace
+
+StrategyFamily occluder_skins_family()
+{
+    using Role = SettingSpec::Role;
+    StrategyFamily f;
+    f.name = "skins";
+    f.paper = "Leone et al., sections 4-7";
+    f.summary = "occluder skins (or the frame's drawn triangles) in a CPU depth buffer, rectangles tested at one z";
+    f.draws_occluders = true;
+    f.settings = {
+        choice_setting("occluders", {"skins", "drawn"},
+                       "the meshes' occluder skins, or the triangles of the leaves drawn so far this frame"),
+        choice_setting("depth", {"pixel", "polygon"}, "depth per pixel, or one farthest depth per polygon"),
+        integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per depth pixel, each way"),
+        integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
+                        "skins rasterized per frame, largest on screen first", "0"),
+        integer_setting("skin-boxes", 8, 1, 1 << 16, Role::cost, "skin boxes per mesh, the largest first"),
+        path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
+    };
+    f.presets = {
+        {"skins-drawn", "occluders=drawn"},
+    };
+    f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
+        return std::make_unique<OccluderSkinCuller>(context, settings);
+    };
+    return f;
+}
+
+}  // namespace occu::strategies
