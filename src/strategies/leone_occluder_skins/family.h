@@ -8,7 +8,11 @@
 //   occluders=drawn  the triangles of the leaves already drawn this frame,
 //                    front to back, as a z-buffer fills (the way of Intel's
 //                    Masked Occlusion Culling), for comparison on the same
-//                    frames.
+//                    frames;
+//   occluders=both   the skins first, then the drawn leaves' triangles,
+//                    which add what skins lack: the silhouettes they are
+//                    shrunk inside of, and details (ledges) too thin for
+//                    a voxel.
 // A node is tested by its screen rectangle at its nearest depth, with an
 // early out at the first depth pixel not nearer (section 6). The depth
 // buffer (raster/depth_rasterizer.h) is conservative by construction at

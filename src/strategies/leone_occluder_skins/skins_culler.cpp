@@ -14,12 +14,12 @@ namespace {
 class OccluderSkinCuller final : public Culler {
 public:
     OccluderSkinCuller(const StrategyContext &context, const Settings &settings)
-        : scene_(context.scene), hierarchy_(context.hierarchy), drawn_(settings.text("occluders") == "drawn"),
+        : scene_(context.scene), hierarchy_(context.hierarchy), drawn_(settings.text("occluders") != "skins"),
           limit_(std::size_t(settings.integer("max-occluders")))
     {
         options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
-        if (!drawn_)
+        if (settings.text("occluders") != "drawn")
             skins_.emplace(context.scene, settings.text("skin-database"), int(settings.integer("skin-boxes")));
     }
 
@@ -87,8 +87,8 @@ StrategyFamily occluder_skins_family()
     f.summary = "occluder skins (or the frame's drawn triangles) in a CPU depth buffer, rectangles tested at one z";
     f.draws_occluders = true;
     f.settings = {
-        choice_setting("occluders", {"skins", "drawn"},
-                       "the meshes' occluder skins, or the triangles of the leaves drawn so far this frame"),
+        choice_setting("occluders", {"skins", "drawn", "both"},
+                       "the meshes' occluder skins, the triangles of the leaves drawn so far this frame, or both"),
         choice_setting("depth", {"pixel", "polygon"}, "depth per pixel, or one farthest depth per polygon"),
         integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per depth pixel, each way"),
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
@@ -98,6 +98,7 @@ StrategyFamily occluder_skins_family()
     };
     f.presets = {
         {"skins-drawn", "occluders=drawn"},
+        {"skins-both", "occluders=both"},
     };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<OccluderSkinCuller>(context, settings);
