@@ -16,3 +16,26 @@ field() {
 occluder_db() {
     "$OCCU_ROOT/build/demos/occu-preprocess" build --cache "$OCCU_ROOT/build/occluders" "$@"
 }
+
+# The occluder-skin database of the default city at voxel size $1 (default
+# 0.25 m: skins within 0.19 m of their meshes' faces, about 8 s to make),
+# made once into build/occluders/ and again when occu-preprocess changes
+# (its path on stdout).
+skins_db() {
+    local voxel=${1:-0.25} dir=$OCCU_ROOT/build/occluders
+    local file=$dir/skins-voxel-$voxel.txt
+    if [ ! -f "$file" ] || [ "$OCCU_ROOT/build/demos/occu-preprocess" -nt "$file" ]; then
+        mkdir -p "$dir"
+        "$OCCU_ROOT/build/demos/occu-preprocess" skins --out "$file.tmp" --voxel-size "$voxel" >&2
+        mv "$file.tmp" "$file"
+    fi
+    echo "$file"
+}
+
+# Walkthrough arguments that give the skin strategies (skins, hzb, hom) the
+# skin database, when the comma-separated strategy list $1 has one.
+skin_args() {
+    if [[ ,$1 =~ ,(skins|hzb|hom)[,:-]|,(skins|hzb|hom)$ ]] && [[ $1 != *skin-database* ]]; then
+        echo "--set skin-database=$(skins_db)"
+    fi
+}

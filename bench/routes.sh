@@ -10,6 +10,7 @@ frames=${1:-120}
 strategies=${2:-none,vfc,ideal,ou,ou-shared,om-ps,om-mos}
 "$OCCU_ROOT/tools/build.sh" bench >/dev/null
 db=$(occluder_db 2>/dev/null)
+read -r -a skins <<<"$(skin_args "$strategies")"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 IFS=, read -r -a names <<<"$strategies"
@@ -19,7 +20,7 @@ printf '| route |'; printf ' %s |' "${names[@]}"; echo
 printf '|---|'; printf -- '---|%.0s' "${names[@]}"; echo
 for route in dense street medium open; do
     "$OCCU_ROOT/build/demos/walkthrough" --route "$route" --frames "$frames" --png-every 0 \
-        --strategies "$strategies" --occluder-db "$db" --out "$out/$route" >/dev/null
+        --strategies "$strategies" --occluder-db "$db" "${skins[@]}" --out "$out/$route" >/dev/null
     s=$out/$route/summary.csv
     printf '| %s |' "$route"
     for n in "${names[@]}"; do

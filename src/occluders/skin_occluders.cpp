@@ -1,11 +1,31 @@
 #include "occluders/skin_occluders.h"
 
 #include <algorithm>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 #include "preprocessing/occluder_skins.h"
 
 namespace occu {
+
+namespace {
+
+// Skins made at start, once per scene for all the strategies of a process
+// (a walkthrough compares several on one scene).
+const SceneSkins &skins_of(const Scene &scene)
+{
+    static std::mutex lock;
+    static std::map<std::string, SceneSkins> made;
+    const std::lock_guard<std::mutex> guard(lock);
+    const std::string key = scene_geometry_fingerprint(scene);
+    auto it = made.find(key);
+    if (it == made.end())
+        it = made.emplace(key, scene_skins(scene, SkinOptions{})).first;
+    return it->second;
+}
+
+}  // namespace
 
 SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh)
 {
@@ -14,7 +34,7 @@ SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, in
             boxes_.push_back(boxes[i]);
     };
     if (database.empty()) {
-        for (const MeshSkins &m : scene_skins(scene, SkinOptions{}).skins)
+        for (const MeshSkins &m : skins_of(scene).skins)
             keep(m.boxes);
         return;
     }
@@ -46,9 +66,26 @@ std::size_t SkinOccluders::render(const Frame &frame, DepthRasterizer &raster, s
                          [](const auto &a, const auto &b) { return a.first > b.first; });
         chosen_.resize(limit);
     }
-    for (const auto &c : chosen_)
-        raster.render_box(boxes_[c.second]);
-    return chosen_.size();
+    // Nearest first, and a skin already hidden by those before it is not
+    // drawn: in a street most skins stand behind the first few, and
+    // filling their pixels would change nothing (occluders fuse in the
+    // buffer, section 3, so the hidden ones add no occlusion).
+    for (auto &c : chosen_) {
+        const Aabb &b = boxes_[c.second];
+        const glm::vec3 d = glm::max(glm::max(b.min - eye, eye - b.max), glm::vec3(0.0f));
+        c.first = glm::dot(d, d);
+    }
+    std::sort(chosen_.begin(), chosen_.end());
+    std::size_t drawn = 0;
+    for (const auto &c : chosen_) {
+        const Aabb &b = boxes_[c.second];
+        const auto footprint = frame.footprint(b);
+        if (footprint && raster.occluded(footprint->rect, footprint->window_z_near))
+            continue;
+        raster.render_box(b);
+        ++drawn;
+    }
+    return drawn;
 }
 
 }  // namespace occu

@@ -25,8 +25,9 @@ public:
     SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh);
 
     // Renders the skins in `frame`'s frustum into `raster` (begun for the
-    // frame), at most `limit` of them (0: all), by the solid angle their
-    // boxes subtend, largest first. Returns how many it rendered.
+    // frame): at most `limit` of them (0: all), chosen by the solid angle
+    // their boxes subtend, drawn nearest first, skipping those the ones
+    // before already hide. Returns how many it drew.
     std::size_t render(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
 
     std::size_t size() const { return boxes_.size(); }

@@ -1,5 +1,6 @@
 #include "raster/depth_rasterizer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -348,9 +349,16 @@ float DepthRasterizer::depth(int x, int y) const
 void DepthRasterizer::read(std::vector<float> &out) const
 {
     out.resize(std::size_t(width_) * std::size_t(height_));
-    for (int y = 0; y < height_; ++y)
-        for (int x = 0; x < width_; ++x)
-            out[std::size_t(y) * std::size_t(width_) + std::size_t(x)] = depth(x, y);
+    for (int y = 0; y < height_; ++y) {
+        float *row = out.data() + std::size_t(y) * std::size_t(width_);
+        for (int tx = 0; tx < tiles_x_; ++tx) {
+            const float *from = tiles_.data() +
+                                (std::size_t(y / tile_size) * std::size_t(tiles_x_) + std::size_t(tx)) * tile_pixels +
+                                std::size_t(y % tile_size) * tile_size;
+            const int x0 = tx * tile_size, count = std::min(tile_size, width_ - x0);
+            std::copy(from, from + count, row + x0);
+        }
+    }
 }
 
 }  // namespace occu
