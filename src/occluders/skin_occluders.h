@@ -31,6 +31,7 @@ public:
     std::size_t render(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
 
     std::size_t size() const { return boxes_.size(); }
+    const std::vector<Aabb> &boxes() const { return boxes_; }
 
 private:
     std::vector<Aabb> boxes_;
