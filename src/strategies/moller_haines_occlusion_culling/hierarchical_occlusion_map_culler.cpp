@@ -23,9 +23,16 @@ public:
           max_budget_(double(settings.integer("occluders"))), adapt_(settings.on("adapt-budget")),
           deb_(int(settings.integer("depth-regions")), int(settings.integer("depth-regions")))
     {
-        options_.divisor = int(settings.integer("map-divisor"));
-        // The depth estimation buffer takes each occluder's farthest depth,
-        // Zhang's estimate (the farthest vertex), so one depth per polygon.
+        // Occluders are rasterized at the frame's resolution, white where
+        // they cover a frame pixel; occlusion map 0 averages blocks of
+        // map-divisor x map-divisor of them, so its opacities are the
+        // covered share of each block, as in the chapter's example (a
+        // 128 x 128 map of a 1024 x 1024 image, O_0 = 1 - n/64 for holes of
+        // n pixels). The depth estimation buffer takes each occluder's
+        // farthest depth, Zhang's estimate (the farthest vertex): one depth
+        // per polygon.
+        divisor_ = int(settings.integer("map-divisor"));
+        options_.divisor = 1;
         options_.per_pixel_depth = false;
     }
 
@@ -36,12 +43,28 @@ public:
         raster_.begin(frame.view_projection, frame.width, frame.height, options_);
         skins_.render(frame, raster_, std::size_t(std::lround(budget_)));
         raster_.read(depth_);
-        // Occlusion map 0: white where an occluder covers the depth pixel.
-        opacity_.resize(depth_.size());
-        for (std::size_t i = 0; i < depth_.size(); ++i)
-            opacity_[i] = depth_[i] < 1.0f ? 1.0f : 0.0f;
-        hom_.build(raster_.width(), raster_.height(), opacity_.data());
-        deb_.build(raster_.width(), raster_.height(), depth_.data());
+        const int w = raster_.width(), h = raster_.height(), k = divisor_;
+        const int mw = (w + k - 1) / k, mh = (h + k - 1) / k;
+        // Occlusion map 0: the covered share of each block (a block past
+        // the frame's edge averages the pixels it has).
+        opacity_.assign(std::size_t(mw) * std::size_t(mh), 0.0f);
+        for (int y = 0; y < h; ++y) {
+            const float *row = depth_.data() + std::size_t(y) * std::size_t(w);
+            float *out = opacity_.data() + std::size_t(y / k) * std::size_t(mw);
+            for (int mx = 0, x = 0; mx < mw; ++mx) {
+                int covered = 0;
+                for (const int end = std::min(w, x + k); x < end; ++x)
+                    covered += row[x] < 1.0f;
+                out[mx] += float(covered);
+            }
+        }
+        for (int my = 0; my < mh; ++my)
+            for (int mx = 0; mx < mw; ++mx) {
+                const int pixels = (std::min(w, (mx + 1) * k) - mx * k) * (std::min(h, (my + 1) * k) - my * k);
+                opacity_[std::size_t(my) * std::size_t(mw) + std::size_t(mx)] /= float(pixels);
+            }
+        hom_.build(mw, mh, opacity_.data());
+        deb_.build(w, h, depth_.data());
         tested_ = occluded_ = 0;
         stats_.passes = 1;
     }
@@ -59,10 +82,9 @@ public:
             if (!footprint || footprint->rect.empty())
                 continue;
             ++tested_;
-            const PixelRect m =
-                footprint->rect.to_map(options_.divisor).clamped({0, 0, hom_.width(), hom_.height()});
+            const PixelRect m = footprint->rect.to_map(divisor_).clamped({0, 0, hom_.width(), hom_.height()});
             // The overlap test, then the depth test (Zhang: both must pass).
-            if (hom_.overlaps(m, threshold_) && deb_.behind(m, footprint->window_z_near - 1e-6f)) {
+            if (hom_.overlaps(m, threshold_) && deb_.behind(footprint->rect, footprint->window_z_near - 1e-6f)) {
                 t.result = Visibility::occluded;
                 ++occluded_;
             }
@@ -93,6 +115,7 @@ private:
     bool adapt_;
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
+    int divisor_;
     std::vector<float> depth_, opacity_;
     HierarchicalOcclusionMap hom_;
     DepthEstimationBuffer deb_;
@@ -113,12 +136,12 @@ StrategyFamily hierarchical_occlusion_map_family()
     f.draws_occluders = true;
     f.settings = {
         number_setting("tolerance", 0.0, 0.0, 1.0, Role::approximation,
-                       "1 - the opacity threshold O_0 at level 0; level k needs 1 - tolerance / 4^k"),
+                       "1 - the opacity threshold O_0: the share of a level-0 texel's frame pixels that may be holes"),
         integer_setting("occluders", 256, 1, 1 << 24, Role::cost,
                         "skins rendered into the occlusion map per frame, largest on screen first"),
         on_off_setting("adapt-budget", false, Role::cost,
                        "grow the occluder count while little is culled, shrink it while much is"),
-        integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per occlusion-map pixel, each way"),
+        integer_setting("map-divisor", 4, 1, 64, Role::cost, "frame pixels per occlusion-map pixel at level 0, each way"),
         integer_setting("depth-regions", 64, 1, 4096, Role::cost, "depth estimation buffer regions, each way"),
         integer_setting("skin-boxes", 8, 1, 1 << 16, Role::cost, "skin boxes per mesh, the largest first"),
         path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
