@@ -153,6 +153,14 @@ void DepthRasterizer::polygon(const glm::vec4 *clip, int count)
     const float sx = 0.5f * float(frame_width_) / float(options_.divisor);
     const float sy = 0.5f * float(frame_height_) / float(options_.divisor);
     if (!needs_clip) {
+        // With every w > 0 the winding on screen is the sign of the
+        // determinant of the vertices' (x, y, w): back faces, half of a
+        // closed mesh's triangles, end here before any division.
+        const glm::vec4 &p = clip[0], &q = clip[1], &r = clip[2];
+        const float winding = p.x * (q.y * r.w - q.w * r.y) - p.y * (q.x * r.w - q.w * r.x) +
+                              p.w * (q.x * r.y - q.y * r.x);
+        if (count == 3 && !(winding > 0.0f))
+            return;
         for (int i = 0; i < count; ++i) {
             const float inv = 1.0f / clip[i].w;
             window[i] = {(clip[i].x * inv + 1.0f) * sx, (clip[i].y * inv + 1.0f) * sy};
@@ -249,6 +257,7 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
         s.ea[e] = float(a);
         s.eb[e] = float(b);
         s.ec[e] = float(folded - margin);
+        s.inverse_ea[e] = s.ea[e] != 0.0f ? 1.0f / s.ea[e] : 0.0f;
     }
 
     // Depth: the farthest over the samples, never past the farthest vertex

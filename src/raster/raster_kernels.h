@@ -23,6 +23,7 @@ constexpr int tile_pixels = tile_size * tile_size;
 struct PolygonSetup {
     int edges = 0;
     float ea[max_edges], eb[max_edges], ec[max_edges];
+    float inverse_ea[max_edges];   // 1 / ea, 0 where ea is 0: row_span's bounds
     float za = 0.0f, zb = 0.0f, zc = 0.0f, zcap = 1.0f;
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;   // the pixels that may be covered, half-open, inside the buffer
 };
@@ -36,7 +37,7 @@ struct TileBuffer {
 
 // The 8-aligned span of row Y that may hold covered pixels: [*xl, *xr).
 // Each edge bounds X from one side; a pixel of slack on each side absorbs
-// the division's rounding (the loops still test every pixel), and the
+// the reciprocal's rounding (the loops still test every pixel), and the
 // bounds are clamped in float before conversion, as a nearly horizontal
 // edge gives a huge quotient. Shared by both loops, so both visit the same
 // pixels. Internal to each loop's file, and free of library templates: an
@@ -62,10 +63,10 @@ inline void row_span(const PolygonSetup &s, int y, int padded_width, int *xl, in
     for (int e = 0; e < s.edges; ++e) {
         const float t = s.eb[e] * fy + s.ec[e];
         if (s.ea[e] > 0.0f) {
-            const float bound = -t / s.ea[e] - 1.0f;
+            const float bound = -t * s.inverse_ea[e] - 1.0f;
             lo = bound > lo ? bound : lo;
         } else if (s.ea[e] < 0.0f) {
-            const float bound = -t / s.ea[e] + 2.0f;
+            const float bound = -t * s.inverse_ea[e] + 2.0f;
             hi = bound < hi ? bound : hi;
         } else if (t < 0.0f) {
             hi = lo;
