@@ -349,6 +349,102 @@ bool DepthRasterizer::occluded(const PixelRect &frame_rect, float z) const
     return true;
 }
 
+bool DepthRasterizer::occluded(const Aabb &box, const PixelRect &frame_rect, float z_near) const
+{
+    if (occluded(frame_rect, z_near))
+        return true;
+    if (!(z_near == z_near))
+        return false;
+    // The corners in window coordinates of the buffer (depth pixels) and
+    // window depth, in double: this test decides what is not drawn.
+    const double k = options_.divisor;
+    const double sx = 0.5 * double(frame_width_) / k, sy = 0.5 * double(frame_height_) / k;
+    glm::dvec2 window[8];
+    double corner_depth[8];
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec4 c = glm::dmat4(view_projection_) * glm::dvec4(glm::dvec3(box.corner(i)), 1.0);
+        if (!(c.w > 0.0) || c.z < -c.w)
+            return false;   // in front of the near plane, or around the eye
+        window[i] = {(c.x / c.w + 1.0) * sx, (c.y / c.w + 1.0) * sy};
+        corner_depth[i] = c.z / c.w * 0.5 + 0.5;
+    }
+    // The box's content can be nearer than its faces nowhere, and nearer
+    // than its nearest corner nowhere: both bounds less the depth margin.
+    const double floor_z = double(z_near) - depth_margin;
+    static const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    if (any_dirty_)
+        update_tile_maxima();
+    for (const auto &face : faces) {
+        glm::dvec2 p[4];
+        double z[4], area = 0.0;
+        glm::dvec2 lo(1e300), hi(-1e300);
+        for (int i = 0; i < 4; ++i) {
+            p[i] = window[face[i]];
+            z[i] = corner_depth[face[i]];
+            lo = glm::min(lo, p[i]);
+            hi = glm::max(hi, p[i]);
+        }
+        for (int i = 0; i < 4; ++i)
+            area += p[i].x * p[(i + 1) % 4].y - p[(i + 1) % 4].x * p[i].y;
+        if (!(area > 0.0))
+            continue;   // faces away: the faces that face the eye cover the box's silhouette
+        // Every depth pixel whose square the face reaches, grown by the
+        // edge margin.
+        const double grow = edge_margin / k;
+        const int x0 = std::max(0, int(std::floor(lo.x - grow))), y0 = std::max(0, int(std::floor(lo.y - grow)));
+        const int x1 = std::min(width_, int(std::floor(hi.x + grow)) + 1);
+        const int y1 = std::min(height_, int(std::floor(hi.y + grow)) + 1);
+        if (x0 >= x1 || y0 >= y1)
+            continue;
+        // Outward edges: the largest E over a pixel's square, at the corner
+        // on the edge's inside, >= -margin.
+        double ea[4], eb[4], ec[4];
+        for (int e = 0; e < 4; ++e) {
+            const glm::dvec2 &a = p[e], &b = p[(e + 1) % 4];
+            ea[e] = a.y - b.y;
+            eb[e] = b.x - a.x;
+            ec[e] = -(ea[e] * a.x + eb[e] * a.y) + std::max(ea[e], 0.0) + std::max(eb[e], 0.0) +
+                    (std::abs(ea[e]) + std::abs(eb[e])) * grow;
+        }
+        // The face's plane, its smallest value over a pixel's square.
+        const glm::dvec2 u = p[1] - p[0], v = p[2] - p[0];
+        const double twice = u.x * v.y - u.y * v.x;
+        double za = 0.0, zb = 0.0, zc = floor_z;
+        if (twice > 0.0) {
+            const double du = z[1] - z[0], dv = z[2] - z[0];
+            za = (du * v.y - dv * u.y) / twice;
+            zb = (dv * u.x - du * v.x) / twice;
+            zc = z[0] - za * p[0].x - zb * p[0].y + std::min(za, 0.0) + std::min(zb, 0.0) - depth_margin;
+        }
+        // Tile by tile: a tile whose farthest depth is nearer than the
+        // face's nearest over the tile settles all its pixels at once.
+        for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
+            for (int tx = x0 / tile_size; tx <= (x1 - 1) / tile_size; ++tx) {
+                const int tx0 = std::max(x0, tx * tile_size), tx1 = std::min(x1, (tx + 1) * tile_size);
+                const int ty0 = std::max(y0, ty * tile_size), ty1 = std::min(y1, (ty + 1) * tile_size);
+                const double tile_nearest =
+                    std::max(floor_z, za * (za < 0.0 ? tx1 - 1 : tx0) + zb * (zb < 0.0 ? ty1 - 1 : ty0) + zc);
+                const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
+                if (double(tile_max_[t]) < tile_nearest)
+                    continue;
+                const float *tile = tiles_.data() + t * tile_pixels;
+                for (int y = ty0; y < ty1; ++y)
+                    for (int x = tx0; x < tx1; ++x) {
+                        bool inside = true;
+                        for (int e = 0; e < 4 && inside; ++e)
+                            inside = ea[e] * x + eb[e] * y + ec[e] >= 0.0;
+                        if (!inside)
+                            continue;
+                        const double nearest = std::max(floor_z, za * x + zb * y + zc);
+                        if (!(double(tile[(y % tile_size) * tile_size + x % tile_size]) < nearest))
+                            return false;
+                    }
+            }
+    }
+    return true;
+}
+
 float DepthRasterizer::depth(int x, int y) const
 {
     const std::size_t t = std::size_t(y / tile_size) * std::size_t(tiles_x_) + std::size_t(x / tile_size);

@@ -81,6 +81,17 @@ public:
     // pixel that is not. An empty rectangle is occluded (it has no pixel).
     bool occluded(const PixelRect &frame_rect, float z) const;
 
+    // Whether every depth pixel `box`'s faces can touch is nearer than the
+    // box there: the rectangle test first (its nearest depth over its
+    // footprint), and where that fails, the faces that face the eye,
+    // rasterized outward (every depth pixel whose square they reach, less
+    // nothing) with their nearest depth over each pixel, no nearer bound
+    // than the box's nearest corner. Tighter than the rectangle: the
+    // pixels of the rectangle's corners outside the box's silhouette, and
+    // the depth of the box's far parts, no longer count. False when the
+    // box reaches in front of the near plane or holds the eye.
+    bool occluded(const Aabb &box, const PixelRect &frame_rect, float z_near) const;
+
     int width() const { return width_; }
     int height() const { return height_; }
     int divisor() const { return options_.divisor; }

@@ -14,7 +14,12 @@
 //                    shrunk inside of, and details (ledges) too thin for
 //                    a voxel.
 // A node is tested by its screen rectangle at its nearest depth, with an
-// early out at the first depth pixel not nearer (section 6). The depth
+// early out at the first depth pixel not nearer (section 6); a leaf that
+// fails is tested again by its box's faces that face the eye, pixel by
+// pixel at their own nearest depth (occludee=box; occludee=rect is section
+// 6 alone): the rectangle's corners outside the box's silhouette and the
+// depth of its far parts no longer keep it (98.4% culling efficiency on the
+// dense route against 97.8%). The depth
 // buffer (raster/depth_rasterizer.h) is conservative by construction at
 // any map-divisor, with per-pixel depth or one farthest depth per polygon
 // (section 5's "optimal choice").

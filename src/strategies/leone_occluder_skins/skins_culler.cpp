@@ -15,7 +15,7 @@ class OccluderSkinCuller final : public Culler {
 public:
     OccluderSkinCuller(const StrategyContext &context, const Settings &settings)
         : scene_(context.scene), hierarchy_(context.hierarchy), drawn_(settings.text("occluders") != "skins"),
-          limit_(std::size_t(settings.integer("max-occluders")))
+          limit_(std::size_t(settings.integer("max-occluders"))), box_test_(settings.text("occludee") == "box")
     {
         options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
@@ -45,7 +45,8 @@ public:
             if (!footprint)
                 continue;   // holds the eye or crosses the near plane
             // Behind every occluder pixel, with a margin for the box's float z.
-            if (raster_.occluded(footprint->rect, footprint->window_z_near - 1e-6f))
+            const float z = footprint->window_z_near - 1e-6f;
+            if (box_test_ && t.leaf ? raster_.occluded(t.box, footprint->rect, z) : raster_.occluded(footprint->rect, z))
                 t.result = Visibility::occluded;
         }
     }
@@ -69,6 +70,7 @@ private:
     const Hierarchy &hierarchy_;
     bool drawn_;
     std::size_t limit_;
+    bool box_test_;
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
     std::optional<SkinOccluders> skins_;
@@ -90,6 +92,9 @@ StrategyFamily occluder_skins_family()
         choice_setting("occluders", {"skins", "drawn", "both"},
                        "the meshes' occluder skins, the triangles of the leaves drawn so far this frame, or both"),
         choice_setting("depth", {"pixel", "polygon"}, "depth per pixel, or one farthest depth per polygon"),
+        choice_setting("occludee", {"box", "rect"},
+                       "a leaf is its screen rectangle at its nearest depth and, where that fails, its box's faces "
+                       "pixel by pixel; or the rectangle alone (section 6)"),
         integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per depth pixel, each way"),
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "camera/camera.h"
+#include "camera/footprint.h"
 #include "gl/gl_headers.h"
 #include "gl/offscreen_context.h"
 
@@ -157,6 +158,65 @@ TEST_P(DepthRasterizerAgainstGl, CoversOnlyWhatGlCoversAndNeverNearer)
     // Conservative, and not trivially: the covered depth pixels hold a
     // fair share of what GL covers (the rest is lost at polygon edges).
     EXPECT_GT(double(covered) * divisor * divisor, 0.5 * double(gl_covered));
+}
+
+// A box the box test calls occluded shows no fragment of its faces in GL
+// at full resolution behind the same occluders, so nothing inside it can
+// show either; and the box test settles more boxes than the rectangle.
+TEST_P(DepthRasterizerAgainstGl, BoxTestHidesOnlyBoxesGlHides)
+{
+    const int divisor = GetParam();
+    gl::OffscreenContext ctx(frame_size, frame_size);
+    const Camera camera = test_camera();
+    const glm::mat4 vp = camera.view_projection();
+    std::mt19937 rng(77u + unsigned(divisor));
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    DepthRasterizer r;
+    int by_rect = 0, by_box = 0;
+    for (int scene = 0; scene < 30; ++scene) {
+        const Polygons p = random_polygons(rng, 40);
+        rasterize(r, p, vp, {divisor, true});
+        gl_depth(p, camera);   // the occluders' depth stays in GL's depth buffer
+        glDepthMask(GL_FALSE);
+        for (int b = 0; b < 60; ++b) {
+            const glm::vec3 centre{unit(rng) * 8 - 4, unit(rng) * 8 - 4, -1.0f - unit(rng) * 12};
+            const glm::vec3 half{0.05f + unit(rng) * 1.5f, 0.05f + unit(rng) * 1.5f, 0.05f + unit(rng) * 1.5f};
+            const Aabb box = Aabb::of(centre - half, centre + half);
+            const auto footprint = box_footprint(vp, camera.position, box, frame_size, frame_size);
+            if (!footprint)
+                continue;
+            const float z = footprint->window_z_near - 1e-6f;
+            const bool rect = r.occluded(footprint->rect, z), whole = r.occluded(box, footprint->rect, z);
+            ASSERT_TRUE(!rect || whole) << "the box test starts with the rectangle";
+            by_rect += rect;
+            by_box += whole;
+            if (!whole)
+                continue;
+            static const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                            {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+            // Its faces drawn white on black behind the occluders' depth.
+            glClearColor(0, 0, 0, 0);
+            glClear(GL_COLOR_BUFFER_BIT);
+            glColor3f(1, 1, 1);
+            glBegin(GL_QUADS);
+            for (const auto &face : faces)
+                for (int corner : face) {
+                    const glm::vec3 v = box.corner(corner);
+                    glVertex3f(v.x, v.y, v.z);
+                }
+            glEnd();
+            std::vector<std::uint8_t> pixels(std::size_t(frame_size) * frame_size * 4);
+            glReadPixels(0, 0, frame_size, frame_size, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+            long shown = 0;
+            for (std::size_t i = 0; i < pixels.size(); i += 4)
+                shown += pixels[i] != 0;
+            ASSERT_EQ(shown, 0) << "scene " << scene << " box " << b << " called occluded shows " << shown
+                                << " pixels";
+        }
+        glDepthMask(GL_TRUE);
+    }
+    EXPECT_GT(by_rect, 20) << "the scenes hide some boxes";
+    EXPECT_GT(by_box, by_rect) << "the box test settles boxes the rectangle does not";
 }
 
 INSTANTIATE_TEST_SUITE_P(Divisors, DepthRasterizerAgainstGl, ::testing::Values(1, 2, 3, 4),
