@@ -11,11 +11,16 @@
 // over all its frames, the paths alternating round by round, because the
 // machine is shared. Prints CSV:
 //   route,load,divisor,isa,polygons,ms_per_frame,million_polygons_per_second
+// and, for the leaf triangles at divisor 2 with the best loops, the same
+// work split over two threads (each half the batches into a buffer of its
+// own, then merged, nearest wins) against one, alternating:
+//   route,two-threads,2,ISA,polygons,ms_per_frame,million_polygons_per_second
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "camera/route.h"
@@ -105,6 +110,38 @@ int main(int argc, char **argv)
                                 (unsigned long long)(polygons / cameras.size()), best[i] / double(cameras.size()),
                                 double(polygons) / (best[i] * 1e3));
             }
+        }
+        // The second core: the frame's batches split in two halves, one per
+        // thread, each into a rasterizer of its own, merged at the end.
+        {
+            const DepthRasterizer::Isa isa = isas.back();
+            DepthRasterizer a(isa), b(isa);
+            double best = 1e30;
+            std::uint64_t polygons = 0;
+            for (int round = 0; round < 5; ++round) {
+                const auto t0 = Clock::now();
+                for (std::size_t f = 0; f < cameras.size(); ++f) {
+                    const occu::Frame frame(cameras[f], size, size);
+                    const std::size_t half = loads[f].size() / 2;
+                    auto work = [&](DepthRasterizer &r, std::size_t from, std::size_t to) {
+                        r.begin(frame.view_projection, size, size, {2, true});
+                        for (std::size_t i = from; i < to; ++i)
+                            r.render_triangles(loads[f][i].mesh->positions.data(), loads[f][i].indices.data(),
+                                               loads[f][i].indices.size() / 3);
+                    };
+                    std::thread other(work, std::ref(b), half, loads[f].size());
+                    work(a, 0, half);
+                    other.join();
+                    a.merge_nearest(b);
+                    polygons += a.stats().polygons;
+                }
+                best = std::min(best, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+            }
+            polygons /= 5;
+            std::printf("%s,two-threads,2,%s,%llu,%.3f,%.1f\n", route,
+                        isa == DepthRasterizer::Isa::avx2 ? "avx2" : "scalar",
+                        (unsigned long long)(polygons / cameras.size()), best / double(cameras.size()),
+                        double(polygons) / (best * 1e3));
         }
         (void)triangles;
     }

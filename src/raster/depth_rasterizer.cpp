@@ -307,6 +307,29 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     any_dirty_ = true;
 }
 
+void DepthRasterizer::merge_nearest(const DepthRasterizer &other)
+{
+    if (other.width_ != width_ || other.height_ != height_ || other.tiles_.size() != tiles_.size())
+        throw std::invalid_argument("depth rasterizer: merging a buffer of another size");
+    for (std::size_t t = 0; t < dirty_.size(); ++t) {
+        float *to = tiles_.data() + t * tile_pixels;
+        const float *from = other.tiles_.data() + t * tile_pixels;
+        bool nearer = false;
+        for (int i = 0; i < tile_pixels; ++i)
+            if (from[i] < to[i]) {
+                to[i] = from[i];
+                nearer = true;
+            }
+        if (nearer) {
+            dirty_[t] = 1;
+            any_dirty_ = true;
+        }
+    }
+    stats_.polygons += other.stats_.polygons;
+    stats_.rasterized += other.stats_.rasterized;
+    stats_.clipped += other.stats_.clipped;
+}
+
 void DepthRasterizer::update_tile_maxima() const
 {
     for (std::size_t t = 0; t < dirty_.size(); ++t) {

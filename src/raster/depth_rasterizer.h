@@ -75,6 +75,12 @@ public:
     // The faces of `box` that face the eye, as quads (Leone, section 5).
     void render_box(const Aabb &box);
 
+    // Keeps, pixel by pixel, the nearer of this buffer and `other` (begun
+    // for the same frame and options): occluders rasterized on another
+    // thread into a buffer of its own join this one. Throws
+    // std::invalid_argument when the sizes differ.
+    void merge_nearest(const DepthRasterizer &other);
+
     // Whether every depth pixel under `frame_rect` (frame pixels, clamped
     // to the frame) is nearer than `z`: an occludee whose nearest window
     // depth is z is then hidden (section 6). Stops at the first depth

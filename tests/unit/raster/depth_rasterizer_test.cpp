@@ -327,6 +327,34 @@ TEST(DepthRasterizer, PerPolygonDepthIsNeverNearerThanPerPixel)
     EXPECT_GT(farther, 0) << "one depth per polygon is the coarser rule";
 }
 
+TEST(DepthRasterizer, TwoBuffersMergedEqualOneBufferOfAllPolygons)
+{
+    const glm::mat4 vp = test_camera().view_projection();
+    std::mt19937 rng(21);
+    DepthRasterizer all, first, second;
+    std::vector<float> a, b;
+    for (int trial = 0; trial < 20; ++trial) {
+        const Polygons p = random_polygons(rng, 30), q = random_polygons(rng, 30);
+        const DepthRasterizer::Options o{1 + trial % 3, true};
+        rasterize(all, p, vp, o);
+        all.render_triangles(q.positions.data(), q.triangles.data(), q.triangles.size() / 3);
+        all.render_quads(q.positions.data(), q.quads.data(), q.quads.size() / 4);
+        rasterize(first, p, vp, o);
+        rasterize(second, q, vp, o);
+        first.merge_nearest(second);
+        all.read(a);
+        first.read(b);
+        ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << "trial " << trial;
+        for (int i = 0; i < 20; ++i) {
+            const PixelRect rect{i * 6, i * 3, i * 6 + 20, i * 3 + 30};
+            ASSERT_EQ(all.occluded(rect, 0.99f), first.occluded(rect, 0.99f)) << "tile maxima after the merge";
+        }
+    }
+    DepthRasterizer other;
+    other.begin(vp, 64, 64, {});
+    EXPECT_THROW(first.merge_nearest(other), std::invalid_argument);
+}
+
 TEST(DepthRasterizer, RefusesSizesBelowOne)
 {
     DepthRasterizer r;
