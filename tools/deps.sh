@@ -21,6 +21,7 @@ BUILD_PACKAGES=(
 TEST_PACKAGES=(
     piglit
     assimp-testmodels   # real models the demos must refuse (BoxWithInfinites.glb: infinite vertices)
+    clang libclang-rt-14-dev   # the fuzz targets: libFuzzer and the sanitizers' runtimes (tools/fuzz)
 )
 # To count instructions in benchmarks (wall time on shared machines is noisy).
 BENCH_PACKAGES=(
