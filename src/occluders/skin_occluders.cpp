@@ -29,13 +29,20 @@ const SceneSkins &skins_of(const Scene &scene)
 
 SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh)
 {
-    auto keep = [&](const std::vector<Aabb> &boxes) {
-        for (std::size_t i = 0; i < boxes.size() && i < std::size_t(boxes_per_mesh); ++i)
+    auto keep = [&](std::uint32_t mesh, const std::vector<Aabb> &boxes) {
+        if (mesh >= scene.meshes.size())
+            return;
+        Aabb bounds;
+        for (const glm::vec3 &p : scene.meshes[mesh].positions)
+            bounds.expand(p);
+        for (std::size_t i = 0; i < boxes.size() && i < std::size_t(boxes_per_mesh); ++i) {
             boxes_.push_back(boxes[i]);
+            mesh_bounds_.push_back(bounds);
+        }
     };
     if (database.empty()) {
         for (const MeshSkins &m : skins_of(scene).skins)
-            keep(m.boxes);
+            keep(m.mesh, m.boxes);
         return;
     }
     const OccluderSkinDatabase db = OccluderSkinDatabase::load(database);
@@ -43,7 +50,23 @@ SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, in
     if (!mismatch.empty())
         throw std::runtime_error(database + ": " + mismatch);
     for (const auto &[mesh, boxes] : db.skins)
-        keep(boxes);
+        keep(mesh, boxes);
+}
+
+bool SkinOccluders::usable(std::size_t i, const Frame &frame) const
+{
+    // View depth along the camera's axis, which is what the near plane
+    // clips (camera/camera.h: the view looks from position to target),
+    // in double, with a margin above the near distance for the rounding of
+    // GL's clip test.
+    const glm::dvec3 eye(frame.camera.position);
+    const glm::dvec3 forward = glm::normalize(glm::dvec3(frame.camera.target) - eye);
+    const double near = double(frame.camera.near_plane) * (1.0 + 1e-5) + 1e-6;
+    const Aabb &m = mesh_bounds_[i];
+    for (int c = 0; c < 8; ++c)
+        if (!(glm::dot(glm::dvec3(m.corner(c)) - eye, forward) > near))
+            return false;
+    return true;
 }
 
 std::size_t SkinOccluders::render(const Frame &frame, DepthRasterizer &raster, std::size_t limit)
@@ -55,7 +78,7 @@ std::size_t SkinOccluders::render(const Frame &frame, DepthRasterizer &raster, s
     const glm::vec3 eye = frame.camera.position;
     for (std::size_t i = 0; i < boxes_.size(); ++i) {
         const Aabb &b = boxes_[i];
-        if (frame.frustum.classify(b) == Frustum::Side::outside)
+        if (frame.frustum.classify(b) == Frustum::Side::outside || !usable(i, frame))
             continue;
         const glm::vec3 d = glm::max(glm::max(b.min - eye, eye - b.max), glm::vec3(0.0f));
         const float extent = glm::dot(b.extent(), b.extent());

@@ -24,17 +24,28 @@ public:
     // boxes (the largest first).
     SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh);
 
-    // Renders the skins in `frame`'s frustum into `raster` (begun for the
-    // frame): at most `limit` of them (0: all), chosen by the solid angle
+    // Renders the usable skins in `frame`'s frustum into `raster` (begun
+    // for the frame): at most `limit` of them (0: all), chosen by the solid angle
     // their boxes subtend, drawn nearest first, skipping those the ones
     // before already hide. Returns how many it drew.
     std::size_t render(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
 
+    // Whether skin `i` may stand for its mesh in `frame`: only where the
+    // mesh's bounding box lies wholly beyond the near plane. A skin hides
+    // what lies behind it because the mesh's surface in front of it is
+    // drawn; a near plane through the mesh clips that surface away, and an
+    // eye inside the mesh sees its walls from behind, where back-face
+    // culling drops them: in both GL shows what the skin would hide.
+    bool usable(std::size_t i, const Frame &frame) const;
+
     std::size_t size() const { return boxes_.size(); }
     const std::vector<Aabb> &boxes() const { return boxes_; }
+    // The bounding box of skin i's mesh.
+    const Aabb &mesh_bounds(std::size_t i) const { return mesh_bounds_[i]; }
 
 private:
     std::vector<Aabb> boxes_;
+    std::vector<Aabb> mesh_bounds_;   // per skin, its mesh's
     std::vector<std::pair<float, std::uint32_t>> chosen_;
 };
 

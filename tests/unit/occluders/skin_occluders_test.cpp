@@ -1,6 +1,8 @@
 // Skins in the frame: drawing them nearest first and skipping those already
-// hidden leaves the depth buffer exactly as drawing every skin in the
-// frustum would (a hidden skin has no pixel nearer than what is there).
+// hidden leaves the depth buffer exactly as drawing every usable skin in
+// the frustum would (a hidden skin has no pixel nearer than what is there);
+// a skin whose mesh the near plane cuts, or whose mesh holds the eye, is
+// not usable.
 #include "occluders/skin_occluders.h"
 
 #include <gtest/gtest.h>
@@ -31,9 +33,9 @@ TEST(SkinOccluders, SkippingHiddenSkinsChangesNoDepthPixel)
                 skipping.begin(frame.view_projection, 128, 128, {divisor, true});
                 drawn += skins.render(frame, skipping, 0);
                 every.begin(frame.view_projection, 128, 128, {divisor, true});
-                for (const Aabb &box : skins.boxes())
-                    if (frame.frustum.classify(box) != Frustum::Side::outside) {
-                        every.render_box(box);
+                for (std::size_t i = 0; i < skins.size(); ++i)
+                    if (frame.frustum.classify(skins.boxes()[i]) != Frustum::Side::outside && skins.usable(i, frame)) {
+                        every.render_box(skins.boxes()[i]);
                         ++in_frustum;
                     }
                 skipping.read(a);
@@ -62,4 +64,25 @@ TEST(SkinOccluders, RefusesADatabaseMadeForAnotherScene)
         EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
     }
     std::remove(path.c_str());
+}
+
+TEST(SkinOccluders, ASkinIsUnusableWhereTheNearPlaneCutsItsMeshOrTheEyeIsInside)
+{
+    Scene scene;
+    scene.meshes.emplace_back();
+    append_box(scene.meshes[0], Aabb::of({-5, 0, -30}, {5, 10, -20}));
+    scene.update_bounds();
+    SkinOccluders skins(scene, "", 8);
+    ASSERT_EQ(skins.size(), 1u);
+    Camera c;
+    c.position = {0, 5, 0};
+    c.target = {0, 5, -1};
+    c.near_plane = 0.5f;
+    EXPECT_TRUE(skins.usable(0, Frame(c, 64, 64))) << "the mesh lies 20 m beyond the near plane";
+    c.near_plane = 20.5f;
+    EXPECT_FALSE(skins.usable(0, Frame(c, 64, 64))) << "the near plane cuts the mesh's front wall away";
+    c.near_plane = 0.5f;
+    c.position = {0, 5, -25};
+    c.target = {0, 5, -26};
+    EXPECT_FALSE(skins.usable(0, Frame(c, 64, 64))) << "the eye is inside the mesh";
 }
