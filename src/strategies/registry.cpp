@@ -21,6 +21,8 @@ const std::vector<StrategyFamily> &strategy_families()
         strategies::hp_occlusion_test_family(), // hp: Moeller and Haines, the HP occlusion test
         strategies::hierarchical_z_buffer_family(),       // hzb: Moeller and Haines (Greene)
         strategies::hierarchical_occlusion_map_family(),  // hom: Moeller and Haines (Zhang)
+        strategies::shadow_frustum_family(),    // shadow: Moeller and Haines (Hudson et al.)
+        strategies::supporting_plane_family(),  // planes: Moeller and Haines (Coorg and Teller)
         strategies::opacity_map_family(),       // om: Poon and Wang
         strategies::occluder_skins_family(),    // skins: Leone et al.
     };

@@ -134,7 +134,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     }
     ASSERT_GT(drawn_none, 0u);
     for (const char *occluding : {"ideal/16", "ou/16", "ou-shared/16", "hp/16", "om-ps/16", "om-fh/16", "om-mos/16",
-                                  "skins/16", "skins-drawn/16", "hzb/16", "hom/16",
+                                  "skins/16", "skins-drawn/16", "hzb/16", "hom/16", "shadow/16", "planes/16",
                                   "pc-mos/16", "ou:max-test-area=1/1"})
         EXPECT_LT(drawn[occluding], drawn["vfc/16"]) << occluding << " culled no more than vfc";
     EXPECT_LT(drawn["ou:max-test-area=1/16"], drawn_none / 2) << "ou culled too little for the comparison to mean anything";

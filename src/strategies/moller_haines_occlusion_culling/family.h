@@ -40,6 +40,33 @@
 // tolerance 0), then the depth test against the depth estimation buffer,
 // regions holding their occluders' farthest depth (each occluder polygon's
 // farthest vertex, Zhang's estimate).
+//
+// shadow (shadow_frustum_culler.cpp) "Shadow Culling" (Hudson et al.): a
+// few large occluders per frame, chosen by Coorg and Teller's solid-angle
+// estimate g = -a (n . v) / (d . d) with last frame's kept unless one
+// twice as good appears (occluders/shadow_occluders.h): the faces of the
+// occluder skins that face the eye, or (aggregate=on, the default) each
+// skin box whole, its front faces one aggregate occluder. Each casts a
+// shadow frustum from the eye, without a far plane: side planes through
+// the eye and the occluder's edges (its silhouette's, for a box), the
+// occluder's plane as near plane (its front faces' planes, for a box);
+// a node whose box lies wholly inside one is culled, tested against the
+// occluder that culled it last first. Exact for convex occluders, with a
+// margin against occlusion (occluders/shadow_volumes.h); skins whose mesh
+// the eye may be inside, or whose mesh's surface the near plane may clip,
+// are not used.
+//
+// planes (supporting_plane_culler.cpp) "Shadow Culling" (Coorg and
+// Teller): the same occluders; a node is culled when the viewer is inside
+// all the supporting planes of an occluder and the node's box (each
+// through an occluder edge, or silhouette edge of an aggregate, and a box
+// vertex, occluder and box on one side), and in front of the occluder's
+// plane with the box behind it. The planes of a pair do not depend on the
+// eye, so they are made at the pair's first test and kept across frames
+// (plane-cache; an aggregate's per region of viewpoints, as its
+// silhouette changes); a frame tests the eye alone. For a single convex
+// occluder the answer equals shadow's (shadow_volumes.h shows why;
+// tests/unit/occluders/shadow_volumes_test.cpp checks it).
 #pragma once
 
 #include "culling/registry.h"
@@ -49,5 +76,7 @@ namespace occu::strategies {
 StrategyFamily hp_occlusion_test_family();
 StrategyFamily hierarchical_z_buffer_family();
 StrategyFamily hierarchical_occlusion_map_family();
+StrategyFamily shadow_frustum_family();
+StrategyFamily supporting_plane_family();
 
 }  // namespace occu::strategies
