@@ -32,10 +32,12 @@ skins_db() {
     echo "$file"
 }
 
-# Walkthrough arguments that give the skin strategies (skins, hzb, hom) the
-# skin database, when the comma-separated strategy list $1 has one.
+# Walkthrough arguments that give the skin strategies (skins, hzb, hom,
+# shadow, planes) the skin database, when the comma-separated strategy list
+# $1 has one.
 skin_args() {
-    if [[ ,$1 =~ ,(skins|hzb|hom)[,:-]|,(skins|hzb|hom)$ ]] && [[ $1 != *skin-database* ]]; then
+    if [[ ,$1 =~ ,(skins|hzb|hom|shadow|planes)[,:-]|,(skins|hzb|hom|shadow|planes)$ ]] &&
+       [[ $1 != *skin-database* ]]; then
         echo "--set skin-database=$(skins_db)"
     fi
 }
