@@ -71,8 +71,8 @@ struct Options {
                  "                   [--png-every N] [--oracle on|off] [--out DIR]\n"
                  "--set applies to every chosen strategy that has the setting. --coherence (temporal coherence)\n"
                  "applies to the strategies that query the rasterizer; --switch-off (least share of triangles\n"
-                 "occlusion tests must cull; 0 never switches off) to those and to the strategies that draw\n"
-                 "occluders each frame. ideal needs the oracle.\n\nstrategies:\n%s",
+                 "occlusion tests must cull; 0 never switches off) to those and to the strategies whose CPU\n"
+                 "work costs time each frame. ideal needs the oracle.\n\nstrategies:\n%s",
                  strategies_help().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
@@ -241,7 +241,7 @@ void write_summary(const Options &o, const std::vector<Run> &runs)
 
 // The strategies with their traversal policies: temporal coherence for the
 // families whose tests query the rasterizer, switch-off for those and for
-// the families that draw occluders every frame.
+// the families whose CPU work costs time every frame.
 std::vector<Run> make_runs(const Options &o, const StrategyContext &context)
 {
     std::vector<Run> runs;
@@ -250,7 +250,7 @@ std::vector<Run> make_runs(const Options &o, const StrategyContext &context)
         if (r.strategy.choice.family->queries_rasterizer && o.coherence)
             r.coherence.emplace();
         const StrategyFamily &family = *r.strategy.choice.family;
-        if ((family.queries_rasterizer || family.draws_occluders) && o.switch_off > 0.0) {
+        if ((family.queries_rasterizer || family.costs_per_frame) && o.switch_off > 0.0) {
             SwitchOff::Settings s;
             s.min_gain = o.switch_off;
             r.switch_off.emplace(s);

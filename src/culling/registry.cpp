@@ -96,7 +96,7 @@ std::string strategies_help()
     for (const StrategyFamily &f : strategy_families()) {
         h += "  " + f.name + ": " + f.summary + "\n      " + f.paper + "; " +
              (f.conservative ? "conservative" : "approximate") + (f.queries_rasterizer ? ", queries the rasterizer" : "") +
-             (f.draws_occluders ? ", draws occluders each frame" : "") + (f.needs_truth ? ", needs the oracle" : "") + "\n";
+             (f.costs_per_frame ? ", costs time each frame" : "") + (f.needs_truth ? ", needs the oracle" : "") + "\n";
         std::string former;
         for (const StrategyPreset &p : f.presets) {
             if (!p.former_name)

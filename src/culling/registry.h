@@ -44,10 +44,11 @@ struct StrategyFamily {
     // adaptive switch-off (traversal/policies.h), which save tests, apply.
     // Tests on the CPU cost too little to trade culling for.
     bool queries_rasterizer = false;
-    // Its begin_frame draws occluders (on the CPU or into a framebuffer of
-    // its own) every frame: the adaptive switch-off, which saves that work
-    // where occlusion culls little, applies.
-    bool draws_occluders = false;
+    // Its occlusion work costs time every frame on the CPU (occluders
+    // drawn in begin_frame, or tests that are not cheap): the adaptive
+    // switch-off, which saves that work where occlusion culls little,
+    // applies.
+    bool costs_per_frame = false;
     bool needs_truth = false;      // culls with the oracle's answer (Frame::truth)
     std::vector<SettingSpec> settings;
     std::vector<StrategyPreset> presets;

@@ -87,7 +87,7 @@ StrategyFamily occluder_skins_family()
     f.name = "skins";
     f.paper = "Leone et al., sections 4-7";
     f.summary = "occluder skins (or the frame's drawn triangles) in a CPU depth buffer, rectangles tested at one z";
-    f.draws_occluders = true;
+    f.costs_per_frame = true;
     f.settings = {
         choice_setting("occluders", {"skins", "drawn", "both"},
                        "the meshes' occluder skins, the triangles of the leaves drawn so far this frame, or both"),

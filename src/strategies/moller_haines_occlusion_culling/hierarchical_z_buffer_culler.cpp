@@ -134,7 +134,7 @@ StrategyFamily hierarchical_z_buffer_family()
     f.name = "hzb";
     f.paper = "Moeller and Haines, hierarchical Z-buffering (Greene et al.)";
     f.summary = "a Z-pyramid of the skins' CPU depth, or of last frame's visible leaves, tested coarse to fine";
-    f.draws_occluders = true;
+    f.costs_per_frame = true;
     f.settings = {
         choice_setting("source", {"skins", "last-frame"},
                        "the occluder skins' CPU depth buffer, or the depth of the leaves the last frame drew"),

@@ -98,10 +98,10 @@ StrategyFamily shadow_frustum_family()
     f.name = "shadow";
     f.paper = "Moeller and Haines, shadow culling (Hudson et al.)";
     f.summary = "boxes wholly inside the shadow frustum of one of a few large skin occluders, in object space";
-    // No drawing: begin_frame scores the skins in the frustum and builds a
-    // handful of plane sets, and a test is a few dot products per
-    // occluder, too little to trade culling for (as queries_rasterizer says).
-    f.draws_occluders = false;
+    // No drawing, but every node is tested against every occluder's
+    // shadow frustum: on the open route, where nothing is hidden, that costs
+    // more than it saves, and the switch-off gives it back.
+    f.costs_per_frame = true;
     using Role = SettingSpec::Role;
     f.settings = {
         integer_setting("occluders", 8, 1, 1 << 16, Role::cost,

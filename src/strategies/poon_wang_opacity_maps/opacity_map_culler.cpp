@@ -208,7 +208,7 @@ StrategyFamily opacity_map_family()
     f.name = "om";
     f.paper = "Poon and Wang, sections 4, 5 and 6.1";
     f.summary = "opacity map and sparse depth map of selected occluders, tested on the CPU";
-    f.draws_occluders = true;
+    f.costs_per_frame = true;
     f.settings = {
         choice_setting("selection", {"ps", "fh", "mos"},
                        "occluders by projected size, first hit, or from a minimum-occluder-set database"),
