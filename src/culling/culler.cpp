@@ -18,4 +18,14 @@ Frame::Frame(const Camera &camera_, int viewport_width, int viewport_height, con
 {
 }
 
+std::optional<Footprint> Frame::occlusion_candidate(NodeTest &t) const
+{
+    t.result = Visibility::visible;
+    if (frustum.classify(t.box) == Frustum::Side::outside) {
+        t.result = Visibility::view_culled;
+        return std::nullopt;
+    }
+    return footprint(t.box);
+}
+
 }  // namespace occu

@@ -41,6 +41,7 @@ enum class Visibility { visible, occluded, view_culled };
 const char *visibility_name(Visibility v);
 
 struct VisibilityTruth;
+struct NodeTest;
 
 // What a strategy knows of the frame it culls.
 struct Frame {
@@ -59,6 +60,13 @@ struct Frame {
     {
         return box_footprint(view_projection, camera.position, box, width, height);
     }
+
+    // What every occlusion test does first: `t` is view_culled when its box
+    // lies outside the frustum, visible untested when the box has no
+    // footprint (it holds the eye or crosses the near plane), and visible
+    // until shown occluded otherwise. Returns the footprint to test, or
+    // nothing when t's answer is settled.
+    std::optional<Footprint> occlusion_candidate(NodeTest &t) const;
 };
 
 // One node to test, and the answer.

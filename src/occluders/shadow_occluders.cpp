@@ -28,9 +28,8 @@ double face_score(const Aabb &box, int f, const glm::dvec3 &eye, const glm::dvec
 
 }  // namespace
 
-ShadowOccluders::ShadowOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh,
-                                 bool aggregate)
-    : skins_(scene, database, boxes_per_mesh), aggregate_(aggregate)
+ShadowOccluders::ShadowOccluders(const Scene &scene, const Settings &settings, bool aggregate)
+    : skins_(scene, settings), aggregate_(aggregate)
 {
     was_chosen_.assign(id_limit(), 0);
 }

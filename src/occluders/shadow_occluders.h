@@ -47,9 +47,9 @@ struct ShadowOccluder {
 
 class ShadowOccluders {
 public:
-    // The skins as SkinOccluders reads or makes them; `aggregate`: boxes
+    // The skins as the strategy's settings ask (skin_settings); `aggregate`: boxes
     // whole, else their faces.
-    ShadowOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh, bool aggregate);
+    ShadowOccluders(const Scene &scene, const Settings &settings, bool aggregate);
 
     // The frame's occluders, the best first: at most `count`.
     const std::vector<ShadowOccluder> &choose(const Frame &frame, std::size_t count);

@@ -69,6 +69,19 @@ bool SkinOccluders::usable(std::size_t i, const Frame &frame) const
     return true;
 }
 
+SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
+    : SkinOccluders(scene, settings.text("skin-database"), int(settings.integer("skin-boxes")))
+{
+}
+
+std::vector<SettingSpec> skin_settings()
+{
+    return {
+        integer_setting("skin-boxes", 8, 1, 1 << 16, SettingSpec::Role::cost, "skin boxes per mesh, the largest first"),
+        path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
+    };
+}
+
 std::size_t SkinOccluders::render(const Frame &frame, DepthRasterizer &raster, std::size_t limit)
 {
     // The solid angle a box subtends, up to a constant: its squared extent

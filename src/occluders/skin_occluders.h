@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "culling/culler.h"
+#include "culling/settings.h"
 #include "raster/depth_rasterizer.h"
 #include "scene/scene.h"
 
@@ -23,6 +24,8 @@ public:
     // the default SkinOptions. Each mesh keeps its first `boxes_per_mesh`
     // boxes (the largest first).
     SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh);
+    // As its strategy's settings (skin_settings below) ask.
+    SkinOccluders(const Scene &scene, const Settings &settings);
 
     // Renders the usable skins in `frame`'s frustum into `raster` (begun
     // for the frame): at most `limit` of them (0: all), chosen by the solid angle
@@ -48,5 +51,9 @@ private:
     std::vector<Aabb> mesh_bounds_;   // per skin, its mesh's
     std::vector<std::pair<float, std::uint32_t>> chosen_;
 };
+
+// The settings of every strategy whose occluders are skins: skin-boxes
+// and skin-database.
+std::vector<SettingSpec> skin_settings();
 
 }  // namespace occu

@@ -20,7 +20,7 @@ public:
         options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
         if (settings.text("occluders") != "drawn")
-            skins_.emplace(context.scene, settings.text("skin-database"), int(settings.integer("skin-boxes")));
+            skins_.emplace(context.scene, settings);
     }
 
     void begin_frame(const Frame &frame) override
@@ -36,14 +36,9 @@ public:
     {
         const Frame &f = *frame_;
         for (NodeTest &t : tests) {
-            t.result = Visibility::visible;
-            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
-                t.result = Visibility::view_culled;
-                continue;
-            }
-            const auto footprint = f.footprint(t.box);
+            const auto footprint = f.occlusion_candidate(t);
             if (!footprint)
-                continue;   // holds the eye or crosses the near plane
+                continue;
             // Behind every occluder pixel, with a margin for the box's float z.
             const float z = footprint->window_z_near - 1e-6f;
             if (box_test_ && t.leaf ? raster_.occluded(t.box, footprint->rect, z) : raster_.occluded(footprint->rect, z))
@@ -98,9 +93,9 @@ StrategyFamily occluder_skins_family()
         integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per depth pixel, each way"),
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),
-        integer_setting("skin-boxes", 8, 1, 1 << 16, Role::cost, "skin boxes per mesh, the largest first"),
-        path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
     };
+    for (SettingSpec &s : skin_settings())
+        f.settings.push_back(std::move(s));
     f.presets = {
         {"skins-drawn", "occluders=drawn"},
         {"skins-both", "occluders=both"},

@@ -18,7 +18,7 @@ namespace {
 class HierarchicalOcclusionMapCuller final : public Culler {
 public:
     HierarchicalOcclusionMapCuller(const StrategyContext &context, const Settings &settings)
-        : skins_(context.scene, settings.text("skin-database"), int(settings.integer("skin-boxes"))),
+        : skins_(context.scene, settings),
           threshold_(float(1.0 - settings.number("tolerance"))), budget_(double(settings.integer("occluders"))),
           max_budget_(double(settings.integer("occluders"))), adapt_(settings.on("adapt-budget")),
           deb_(int(settings.integer("depth-regions")), int(settings.integer("depth-regions")))
@@ -73,12 +73,7 @@ public:
     {
         const Frame &f = *frame_;
         for (NodeTest &t : tests) {
-            t.result = Visibility::visible;
-            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
-                t.result = Visibility::view_culled;
-                continue;
-            }
-            const auto footprint = f.footprint(t.box);
+            const auto footprint = f.occlusion_candidate(t);
             if (!footprint || footprint->rect.empty())
                 continue;
             ++tested_;
@@ -143,9 +138,9 @@ StrategyFamily hierarchical_occlusion_map_family()
                        "grow the occluder count while little is culled, shrink it while much is"),
         integer_setting("map-divisor", 4, 1, 64, Role::cost, "frame pixels per occlusion-map pixel at level 0, each way"),
         integer_setting("depth-regions", 64, 1, 4096, Role::cost, "depth estimation buffer regions, each way"),
-        integer_setting("skin-boxes", 8, 1, 1 << 16, Role::cost, "skin boxes per mesh, the largest first"),
-        path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
     };
+    for (SettingSpec &s : skin_settings())
+        f.settings.push_back(std::move(s));
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalOcclusionMapCuller>(context, settings);
     };

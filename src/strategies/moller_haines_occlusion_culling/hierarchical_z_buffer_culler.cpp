@@ -28,7 +28,7 @@ public:
         options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
         if (!last_frame_)
-            skins_.emplace(context.scene, settings.text("skin-database"), int(settings.integer("skin-boxes")));
+            skins_.emplace(context.scene, settings);
     }
 
     void begin_frame(const Frame &frame) override
@@ -51,12 +51,7 @@ public:
         const Frame &f = *frame_;
         const int k = options_.divisor;
         for (NodeTest &t : tests) {
-            t.result = Visibility::visible;
-            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
-                t.result = Visibility::view_culled;
-                continue;
-            }
-            const auto footprint = f.footprint(t.box);
+            const auto footprint = f.occlusion_candidate(t);
             if (!footprint || footprint->rect.empty())
                 continue;
             // The pyramid's pixels that hold the footprint's, from the
@@ -142,9 +137,9 @@ StrategyFamily hierarchical_z_buffer_family()
         integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per pyramid pixel at level 0, each way"),
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),
-        integer_setting("skin-boxes", 8, 1, 1 << 16, Role::cost, "skin boxes per mesh, the largest first"),
-        path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
     };
+    for (SettingSpec &s : skin_settings())
+        f.settings.push_back(std::move(s));
     f.presets = {
         {"hzb-last-frame", "source=last-frame"},
     };

@@ -19,8 +19,7 @@ constexpr std::uint32_t no_occluder = std::numeric_limits<std::uint32_t>::max();
 class ShadowFrustumCuller final : public Culler {
 public:
     ShadowFrustumCuller(const StrategyContext &context, const Settings &settings)
-        : occluders_(context.scene, settings.text("skin-database"), int(settings.integer("skin-boxes")),
-                     settings.on("aggregate")),
+        : occluders_(context.scene, settings, settings.on("aggregate")),
           count_(std::size_t(settings.integer("occluders"))),
           last_culler_(context.hierarchy.nodes().size(), no_occluder), slot_(occluders_.id_limit(), -1)
     {
@@ -50,13 +49,8 @@ public:
     {
         const Frame &f = *frame_;
         for (NodeTest &t : tests) {
-            t.result = Visibility::visible;
-            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
-                t.result = Visibility::view_culled;
+            if (!f.occlusion_candidate(t) || volumes_.empty())
                 continue;
-            }
-            if (volumes_.empty() || !f.footprint(t.box))
-                continue;   // no occluders; or the box holds the eye or crosses the near plane
             // Hudson et al. keep "the objects that were culled by an
             // occluder": the one that culled this node last is tried first.
             std::uint32_t &last = last_culler_[t.node];
@@ -109,9 +103,9 @@ StrategyFamily shadow_frustum_family()
         on_off_setting("aggregate", true, Role::choice,
                        "each skin box whole, its faces that face the eye one occluder (Coorg and Teller's "
                        "aggregate); off: each face alone"),
-        integer_setting("skin-boxes", 8, 1, 1 << 16, Role::cost, "skin boxes per mesh, the largest first"),
-        path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
     };
+    for (SettingSpec &s : skin_settings())
+        f.settings.push_back(std::move(s));
     f.presets = {
         {"shadow-faces", "aggregate=off"},
     };

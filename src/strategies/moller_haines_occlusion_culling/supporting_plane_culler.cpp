@@ -20,8 +20,7 @@ constexpr std::uint32_t no_occluder = std::numeric_limits<std::uint32_t>::max();
 class SupportingPlaneCuller final : public Culler {
 public:
     SupportingPlaneCuller(const StrategyContext &context, const Settings &settings)
-        : occluders_(context.scene, settings.text("skin-database"), int(settings.integer("skin-boxes")),
-                     settings.on("aggregate")),
+        : occluders_(context.scene, settings, settings.on("aggregate")),
           count_(std::size_t(settings.integer("occluders"))), cache_on_(settings.on("plane-cache")),
           last_culler_(context.hierarchy.nodes().size(), no_occluder), slot_(occluders_.id_limit(), -1)
     {
@@ -57,13 +56,8 @@ public:
     {
         const Frame &f = *frame_;
         for (NodeTest &t : tests) {
-            t.result = Visibility::visible;
-            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
-                t.result = Visibility::view_culled;
+            if (!f.occlusion_candidate(t) || active_.empty())
                 continue;
-            }
-            if (active_.empty() || !f.footprint(t.box))
-                continue;   // no occluders; or the box holds the eye or crosses the near plane
             // As shadow: the occluder that culled this node last goes first.
             std::uint32_t &last = last_culler_[t.node];
             const int first = last == no_occluder ? -1 : slot_[last];
@@ -193,9 +187,9 @@ StrategyFamily supporting_plane_family()
                        "aggregate); off: each face alone"),
         on_off_setting("plane-cache", true, Role::choice,
                        "keep each occluder-node pair's supporting planes across frames; off: make them at every test"),
-        integer_setting("skin-boxes", 8, 1, 1 << 16, Role::cost, "skin boxes per mesh, the largest first"),
-        path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
     };
+    for (SettingSpec &s : skin_settings())
+        f.settings.push_back(std::move(s));
     f.presets = {
         {"planes-faces", "aggregate=off"},
     };

@@ -141,15 +141,9 @@ private:
 
     void test_one(NodeTest &t) const
     {
-        const Frame &f = *frame_;
-        t.result = Visibility::visible;
-        if (f.frustum.classify(t.box) == Frustum::Side::outside) {
-            t.result = Visibility::view_culled;
-            return;
-        }
-        const auto footprint = f.footprint(t.box);
+        const auto footprint = frame_->occlusion_candidate(t);
         if (!footprint)
-            return;   // holds the eye or crosses the near plane
+            return;
         const PixelRect m = footprint->rect.to_map(divisor_).clamped({0, 0, map_width_, map_height_});
         if (m.empty())
             return;
