@@ -2,7 +2,8 @@
 // camera and viewport chosen to be numerically or geometrically awkward
 // (the eye inside boxes, the near plane through them, far from the origin,
 // extreme depth ranges and fields of view, coplanar and degenerate
-// geometry, viewports of one pixel and of millions). In each, every
+// geometry, viewports of one pixel and of millions, a leaf of a million
+// triangles). In each, every
 // conservative strategy of the registry draws a frame equal, byte for
 // byte, to the unculled frame, as on the city's routes
 // (conservative_frames_test.cpp). Strategies that take their occluders
@@ -485,6 +486,51 @@ HardCase one_triangle_case()
     return c;
 }
 
+// A million triangles in one leaf: each spans the same cube corner to
+// corner, its third corner anywhere inside, so every triangle's box is the
+// cube, and the octree, which splits by the centres of the triangles' boxes
+// (spatial/hierarchy.h), cannot separate them: they stay one leaf. The blob
+// stands behind the wall, hidden: strategies must cull a leaf whose drawing
+// costs as much as a city block, and draw the street around it as before.
+HardCase one_leaf_of_a_million_triangles_case()
+{
+    Scene scene = street();
+    Mesh blob;
+    blob.color = {0.9f, 0.3f, 0.2f};
+    const glm::vec3 centre{0.5f, 1.0f, -7.5f}, half{0.4f};
+    std::uint32_t state = 2026;
+    auto unit = [&state] {   // a small deterministic generator, in [-1, 1)
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1 << 23) - 1.0f;
+    };
+    const std::size_t count = 1000000;
+    blob.positions.reserve(3 * count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const glm::vec3 corners[3] = {centre - half, centre + half,
+                                      centre + half * glm::vec3(unit(), unit(), unit())};
+        const glm::vec3 n = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
+        for (const glm::vec3 &p : corners) {
+            blob.positions.push_back(p);
+            blob.normals.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 1, 0));
+            blob.indices.push_back(std::uint32_t(blob.indices.size()));
+        }
+    }
+    blob.update_bounds();
+    scene.meshes.push_back(std::move(blob));
+    scene.update_bounds();
+    HardCase c{std::move(scene), street_camera()};
+    c.premise = [](const Hierarchy &h, const Frame &) -> ::testing::AssertionResult {
+        std::uint32_t most = 0;
+        for (const HierarchyNode &n : h.nodes())
+            if (n.leaf())
+                most = std::max(most, n.triangle_count);
+        if (most >= 1000000)
+            return ::testing::AssertionSuccess();
+        return ::testing::AssertionFailure() << "no leaf holds the million triangles (the largest holds " << most << ")";
+    };
+    return c;
+}
+
 HardCase all_triangles_in_one_point_case()
 {
     // A thousand triangles with every corner at one point: the hierarchy's
@@ -531,6 +577,8 @@ const std::vector<NamedCase> hard_cases = {
     // A pixel is 0.7 m wide at 1 m: proxies grow by more than their distance.
     {"FieldOfView170DegreesIn32x32", [] { return field_of_view_case(170.0f, 32); }},
     {"Viewport2048x2048", [] { return viewport_case(2048); }},
+    {"Viewport4096x4096", [] { return viewport_case(4096); }},
+    {"OneLeafOfAMillionTriangles", one_leaf_of_a_million_triangles_case},
     {"EmptyFrustum", empty_frustum_case},
     {"SceneOfOneTriangle", one_triangle_case},
     {"AllTrianglesInOnePoint", all_triangles_in_one_point_case},
