@@ -5,9 +5,10 @@
 // leaves alone). `walkthrough --help` lists the strategies and settings.
 //
 // Writes DIR/summary.csv (one row per strategy), DIR/frames.csv (one row
-// per strategy and frame), DIR/<strategy>-NNNN.png and the top view
-// DIR/<strategy>-top-NNNN.png every --png-every frames, and prints the
-// summary. Setup and test ms: time in the culler (traversal/traversal.h).
+// per strategy and frame), DIR/<strategy>-NNNN.png and the top view with its
+// title and legend DIR/<strategy>-top-NNNN.png every --png-every frames, and
+// prints the summary. Setup and test ms: time in the culler
+// (traversal/traversal.h). tools/plot-walkthrough.sh DIR plots frames.csv.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -235,8 +237,9 @@ void write_summary(const Options &o, const std::vector<Run> &runs)
         throw std::runtime_error("cannot write '" + path + "'");
     std::printf("\nvs vfc: vfc's mean ms / the strategy's; x floor: the strategy's mean ms / ideal's (the oracle's\n"
                 "visible leaves alone); efficiency: occluded leaves culled / occluded leaves.\n"
-                "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png\n",
-                o.out.c_str(), o.out.c_str(), o.out.c_str());
+                "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png;\n"
+                "plots of frames.csv: tools/plot-walkthrough.sh %s\n",
+                o.out.c_str(), o.out.c_str(), o.out.c_str(), o.out.c_str());
 }
 
 // The strategies with their traversal policies: temporal coherence for the
@@ -260,6 +263,12 @@ std::vector<Run> make_runs(const Options &o, const StrategyContext &context)
     return runs;
 }
 
+// The share of the scene's triangles a frame did not draw, in percent.
+double culled_percent(std::uint64_t triangles, std::size_t scene_triangles)
+{
+    return 100.0 * (1.0 - double(triangles) / double(std::max<std::size_t>(1, scene_triangles)));
+}
+
 // One row per strategy and frame.
 class FramesCsv {
 public:
@@ -277,8 +286,7 @@ public:
         const FrameStats &st = d.stats;
         out_ << run.label() << ',' << route << ',' << frame << ',' << d.ms << ',' << st.triangles << ','
              << st.leaves_drawn << ',' << st.nodes_tested << ',' << st.passes << ',' << st.nodes_view_culled << ','
-             << st.nodes_occluded << ','
-             << 100.0 * (1.0 - double(st.triangles) / double(std::max<std::size_t>(1, scene_triangles))) << ','
+             << st.nodes_occluded << ',' << culled_percent(st.triangles, scene_triangles) << ','
              << (truth ? truth->visible.size() : 0) << ',' << q.occluded << ',' << q.occluded_culled << ','
              << q.visible_culled << ',' << wrong << ',' << st.setup_ms << ',' << st.test_ms << '\n';
     }
@@ -318,8 +326,6 @@ struct Walk {
         run.test_ms += d.stats.test_ms;
         const std::uint64_t wrong = run.strategy.choice.conservative() ? 0 : wrong_pixels(frame);
         run.wrong_pixels += wrong;
-        if (o.png_every > 0 && f % std::size_t(o.png_every) == 0)
-            write_images(run, f, frame.camera, d.stats.drawn);
         CullingQuality q;
         if (frame.truth) {
             q = compare_with_truth(*frame.truth, d.stats.drawn);
@@ -327,6 +333,8 @@ struct Walk {
             run.occluded_culled += q.occluded_culled;
             run.visible_culled += q.visible_culled;
         }
+        if (o.png_every > 0 && f % std::size_t(o.png_every) == 0)
+            write_images(run, f, frame, d, q);
         csv.row(run, o.route, f, d, scene.triangle_count(), frame.truth, q, wrong);
     }
 
@@ -344,15 +352,38 @@ struct Walk {
         return wrong;
     }
 
-    void write_images(const Run &run, std::size_t f, const Camera &camera, const std::vector<std::uint32_t> &drawn)
+    // The frame, then its top view with a title and a legend.
+    void write_images(const Run &run, std::size_t f, const Frame &frame, const Drawn &d, const CullingQuality &q)
     {
         char number[24];
         std::snprintf(number, sizeof(number), "%04zu", f);
         const std::string base = o.out + "/" + file_name(run.label());
         write_png(base + "-" + number + ".png", o.size, o.size, ctx.pixels());
-        render_top_view(hierarchy, camera, drawn);
+
+        TopViewCaption caption;
+        caption.strategy = run.label();
+        caption.frame = f;
+        caption.ms = d.ms;
+        caption.culled_percent = culled_percent(d.stats.triangles, scene.triangle_count());
+        std::vector<std::uint32_t> wrongly_culled;
+        if (frame.truth) {
+            std::vector<std::uint32_t> drawn = d.stats.drawn;
+            std::sort(drawn.begin(), drawn.end());
+            std::set_difference(frame.truth->visible.begin(), frame.truth->visible.end(), drawn.begin(), drawn.end(),
+                                std::back_inserter(wrongly_culled));
+            caption.wrongly_culled = wrongly_culled.size();
+            if (q.occluded)
+                caption.efficiency_percent = 100.0 * q.efficiency();
+        }
+        render_top_view(hierarchy, frame.camera, d.stats.drawn, wrongly_culled, top_view_map_area(o.size, o.size));
         glFinish();
-        write_png(base + "-top-" + number + ".png", o.size, o.size, ctx.pixels());
+        // Top row first, for the caption.
+        const std::size_t row = std::size_t(o.size) * 4;
+        std::vector<std::uint8_t> top(row * std::size_t(o.size));
+        for (std::size_t y = 0; y < std::size_t(o.size); ++y)
+            std::memcpy(&top[y * row], ctx.pixels() + (std::size_t(o.size) - 1 - y) * row, row);
+        caption_top_view({top.data(), o.size, o.size}, caption);
+        write_png(base + "-top-" + number + ".png", o.size, o.size, top.data(), false);
     }
 };
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages occu needs, only those that are missing.
-# Usage: tools/deps.sh [build|test|bench|all]   (default: all)
+# Usage: tools/deps.sh [build|demo|test|bench|all]   (default: all)
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
@@ -23,19 +23,24 @@ TEST_PACKAGES=(
     assimp-testmodels   # real models the demos must refuse (BoxWithInfinites.glb: infinite vertices)
     clang libclang-rt-14-dev   # the fuzz targets: libFuzzer and the sanitizers' runtimes (tools/fuzz)
 )
+# To plot the walkthrough's frames (tools/plot-walkthrough.sh; tools/demo and
+# its test) and the benches' results.
+DEMO_PACKAGES=(
+    gnuplot-nox
+)
 # To count instructions in benchmarks (wall time on shared machines is noisy).
 BENCH_PACKAGES=(
     valgrind
-    gnuplot-nox
 )
 
 what=${1:-all}
 case $what in
     build) wanted=("${BUILD_PACKAGES[@]}") ;;
-    test) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
-    bench) wanted=("${BUILD_PACKAGES[@]}" "${BENCH_PACKAGES[@]}") ;;
-    all) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${BENCH_PACKAGES[@]}") ;;
-    *) die "tools/deps.sh: unknown argument '$what' (expected build, test, bench or all)" ;;
+    demo) wanted=("${BUILD_PACKAGES[@]}" "${DEMO_PACKAGES[@]}") ;;
+    test) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${DEMO_PACKAGES[@]}") ;;
+    bench) wanted=("${BUILD_PACKAGES[@]}" "${DEMO_PACKAGES[@]}" "${BENCH_PACKAGES[@]}") ;;
+    all) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${DEMO_PACKAGES[@]}" "${BENCH_PACKAGES[@]}") ;;
+    *) die "tools/deps.sh: unknown argument '$what' (expected build, demo, test, bench or all)" ;;
 esac
 
 # apt-get source needs a deb-src entry; derive one from the deb entries when none exists.

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "render/shading.h"
+
 namespace occu {
 
 namespace {
@@ -20,7 +22,6 @@ SceneRenderer::SceneRenderer(const Scene &scene, const Hierarchy &hierarchy) : h
     if (!GenBuffers || !BufferData || !BindBuffer_ || !DeleteBuffers_)
         throw std::runtime_error("SceneRenderer needs vertex buffer objects (GL 1.5)");
 
-    const glm::vec3 light = glm::normalize(glm::vec3(0.4f, 0.8f, 0.3f));
     const auto &nodes = hierarchy.nodes();
     buffers_.assign(nodes.size(), 0);
     vertex_counts_.assign(nodes.size(), 0);
@@ -34,10 +35,8 @@ SceneRenderer::SceneRenderer(const Scene &scene, const Hierarchy &hierarchy) : h
             const Mesh &mesh = scene.meshes[ref.mesh];
             for (int k = 0; k < 3; ++k) {
                 const std::uint32_t i = mesh.indices[ref.first_index + k];
-                const float lambert = 0.35f + 0.65f * std::max(0.0f, glm::dot(mesh.normals[i], light));
-                const glm::vec3 c = glm::clamp(mesh.color * lambert, 0.0f, 1.0f) * 255.0f;
-                Vertex v{{mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z},
-                         {std::uint8_t(c.r), std::uint8_t(c.g), std::uint8_t(c.b), 255}};
+                Vertex v{{mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z}, {}};
+                prelit_rgba8(i < mesh.colors.size() ? mesh.colors[i] : mesh.color, mesh.normals[i], v.color);
                 vertices.push_back(v);
             }
         }

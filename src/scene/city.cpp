@@ -2,17 +2,27 @@
 
 #include <random>
 
+#include "scene/palette.h"
+
 namespace occu {
 
 namespace {
 
 // One building: a body and a ledge around it at every floor (the facade
 // detail, which is what makes buildings expensive to draw and cheap to cull).
-Mesh building(const glm::vec3 &corner, const glm::vec3 &size, int floors, const glm::vec3 &color)
+// Walls in the building's colour, a little darker at street level, the roof
+// and the ledges in colours of their own.
+Mesh building(const glm::vec3 &corner, const glm::vec3 &size, int floors, const BuildingColours &colours)
 {
     Mesh m;
-    m.color = color;
+    m.color = colours.wall;
     append_box(m, Aabb::of(corner, corner + size));
+    for (std::size_t v = 0; v < m.positions.size(); ++v)
+        if (m.normals[v].y > 0.5f)
+            m.colors.push_back(colours.roof);
+        else
+            m.colors.push_back(m.positions[v].y <= corner.y ? colours.wall * 0.8f : colours.wall);
+    m.color = colours.trim;   // append_box gives the ledges' vertices this
     const float floor_height = size.y / float(floors);
     const float depth = 0.4f, thickness = 0.25f;
     for (int f = 1; f < floors; ++f) {
@@ -24,6 +34,7 @@ Mesh building(const glm::vec3 &corner, const glm::vec3 &size, int floors, const 
         append_box(m, Aabb::of({lo.x - depth, y, lo.z}, {lo.x, y + thickness, hi.z}));
         append_box(m, Aabb::of({hi.x, y, lo.z}, {hi.x + depth, y + thickness, hi.z}));
     }
+    m.color = colours.wall;
     m.update_bounds();
     return m;
 }
@@ -35,6 +46,10 @@ Scene generate_city(const CityOptions &o)
     Scene scene;
     std::mt19937 rng(o.seed);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    // Colours from a generator of their own, so that the buildings' shapes
+    // do not depend on the palette.
+    std::mt19937 paint(o.seed ^ 0x9e3779b9u);
+    std::uint32_t hue = 0;
 
     // One grid of blocks, generated once and then copied (as the papers'
     // models copy a block): lots of 4 x 4 around a courtyard per block.
@@ -54,8 +69,12 @@ Scene generate_city(const CityOptions &o)
                     const float inset = 0.5f + unit(rng) * 1.5f;
                     const glm::vec3 corner = origin + glm::vec3(lx * lot + inset, 0.0f, lz * lot + inset);
                     const glm::vec3 size{lot - 2 * inset, floors * 3.2f, lot - 2 * inset};
-                    const float shade = 0.55f + 0.35f * unit(rng);
-                    grid.push_back(building(corner, size, floors, {shade, shade * 0.95f, shade * 0.85f}));
+                    unit(rng);   // was the building's grey; drawn still, so that later buildings keep their shapes
+                    // Never the hue of the lot before.
+                    hue = (hue + 1 + std::uint32_t(paint() % (facade_hue_count() - 1))) % facade_hue_count();
+                    const float variation = unit(paint), roof = unit(paint);
+                    const BuildingColours colours = building_colours(hue, variation, roof);
+                    grid.push_back(building(corner, size, floors, colours));
                 }
         }
 
@@ -75,7 +94,7 @@ Scene generate_city(const CityOptions &o)
     // The ground under everything.
     Mesh ground;
     ground.name = "ground";
-    ground.color = {0.35f, 0.37f, 0.35f};
+    ground.color = street_colour();
     append_box(ground, Aabb::of({0.0f, -1.0f, 0.0f}, {o.copies * grid_size.x, 0.0f, o.copies * grid_size.z}));
     scene.meshes.push_back(std::move(ground));
     scene.update_bounds();

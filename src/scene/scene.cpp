@@ -71,6 +71,8 @@ void append_box(Mesh &mesh, const Aabb &box)
         for (int c : f.corners) {
             mesh.positions.push_back(box.corner(c));
             mesh.normals.push_back(f.normal);
+            if (!mesh.colors.empty())
+                mesh.colors.push_back(mesh.color);
         }
         mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     }

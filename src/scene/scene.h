@@ -16,7 +16,8 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;       // one per position
     std::vector<std::uint32_t> indices;   // three per triangle, counter-clockwise seen from outside
-    glm::vec3 color{0.8f};
+    glm::vec3 color{0.8f};              // RGB in [0, 1], before lighting
+    std::vector<glm::vec3> colors;       // one per position, or empty: `color` for every vertex
     Aabb bounds;
 
     std::size_t triangle_count() const { return indices.size() / 3; }

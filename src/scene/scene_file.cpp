@@ -5,11 +5,41 @@
 #include <assimp/scene.h>
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
+
+#include "scene/palette.h"
 
 namespace occu {
 
 namespace {
+
+// A colour of the file as an albedo: clamped to [0, 1]; `otherwise` where
+// a component is not a number.
+glm::vec3 usable_colour(const aiColor4D &c, const glm::vec3 &otherwise)
+{
+    if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b))
+        return otherwise;
+    return glm::clamp(glm::vec3(c.r, c.g, c.b), 0.0f, 1.0f);
+}
+
+// The diffuse colour of the mesh's material, where the file gives one; a
+// facade hue of the palette, another for each mesh, where it does not
+// (no material, or the importer's default material, which every mesh
+// without one shares).
+glm::vec3 file_colour(const aiScene &in, const aiMesh &m, std::size_t mesh_number)
+{
+    const glm::vec3 own = building_colours(std::uint32_t(mesh_number), 0.5f, 0.0f).wall;
+    if (m.mMaterialIndex >= in.mNumMaterials)
+        return own;
+    const aiMaterial &material = *in.mMaterials[m.mMaterialIndex];
+    aiString name;
+    aiColor4D diffuse;
+    if (material.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) != aiReturn_SUCCESS ||
+        (material.Get(AI_MATKEY_NAME, name) == aiReturn_SUCCESS && std::strcmp(name.C_Str(), AI_DEFAULT_MATERIAL_NAME) == 0))
+        return own;
+    return usable_colour(diffuse, own);
+}
 
 void add_node(const aiScene &in, const aiNode &node, const aiMatrix4x4 &parent, Scene &out)
 {
@@ -33,10 +63,10 @@ void add_node(const aiScene &in, const aiNode &node, const aiMatrix4x4 &parent, 
             if (m.mFaces[f].mNumIndices == 3)
                 mesh.indices.insert(mesh.indices.end(),
                                     {m.mFaces[f].mIndices[0], m.mFaces[f].mIndices[1], m.mFaces[f].mIndices[2]});
-        aiColor4D diffuse(0.8f, 0.8f, 0.8f, 1.0f);
-        if (m.mMaterialIndex < in.mNumMaterials)
-            in.mMaterials[m.mMaterialIndex]->Get(AI_MATKEY_COLOR_DIFFUSE, diffuse);
-        mesh.color = {diffuse.r, diffuse.g, diffuse.b};
+        mesh.color = file_colour(in, m, out.meshes.size());
+        if (m.HasVertexColors(0))
+            for (unsigned v = 0; v < m.mNumVertices; ++v)
+                mesh.colors.push_back(usable_colour(m.mColors[0][v], mesh.color));
         if (!mesh.indices.empty())
             out.meshes.push_back(std::move(mesh));
     }

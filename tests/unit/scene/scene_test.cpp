@@ -8,6 +8,7 @@
 #include <string>
 
 #include "scene/city.h"
+#include "scene/palette.h"
 
 using namespace occu;
 
@@ -110,4 +111,34 @@ TEST(City, OtherSeedOtherCity)
     CityOptions a, b;
     b.seed = 7;
     EXPECT_NE(generate_city(a).triangle_count(), generate_city(b).triangle_count());
+}
+
+TEST(City, BuildingsHaveHuesOfTheirOwnAndWallsLedgesAndRoofsApart)
+{
+    const Scene city = generate_city({});
+    // The palette draws from a generator of its own: the shapes are the
+    // README's city of 272,796 triangles.
+    EXPECT_EQ(city.triangle_count(), 272796u);
+    std::size_t buildings = 0;
+    const Mesh *before = nullptr;
+    for (const Mesh &m : city.meshes) {
+        if (m.name == "ground")
+            continue;
+        ++buildings;
+        ASSERT_EQ(m.colors.size(), m.positions.size());
+        // The body's box comes first: 4 vertices per face, -x +x -y +y -z +z;
+        // its top (the roof), a wall's top edge, a ledge (after the body).
+        const glm::vec3 roof = m.colors[12], wall = m.colors[4 * 4 + 2], ledge = m.colors[24];
+        EXPECT_EQ(m.normals[12], glm::vec3(0, 1, 0));
+        EXPECT_NE(roof, wall);
+        EXPECT_NE(ledge, wall);
+        EXPECT_GT(luminance(wall), 0.3f) << "a dark facade";
+        // Street level a little darker than the top of the wall.
+        EXPECT_LT(luminance(m.colors[4 * 4 + 0]), luminance(wall));
+        if (before) {
+            EXPECT_NE(before->colors[4 * 4 + 2], wall) << "two neighbours of one hue";
+        }
+        before = &m;
+    }
+    EXPECT_GT(buildings, 100u);
 }
