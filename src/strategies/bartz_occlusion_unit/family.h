@@ -30,10 +30,23 @@
 // price of the leaf's vertex work in the pass.
 #pragma once
 
+#include <cstdint>
+
 #include "culling/registry.h"
 
 namespace occu::strategies {
 
 StrategyFamily occlusion_unit_family();
+
+// Adaptive culling (section 5): a tile whose non-occlusion hits are at
+// most `tolerance` of its projection hits is occluded; at tolerance 0,
+// only a tile with none. Counters saturate at 2^32 - 1 (the spec's issue
+// 5): a saturated PHC understates the fragments and a saturated NOHC
+// overstates their share, so saturation can only keep a node visible,
+// never cull one the exact counts would keep.
+inline bool adaptive_culling_occludes(std::uint32_t nohc, std::uint32_t phc, double tolerance)
+{
+    return tolerance == 0.0 ? nohc == 0 : double(nohc) <= tolerance * double(phc);
+}
 
 }  // namespace occu::strategies

@@ -106,7 +106,7 @@ private:
         ++stats_.passes;
         for (std::size_t k = 0; k < members.size(); ++k) {
             const gl::OcclusionRecord &r = records[k];
-            const bool occluded = tolerance_ == 0.0 ? r.nohc == 0 : double(r.nohc) <= tolerance_ * double(r.phc);
+            const bool occluded = adaptive_culling_occludes(r.nohc, r.phc, tolerance_);
             tests[members[k]].result = occluded ? Visibility::occluded : Visibility::visible;
         }
     }
