@@ -292,13 +292,36 @@ HardCase geometry_crossing_the_eye_plane_case()
 // pixel at the street's distances (9 cm at 10 m here). No strategy keeps
 // more precision than that; what must hold is that boxes and the triangles
 // they bound round alike, so that culling stays conservative. At 1e7 m
-// floats are 1 m apart and this street's unculled frame is empty: scenes
-// that far out need coordinates relative to a nearer origin.
+// floats are 1 m apart and this street's unculled frame is empty: a scene
+// that far out holds only what lies on that grid (the metre-grid case
+// below), and finer detail needs coordinates relative to a nearer origin.
 HardCase translated_case(double offset)
 {
     SceneBuilder b{glm::dvec3(offset)};
     add_street(b);
     HardCase c{b.build(), street_camera()};
+    c.camera.position = glm::vec3(glm::dvec3(c.camera.position) + offset);
+    c.camera.target = glm::vec3(glm::dvec3(c.camera.target) + offset);
+    return c;
+}
+
+// At 1e7 m floats are 1 m apart: a street built on that grid (every
+// coordinate a whole metre, so that its vertices and the camera are exact)
+// is what a scene there can hold. The view transform still subtracts 1e7
+// from 1e7 in float, rounding projected vertices by up to a metre's worth
+// at the eye's distance (a pixel or two here); boxes and the triangles
+// they bound round alike, so culling must stay conservative.
+HardCase translated_metre_grid_case(double offset)
+{
+    SceneBuilder b{glm::dvec3(offset)};
+    b.box({-40, -1, -60}, {40, 0, 20});   // ground
+    b.box({-8, 0, -12}, {8, 6, -10});      // wall
+    for (int i = 0; i < 9; ++i)
+        for (int j = 0; j < 6; ++j) {
+            const double x = -16 + 4 * i, z = -16 - 4 * j, height = 2 + (i * 7 + j * 3) % 5;
+            b.box({x - 1, 0, z - 1}, {x + 1, height, z + 1});
+        }
+    HardCase c{b.build(), camera({0, 3, 8}, {0, 3, -20}, 1.0f, 200.0f)};
     c.camera.position = glm::vec3(glm::dvec3(c.camera.position) + offset);
     c.camera.target = glm::vec3(glm::dvec3(c.camera.target) + offset);
     return c;
@@ -562,6 +585,7 @@ const std::vector<NamedCase> hard_cases = {
     {"GeometryCrossingTheEyePlane", geometry_crossing_the_eye_plane_case},
     {"SceneTranslated1e5", [] { return translated_case(1e5); }},
     {"SceneTranslated1e6", [] { return translated_case(1e6); }},
+    {"SceneTranslated1e7OnItsMetreGrid", [] { return translated_metre_grid_case(1e7); }},
     {"NearFarRatio1eMinus4", [] { return near_far_ratio_case(1e-2f); }},
     {"NearFarRatio1eMinus6", [] { return near_far_ratio_case(1e-4f); }},
     {"CoplanarOccluderAndOccludeeFacesHeadOn", coplanar_faces_head_on_case},
