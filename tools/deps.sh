@@ -22,11 +22,13 @@ TEST_PACKAGES=(
     piglit
     assimp-testmodels   # real models the demos must refuse (BoxWithInfinites.glb: infinite vertices)
     clang libclang-rt-14-dev   # the fuzz targets: libFuzzer and the sanitizers' runtimes (tools/fuzz)
+    chromium            # headless, renders the walkthrough's report page in its test (walkthrough-report.sh)
 )
 # To plot the walkthrough's frames (tools/plot-walkthrough.sh; tools/demo and
-# its test) and the benches' results.
+# its test) and the benches' results, and to make the video of its route.
 DEMO_PACKAGES=(
     gnuplot-nox
+    ffmpeg              # tools/video-walkthrough.sh (tools/demo and its test)
 )
 # To count instructions in benchmarks (wall time on shared machines is noisy).
 BENCH_PACKAGES=(
