@@ -25,7 +25,9 @@
 // leaves the last frame drew, rendered in this frame's view and read back
 // (the two-pass scheme of GPU culling). Boxes, front to back, are tested
 // from the coarsest level that encloses their footprint in 2x2 texels,
-// descending only where a texel is not nearer than the box.
+// descending only where a texel is not nearer than the box; with skins, a
+// leaf the pyramid keeps is tested again by its box's faces in the skins'
+// depth buffer, pixel by pixel, as skins does.
 //
 // hom (hierarchical_occlusion_map_culler.cpp) "Hierarchical Occlusion Map"
 // (Zhang, Manocha, Hudson and Hoff): occluders chosen by size and distance

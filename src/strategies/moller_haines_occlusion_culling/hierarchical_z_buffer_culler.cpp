@@ -57,7 +57,10 @@ public:
             // The pyramid's pixels that hold the footprint's, from the
             // coarsest level enclosing them down, only where it fails.
             const PixelRect m = footprint->rect.to_map(k).clamped({0, 0, pyramid_.width(), pyramid_.height()});
-            if (pyramid_.occluded(m, footprint->window_z_near - 1e-6f))
+            const float z = footprint->window_z_near - 1e-6f;
+            // A leaf the pyramid keeps is tested again by its box's faces
+            // in the skins' depth buffer, pixel by pixel, as skins does.
+            if (pyramid_.occluded(m, z) || (t.leaf && !last_frame_ && raster_.occluded(t.box, footprint->rect, z)))
                 t.result = Visibility::occluded;
         }
     }
