@@ -57,6 +57,8 @@ struct Options {
     bool coherence = true;
     double switch_off = 0.5;
     std::string out = "walkthrough-out";
+    bool report = true;                 // plots and index.html in `out` at the end
+    std::vector<std::string> video;     // strategies of route.mp4; empty: none
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -70,7 +72,12 @@ struct Options {
                  "                   [--occluder-db FILE (= --set database=FILE)]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--coherence on|off] [--switch-off F]\n"
-                 "                   [--png-every N] [--oracle on|off] [--out DIR]\n"
+                 "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
+                 "                   [--video STRATEGY,...]\n"
+                 "--report (on) ends the run with the plots of frames.csv (tools/plot-walkthrough.sh, gnuplot)\n"
+                 "and DIR/index.html, a page of the summary, the plots and the frames beside their top views\n"
+                 "(tools/report-walkthrough.sh); --video makes DIR/route.mp4 of the named strategies' frames and\n"
+                 "top views (tools/video-walkthrough.sh, ffmpeg; needs --png-every 1).\n"
                  "--set applies to every chosen strategy that has the setting. --coherence (temporal coherence)\n"
                  "applies to the strategies that query the rasterizer; --switch-off (least share of triangles\n"
                  "occlusion tests must cull; 0 never switches off) to those and to the strategies whose CPU\n"
@@ -120,6 +127,12 @@ Options parse(int argc, char **argv)
             else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
             else if (a == "--coherence") o.coherence = switch_option(a, v);
             else if (a == "--oracle") o.oracle = switch_option(a, v);
+            else if (a == "--report") o.report = switch_option(a, v);
+            else if (a == "--video") {
+                o.video = split(v, ',');
+                if (o.video.empty())
+                    usage("--video is empty");
+            }
             else
                 usage("unknown argument '" + a + "'");
         } catch (const std::invalid_argument &e) {
@@ -138,6 +151,11 @@ Options parse(int argc, char **argv)
     } catch (const std::invalid_argument &e) {
         usage(e.what());
     }
+    for (const std::string &v : o.video)
+        if (std::find(o.strategies.begin(), o.strategies.end(), v) == o.strategies.end())
+            usage("--video names '" + v + "', which --strategies does not");
+    if (!o.video.empty() && o.png_every != 1)
+        usage("--video needs an image of every frame: --png-every 1");
     return o;
 }
 
@@ -237,9 +255,49 @@ void write_summary(const Options &o, const std::vector<Run> &runs)
         throw std::runtime_error("cannot write '" + path + "'");
     std::printf("\nvs vfc: vfc's mean ms / the strategy's; x floor: the strategy's mean ms / ideal's (the oracle's\n"
                 "visible leaves alone); efficiency: occluded leaves culled / occluded leaves.\n"
-                "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png;\n"
-                "plots of frames.csv: tools/plot-walkthrough.sh %s\n",
-                o.out.c_str(), o.out.c_str(), o.out.c_str(), o.out.c_str());
+                "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png\n",
+                o.out.c_str(), o.out.c_str(), o.out.c_str());
+}
+
+// A shell word for `text`.
+std::string quoted(const std::string &text)
+{
+    std::string q = "'";
+    for (char c : text)
+        q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+// Runs one of occu's tools on the results; false (the tool said why on
+// stderr) when it fails.
+bool run_tool(const std::string &tool, const std::string &arguments)
+{
+    const std::string path = std::string(OCCU_TOOLS_DIR) + "/" + tool;
+    const std::string command = quoted(path) + " " + arguments + " >/dev/null";
+    return std::system(command.c_str()) == 0;
+}
+
+// The plots, the video and the report page (tools/*-walkthrough.sh), in
+// that order, so that the page shows the plots and links the video. A tool
+// that fails leaves its part out and says why; the results stand.
+void write_report(const Options &o)
+{
+    const std::string dir = quoted(o.out);
+    if (!run_tool("plot-walkthrough.sh", dir))
+        std::printf("no plots (the message above says why)\n");
+    if (!o.video.empty()) {
+        std::string names;
+        for (const std::string &v : o.video)
+            names += " " + quoted(v);
+        if (run_tool("video-walkthrough.sh", dir + names))
+            std::printf("video: %s/route.mp4\n", o.out.c_str());
+        else
+            std::printf("no video (the message above says why)\n");
+    }
+    if (run_tool("report-walkthrough.sh", dir))
+        std::printf("report: %s/index.html\n", o.out.c_str());
+    else
+        std::printf("no report page (the message above says why)\n");
 }
 
 // The strategies with their traversal policies: temporal coherence for the
@@ -437,6 +495,8 @@ int main(int argc, char **argv)
         }
         csv.close();
         write_summary(o, runs);
+        if (o.report)
+            write_report(o);
         return 0;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "walkthrough: %s\n", e.what());
