@@ -7,7 +7,7 @@
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 frames=${1:-120}
-strategies=${2:-none,vfc,ideal,ou,ou-shared,om-ps,om-mos}
+strategies=${2:-none,vfc,ideal,ou-shared,hp,om-ps,om-mos,skins,hzb,hom,shadow}
 "$OCCU_ROOT/tools/build.sh" bench >/dev/null
 db=$(occluder_db 2>/dev/null)
 read -r -a skins <<<"$(skin_args "$strategies")"
