@@ -28,8 +28,8 @@ double face_score(const Aabb &box, int f, const glm::dvec3 &eye, const glm::dvec
 
 }  // namespace
 
-ShadowOccluders::ShadowOccluders(const Scene &scene, const Settings &settings, bool aggregate)
-    : skins_(scene, settings), aggregate_(aggregate)
+ShadowOccluders::ShadowOccluders(const Scene &scene, const Settings &settings)
+    : skins_(scene, settings), aggregate_(settings.on("aggregate"))
 {
     was_chosen_.assign(id_limit(), 0);
 }
@@ -76,6 +76,20 @@ const std::vector<ShadowOccluder> &ShadowOccluders::choose(const Frame &frame, s
         was_chosen_[r.second.id] = 1;
     }
     return chosen_;
+}
+
+std::vector<SettingSpec> shadow_occluder_settings()
+{
+    std::vector<SettingSpec> specs = {
+        integer_setting("occluders", 8, 1, 1 << 16, SettingSpec::Role::cost,
+                        "occluders per frame, by the solid-angle metric (Hudson et al.: about eight)"),
+        on_off_setting("aggregate", true, SettingSpec::Role::choice,
+                       "each skin box whole, its faces that face the eye one occluder (Coorg and Teller's "
+                       "aggregate); off: each face alone"),
+    };
+    for (SettingSpec &s : skin_settings())
+        specs.push_back(std::move(s));
+    return specs;
 }
 
 }  // namespace occu

@@ -47,9 +47,9 @@ struct ShadowOccluder {
 
 class ShadowOccluders {
 public:
-    // The skins as the strategy's settings ask (skin_settings); `aggregate`: boxes
-    // whole, else their faces.
-    ShadowOccluders(const Scene &scene, const Settings &settings, bool aggregate);
+    // The skins as the strategy's settings ask (shadow_occluder_settings):
+    // aggregate=on, boxes whole, else their faces.
+    ShadowOccluders(const Scene &scene, const Settings &settings);
 
     // The frame's occluders, the best first: at most `count`.
     const std::vector<ShadowOccluder> &choose(const Frame &frame, std::size_t count);
@@ -70,5 +70,9 @@ private:
     std::vector<std::pair<double, ShadowOccluder>> ranked_;
     std::vector<ShadowOccluder> chosen_;
 };
+
+// The settings of every strategy whose occluders these are: occluders,
+// aggregate, and skin_settings().
+std::vector<SettingSpec> shadow_occluder_settings();
 
 }  // namespace occu

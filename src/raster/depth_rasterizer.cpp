@@ -374,8 +374,11 @@ bool DepthRasterizer::occluded(const PixelRect &frame_rect, float z) const
 
 bool DepthRasterizer::occluded(const Aabb &box, const PixelRect &frame_rect, float z_near) const
 {
-    if (occluded(frame_rect, z_near))
-        return true;
+    return occluded(frame_rect, z_near) || faces_occluded(box, z_near);
+}
+
+bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
+{
     if (!(z_near == z_near))
         return false;
     // The corners in window coordinates of the buffer (depth pixels) and

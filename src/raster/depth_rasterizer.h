@@ -97,6 +97,9 @@ public:
     // the depth of the box's far parts, no longer count. False when the
     // box reaches in front of the near plane or holds the eye.
     bool occluded(const Aabb &box, const PixelRect &frame_rect, float z_near) const;
+    // The second step alone, for a caller that has tested the rectangle
+    // already (or an equivalent, such as a Z-pyramid of this buffer).
+    bool faces_occluded(const Aabb &box, float z_near) const;
 
     int width() const { return width_; }
     int height() const { return height_; }

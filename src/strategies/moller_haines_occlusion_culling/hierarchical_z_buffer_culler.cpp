@@ -60,7 +60,7 @@ public:
             const float z = footprint->window_z_near - 1e-6f;
             // A leaf the pyramid keeps is tested again by its box's faces
             // in the skins' depth buffer, pixel by pixel, as skins does.
-            if (pyramid_.occluded(m, z) || (t.leaf && !last_frame_ && raster_.occluded(t.box, footprint->rect, z)))
+            if (pyramid_.occluded(m, z) || (t.leaf && !last_frame_ && raster_.faces_occluded(t.box, z)))
                 t.result = Visibility::occluded;
         }
     }

@@ -19,7 +19,7 @@ constexpr std::uint32_t no_occluder = std::numeric_limits<std::uint32_t>::max();
 class ShadowFrustumCuller final : public Culler {
 public:
     ShadowFrustumCuller(const StrategyContext &context, const Settings &settings)
-        : occluders_(context.scene, settings, settings.on("aggregate")),
+        : occluders_(context.scene, settings),
           count_(std::size_t(settings.integer("occluders"))),
           last_culler_(context.hierarchy.nodes().size(), no_occluder), slot_(occluders_.id_limit(), -1)
     {
@@ -96,16 +96,7 @@ StrategyFamily shadow_frustum_family()
     // shadow frustum: on the open route, where nothing is hidden, that costs
     // more than it saves, and the switch-off gives it back.
     f.costs_per_frame = true;
-    using Role = SettingSpec::Role;
-    f.settings = {
-        integer_setting("occluders", 8, 1, 1 << 16, Role::cost,
-                        "occluders per frame, by the solid-angle metric (Hudson et al.: about eight)"),
-        on_off_setting("aggregate", true, Role::choice,
-                       "each skin box whole, its faces that face the eye one occluder (Coorg and Teller's "
-                       "aggregate); off: each face alone"),
-    };
-    for (SettingSpec &s : skin_settings())
-        f.settings.push_back(std::move(s));
+    f.settings = shadow_occluder_settings();
     f.presets = {
         {"shadow-faces", "aggregate=off"},
     };

@@ -20,7 +20,7 @@ constexpr std::uint32_t no_occluder = std::numeric_limits<std::uint32_t>::max();
 class SupportingPlaneCuller final : public Culler {
 public:
     SupportingPlaneCuller(const StrategyContext &context, const Settings &settings)
-        : occluders_(context.scene, settings, settings.on("aggregate")),
+        : occluders_(context.scene, settings),
           count_(std::size_t(settings.integer("occluders"))), cache_on_(settings.on("plane-cache")),
           last_culler_(context.hierarchy.nodes().size(), no_occluder), slot_(occluders_.id_limit(), -1)
     {
@@ -177,19 +177,11 @@ StrategyFamily supporting_plane_family()
     f.paper = "Moeller and Haines, shadow culling (Coorg and Teller)";
     f.summary = "the viewer inside every supporting plane of a large skin occluder and a box, planes kept per pair";
     f.costs_per_frame = true;   // its tests: each node against each occluder's planes (0.9 ms a frame on dense)
-    using Role = SettingSpec::Role;
     // As shadow's, and the cache.
-    f.settings = {
-        integer_setting("occluders", 8, 1, 1 << 16, Role::cost,
-                        "occluders per frame, by the solid-angle metric (Hudson et al.: about eight)"),
-        on_off_setting("aggregate", true, Role::choice,
-                       "each skin box whole, its faces that face the eye one occluder (Coorg and Teller's "
-                       "aggregate); off: each face alone"),
-        on_off_setting("plane-cache", true, Role::choice,
-                       "keep each occluder-node pair's supporting planes across frames; off: make them at every test"),
-    };
-    for (SettingSpec &s : skin_settings())
-        f.settings.push_back(std::move(s));
+    f.settings = shadow_occluder_settings();
+    f.settings.push_back(on_off_setting("plane-cache", true, SettingSpec::Role::choice,
+                                        "keep each occluder-node pair's supporting planes across frames; off: make "
+                                        "them at every test"));
     f.presets = {
         {"planes-faces", "aggregate=off"},
     };
