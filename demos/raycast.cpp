@@ -132,7 +132,7 @@ int main(int argc, char **argv)
         const Scene scene = generate_city(city);
         const Hierarchy hierarchy = Hierarchy::build(scene, HierarchyOptions{});
         const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f);
-        const DensityVolume volume = smoke_above_block(o.block_x, o.block_z, city.block_size, city.street_width);
+        const DensityVolume volume = smoke_above_block(o.block_x, o.block_z, city.block_size);
 
         gl::OffscreenContext ctx(o.size, o.size);
         SceneRenderer renderer(scene, hierarchy);

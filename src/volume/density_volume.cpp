@@ -133,9 +133,10 @@ DensityVolume make_smoke(const SmokePlume &plume, const Aabb &box, glm::ivec3 po
     return v;
 }
 
-DensityVolume smoke_above_block(int bx, int bz, float block_size, float street_width)
+DensityVolume smoke_above_block(int bx, int bz, float block_size, float cell)
 {
-    (void)street_width;   // the courtyard is the block's centre whatever the streets' width
+    if (!(cell > 0.0f) || !(cell <= 64.0f))
+        throw std::invalid_argument("smoke grid cells of " + std::to_string(cell) + " m: want (0, 64]");
     const glm::vec3 courtyard{(float(bx) + 0.5f) * block_size, 0.0f, (float(bz) + 0.5f) * block_size};
     SmokePlume plume;
     plume.source = courtyard;
@@ -143,10 +144,11 @@ DensityVolume smoke_above_block(int bx, int bz, float block_size, float street_w
     plume.base_radius = 7.0f;
     plume.top_radius = 28.0f;
     plume.wind = {0.45f, 0.0f, 0.0f};
-    // 128 x 128 x 64 cells of 1 m: from 32 m west of the source to 96 m east
-    // (the drift), 32 m either side north and south, 128 m up.
+    // From 32 m west of the source to 96 m east (the drift), 32 m either
+    // side north and south, 128 m up.
     const Aabb box{courtyard + glm::vec3(-32.0f, 0.0f, -32.0f), courtyard + glm::vec3(96.0f, 128.0f, 32.0f)};
-    return make_smoke(plume, box, {129, 129, 65});
+    const int across = std::max(1, int(std::lround(128.0f / cell))), deep = std::max(1, int(std::lround(64.0f / cell)));
+    return make_smoke(plume, box, {across + 1, across + 1, deep + 1});
 }
 
 std::vector<Brick> make_bricks(const DensityVolume &volume, int brick_cells)

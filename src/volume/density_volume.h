@@ -72,9 +72,11 @@ struct SmokePlume {
 DensityVolume make_smoke(const SmokePlume &plume, const Aabb &box, glm::ivec3 points);
 
 // occu's default mixed scene: a plume from the courtyard of the city block
-// (bx, bz) (scene/city.h's default layout: 80 m blocks, 16 m streets),
-// drifting east over the rooftops, on a grid of 1 m cells.
-DensityVolume smoke_above_block(int bx, int bz, float block_size = 80.0f, float street_width = 16.0f);
+// (bx, bz) (scene/city.h's layout: blocks of block_size metres from the
+// origin, the courtyard at the block's centre), drifting east over the
+// rooftops, in a box of 128 x 128 x 64 m on a grid of `cell` metres
+// (128 / cell rounded).
+DensityVolume smoke_above_block(int bx, int bz, float block_size = 80.0f, float cell = 1.0f);
 
 // The subdivision entities of section 5: bricks of brick_cells^3 cells (the
 // last ones along an axis may be smaller), in x-fastest order; `empty`
