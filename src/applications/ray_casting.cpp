@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/extensions.h"
 #include "gl/state.h"
 
 namespace occu {
@@ -45,6 +46,10 @@ float brick_margin(const Aabb &brick, const Camera &camera, int width, int heigh
     return float(2.0 * footprint + 1e-5 * (size + 1.0));
 }
 
+// A box's faces by corner index (Aabb::corner), counter-clockwise seen from
+// outside, as SceneRenderer::draw_box winds them.
+constexpr int box_faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+
 // Where a brick lies against the near plane: wholly beyond it (view depth
 // greater than the plane's at every corner: the eye is outside the box and
 // every ray that meets it crosses one of its front faces, unclipped),
@@ -69,6 +74,9 @@ OcclusionRayCasting::OcclusionRayCasting(const DensityVolume &volume, const Occl
 {
     if (settings.brick_cells < 1 || settings.list_layers < 1 || settings.tile_pixels < 1)
         throw std::invalid_argument("ray casting settings: brick cells, list layers and tile pixels must be >= 1");
+    BindBuffer_ = reinterpret_cast<PFNGLBINDBUFFERPROC>(gl::get_proc_address("glBindBuffer"));
+    if (!BindBuffer_)
+        throw std::runtime_error("this GL context lacks glBindBuffer");
     for (const Brick &b : make_bricks(volume, settings.brick_cells))
         if (!b.empty)
             bricks_.push_back(b.box);
@@ -135,10 +143,26 @@ const std::vector<std::uint8_t> &OcclusionRayCasting::pixels_to_cast(const Camer
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
         glFrontFace(GL_CCW);
-        gl::OcclusionPass pass(unit_, gl::OcclusionMode::verbose, tiles, room);
+        // Every brick's faces from one vertex array: one draw, whatever the
+        // brick count (immediate mode costs a call per vertex).
+        std::vector<float> quads;
+        quads.reserve(grown.size() * 6 * 4 * 3);
         for (const Aabb &g : grown)
-            SceneRenderer::draw_box(g);
+            for (const auto &face : box_faces)
+                for (int c : face) {
+                    const glm::vec3 p = g.corner(c);
+                    quads.insert(quads.end(), {p.x, p.y, p.z});
+                }
+        glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
+        BindBuffer_(GL_ARRAY_BUFFER, 0);   // the vertices are client memory
+        glEnableClientState(GL_VERTEX_ARRAY);
+        glDisableClientState(GL_COLOR_ARRAY);
+        glDisableClientState(GL_NORMAL_ARRAY);
+        glVertexPointer(3, GL_FLOAT, 0, quads.data());
+        gl::OcclusionPass pass(unit_, gl::OcclusionMode::verbose, tiles, room);
+        glDrawArrays(GL_QUADS, 0, GLsizei(quads.size() / 3));
         records = pass.end();
+        glPopClientAttrib();
     }
     stats_.bricks_drawn = grown.size();
     stats_.pass_ms = ms_since(pass_start);

@@ -96,6 +96,7 @@ public:
 
 private:
     gl::OcclusionUnit unit_;
+    PFNGLBINDBUFFERPROC BindBuffer_ = nullptr;
     OcclusionRayCastingSettings settings_;
     std::vector<Aabb> bricks_;   // the non-empty ones
     std::vector<std::uint8_t> mask_;
