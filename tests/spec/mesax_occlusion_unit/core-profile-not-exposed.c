@@ -12,6 +12,12 @@
  *   core-get-max-tiles-invalid-enum    GetIntegerv(MAX_OCCLUSION_TILES_MESAX)
  *   core-get-tile-count-invalid-enum   GetIntegerv(OCCLUSION_TILE_COUNT_MESAX)
  *   core-getfloat-invalid-enum         GetFloatv of both
+ *   core-get-buffer-count-invalid-enum GetIntegerv(OCCLUSION_BUFFER_COUNT_MESAX)
+ *   core-get-tile-invalid-enum         GetIntegerv and GetIntegeri_v(.., 0) of
+ *                                      OCCLUSION_TILE_MESAX
+ *   core-get-buffer-size-invalid-enum  the same for OCCLUSION_BUFFER_SIZE_MESAX
+ *   core-get-buffer-pointer-invalid-enum
+ *                                      GetPointerv(OCCLUSION_BUFFER_POINTER_MESAX)
  *   compat-get-max-tiles-at-least-64   in a compatibility context the same Get works
  */
 #include <GL/osmesa.h>
@@ -33,6 +39,34 @@ get_is_invalid_enum(GLenum pname, bool as_float)
     const bool untouched = as_float ? f == -12345.0f : i == -12345;
     if (error != GL_INVALID_ENUM || !untouched)
         printf("Get 0x%x: error 0x%x, value %s\n", pname, error, untouched ? "untouched" : "written");
+    return error == GL_INVALID_ENUM && untouched;
+}
+
+static bool
+get_indexed_is_invalid_enum(PFNGLGETINTEGERI_VPROC GetIntegeri_v, GLenum pname)
+{
+    GLint v[4] = {-12345, -12345, -12345, -12345};
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    GetIntegeri_v(pname, 0, v);
+    const GLenum error = glGetError();
+    const bool untouched = v[0] == -12345 && v[1] == -12345;
+    if (error != GL_INVALID_ENUM || !untouched)
+        printf("GetIntegeri_v 0x%x: error 0x%x, value %s\n", pname, error, untouched ? "untouched" : "written");
+    return error == GL_INVALID_ENUM && untouched;
+}
+
+static bool
+get_pointer_is_invalid_enum(GLenum pname)
+{
+    void *p = (void *)&p;
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    glGetPointerv(pname, &p);
+    const GLenum error = glGetError();
+    const bool untouched = p == (void *)&p;
+    if (error != GL_INVALID_ENUM || !untouched)
+        printf("GetPointerv 0x%x: error 0x%x, value %s\n", pname, error, untouched ? "untouched" : "written");
     return error == GL_INVALID_ENUM && untouched;
 }
 
@@ -67,6 +101,15 @@ int main(int argc, char **argv)
     subtest(get_is_invalid_enum(GL_MAX_OCCLUSION_TILES_MESAX, true) &&
                 get_is_invalid_enum(GL_OCCLUSION_TILE_COUNT_MESAX, true),
             "core-getfloat-invalid-enum");
+    subtest(get_is_invalid_enum(GL_OCCLUSION_BUFFER_COUNT_MESAX, false), "core-get-buffer-count-invalid-enum");
+    PFNGLGETINTEGERI_VPROC GetIntegeri_v = (PFNGLGETINTEGERI_VPROC)piglit_get_proc_address("glGetIntegeri_v");
+    subtest(get_is_invalid_enum(GL_OCCLUSION_TILE_MESAX, false) &&
+                get_indexed_is_invalid_enum(GetIntegeri_v, GL_OCCLUSION_TILE_MESAX),
+            "core-get-tile-invalid-enum");
+    subtest(get_is_invalid_enum(GL_OCCLUSION_BUFFER_SIZE_MESAX, false) &&
+                get_indexed_is_invalid_enum(GetIntegeri_v, GL_OCCLUSION_BUFFER_SIZE_MESAX),
+            "core-get-buffer-size-invalid-enum");
+    subtest(get_pointer_is_invalid_enum(GL_OCCLUSION_BUFFER_POINTER_MESAX), "core-get-buffer-pointer-invalid-enum");
     OSMesaDestroyContext(core);
     piglit_report_result(result);
 }

@@ -35,13 +35,16 @@ bool assigned(std::uint32_t v)
 
 TEST(Tokens, InMesasBlockAndAssignedToNothingElse)
 {
-    const std::uint32_t tokens[] = {GL_BRIEF_OCCLUSION_MESAX, GL_VERBOSE_OCCLUSION_MESAX,
-                                    GL_MAX_OCCLUSION_TILES_MESAX, GL_OCCLUSION_TILE_COUNT_MESAX};
+    const std::uint32_t tokens[] = {GL_BRIEF_OCCLUSION_MESAX,          GL_VERBOSE_OCCLUSION_MESAX,
+                                    GL_MAX_OCCLUSION_TILES_MESAX,      GL_OCCLUSION_TILE_COUNT_MESAX,
+                                    GL_OCCLUSION_TILE_MESAX,           GL_OCCLUSION_BUFFER_COUNT_MESAX,
+                                    GL_OCCLUSION_BUFFER_SIZE_MESAX,    GL_OCCLUSION_BUFFER_POINTER_MESAX};
+    const std::size_t n = sizeof(tokens) / sizeof(tokens[0]);
     for (std::uint32_t t : tokens) {
         EXPECT_FALSE(assigned(t)) << std::hex << "0x" << t << " is assigned in the registry";
         EXPECT_TRUE(t >= 0x9790 && t <= 0x979F) << std::hex << "0x" << t << " is outside Mesa's block 0x9790-0x979F";
     }
-    for (std::size_t i = 0; i < 4; ++i)
-        for (std::size_t j = i + 1; j < 4; ++j)
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j)
             EXPECT_NE(tokens[i], tokens[j]);
 }
