@@ -84,11 +84,12 @@ static const GLint tiles_a[4 * N] = {
 };
 static const GLint tiles_b[4 * 2] = {21, 22, 23, 24, 31, 32, 33, 34};
 
-/* Sizes: distinct, the least (8) and the largest a sizei holds. The GL
- * writes only brief records into these buffers in this test (8 words), so
- * the sizes need not be the memory's. */
-static const GLsizei sizes_a[N] = {9, 8, 100, INT_MAX, 17};
+/* Sizes: distinct, the least (8) among them; each buffer has the words its
+ * size says (the pool's rows have 32). sizes_big, set only outside passes
+ * (when the GL writes no buffer), holds the largest a sizei holds. */
+static const GLsizei sizes_a[N] = {9, 8, 30, 32, 17};
 static const GLsizei sizes_b[2] = {12, 13};
+static const GLsizei sizes_big[N] = {31, 10, 11, INT_MAX, 8};
 static GLuint pool[N + 2][32];
 static GLuint *buffers_a[N] = {pool[0], pool[1], pool[2], pool[3], pool[4]};
 static GLuint *buffers_b[2] = {pool[5], pool[6]};
@@ -300,12 +301,12 @@ test_failing_calls(void)
     GLsizei *many_sizes = malloc(sizeof(GLsizei) * (size_t)(max_tiles + 1));
     GLuint **many_buffers = malloc(sizeof(GLuint *) * (size_t)(max_tiles + 1));
     for (int i = 0; i <= max_tiles; ++i) {
-        many_sizes[i] = 200 + i;
+        many_sizes[i] = 10 + i % 20;
         many_buffers[i] = pool[5 + i % 2];
     }
-    const GLsizei small_last[3] = {40, 41, 7};
+    const GLsizei small_last[3] = {18, 19, 7};
     GLuint *const null_last[3] = {pool[6], pool[5], NULL};
-    const GLsizei sizes_c[3] = {50, 51, 52};
+    const GLsizei sizes_c[3] = {20, 21, 22};
     GLuint *const buffers_c[3] = {pool[6], pool[5], pool[6]};
 
     ok = true;
@@ -587,7 +588,8 @@ test_get_forms(void)
     OcclusionBuffersMESAX(N, sizes_a, buffers_a);
     check_indexed_forms(GL_OCCLUSION_TILE_MESAX, "tile-0", 4, 0, &tiles_a[0]);
     check_indexed_forms(GL_OCCLUSION_TILE_MESAX, "tile-3", 4, 3, &tiles_a[12]);
-    check_indexed_forms(GL_OCCLUSION_BUFFER_SIZE_MESAX, "size-3", 1, 3, &sizes_a[3]);
+    OcclusionBuffersMESAX(N, sizes_big, buffers_a);
+    check_indexed_forms(GL_OCCLUSION_BUFFER_SIZE_MESAX, "size-3", 1, 3, &sizes_big[3]);
     static const GLint zero = 0;
     check_indexed_forms(GL_OCCLUSION_BUFFER_SIZE_MESAX, "size-5", 1, 5, &zero);
 
