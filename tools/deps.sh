@@ -16,6 +16,7 @@ BUILD_PACKAGES=(
     libglvnd-dev libglvnd-core-dev
     g++ libglm-dev libgtest-dev libpng-dev
     libassimp-dev       # user scenes (OBJ, glTF)
+    libcgal-dev libpolyclipping-dev   # view cells (constrained Delaunay) and occluder shrinking (polygon offsets)
 )
 # To run the piglit regression run on the patched driver.
 TEST_PACKAGES=(

@@ -54,6 +54,7 @@ Scene generate_city(const CityOptions &o)
     // One grid of blocks, generated once and then copied (as the papers'
     // models copy a block): lots of 4 x 4 around a courtyard per block.
     std::vector<Mesh> grid;
+    std::vector<PrismOccluder> grid_occluders;
     const int lots = 4;
     const float lot = (o.block_size - o.street_width) / lots;
     for (int bz = 0; bz < o.blocks_z; ++bz)
@@ -75,6 +76,13 @@ Scene generate_city(const CityOptions &o)
                     const float variation = unit(paint), roof = unit(paint);
                     const BuildingColours colours = building_colours(hue, variation, roof);
                     grid.push_back(building(corner, size, floors, colours));
+                    // The building's box without its ledges: solid, inside its mesh.
+                    PrismOccluder f;
+                    const glm::dvec2 lo(corner.x, corner.z), hi(corner.x + size.x, corner.z + size.z);
+                    f.outline = {{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}};
+                    f.bottom = corner.y;
+                    f.top = double(corner.y + size.y);
+                    grid_occluders.push_back(std::move(f));
                 }
         }
 
@@ -88,6 +96,12 @@ Scene generate_city(const CityOptions &o)
                     p += offset;
                 m.update_bounds();
                 scene.meshes.push_back(std::move(m));
+            }
+            for (const PrismOccluder &b : grid_occluders) {
+                PrismOccluder f = b;
+                for (glm::dvec2 &p : f.outline)
+                    p += glm::dvec2(offset.x, offset.z);
+                scene.prism_occluders.push_back(std::move(f));
             }
         }
 

@@ -25,9 +25,24 @@ struct Mesh {
     void update_bounds();
 };
 
+// A 2.5D occluder (Wonka, Wimmer and Schmalstieg 2000, section 4.1): a
+// solid prism between heights `bottom` and `top` over a simple polygon in
+// the ground plane (world x and z), wholly inside the scene's geometry, so
+// that whatever it hides the scene hides. Points are (x, z); the outline
+// runs counter-clockwise in those coordinates (positive signed area), holes
+// clockwise.
+struct PrismOccluder {
+    std::vector<glm::dvec2> outline;                // (x, z)
+    std::vector<std::vector<glm::dvec2>> holes;     // courtyards
+    double bottom = 0.0, top = 0.0;
+};
+
 struct Scene {
     std::vector<Mesh> meshes;
     Aabb bounds;
+    // The 2.5D occluders a generator knows (the city's buildings); empty
+    // for a loaded scene, whose solids nothing tells apart.
+    std::vector<PrismOccluder> prism_occluders;
 
     std::size_t triangle_count() const;
     void update_bounds();
