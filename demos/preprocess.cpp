@@ -11,6 +11,9 @@
 //   occu-preprocess views --out ROUTE [--every K] DATABASE
 //   occu-preprocess skins --out FILE [--scene FILE] [--city-copies N] [--voxel-size V]
 //                   [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]
+//   occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N]
+//                   [--epsilon E] [--pixel K] [--max-edge M] [--cell-top T] [--initial-extent X]
+//                   [--test occlusion-unit|readback|both] [--shard I/N] [--driver llvmpipe|softpipe]
 //
 // --cache DIR names the database by its key (DatabaseProvenance::key: the
 // preprocessing code, options, scene, hierarchy, Mesa build and grid),
@@ -44,6 +47,19 @@
 // --shard I/N takes the meshes m with m % N == I - 1. `merge` joins skin
 // shards as well: it tells the two kinds of file by their first line, and
 // all its shards must be of the kind of the first.
+//
+// `view-cells` precomputes the potentially visible set of every view cell
+// (Wonka, Wimmer and Schmalstieg 2000; preprocessing/view_cell_visibility.h
+// and pvs_database.h): cells over the city's streets with edges of at most
+// --max-edge m, prisms up to --cell-top m, sample points --epsilon apart,
+// occluders shrunk by epsilon, cull maps of --pixel m pixels growing from
+// --initial-extent m around the cell. --test picks how objects are tested
+// against a cull map: with the Occlusion Unit (the default) or by reading
+// the map back (the paper's); `both` does each per cell, checks that they
+// find the same visible leaves (failing otherwise) and reports the time of
+// each. --shard I/N takes the cells c with c % N == I - 1; `merge` joins
+// PVS shards too. Only the generated city qualifies: a loaded scene has no
+// known 2.5D occluders (--scene is refused, saying so).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -61,6 +77,8 @@
 #include "gl/offscreen_context.h"
 #include "preprocessing/occluder_database.h"
 #include "preprocessing/occluder_skins.h"
+#include "preprocessing/pvs_database.h"
+#include "preprocessing/view_cell_visibility.h"
 #include "preprocessing/view_preprocessing.h"
 #include "render/scene_renderer.h"
 #include "scene/city.h"
@@ -80,7 +98,10 @@ namespace {
                  "       occu-preprocess merge --out FILE SHARD...\n"
                  "       occu-preprocess views --out ROUTE [--every K] DATABASE\n"
                  "       occu-preprocess skins --out FILE [--scene FILE] [--city-copies N] [--voxel-size V]\n"
-                 "                       [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]\n",
+                 "                       [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]\n"
+                 "       occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N] [--epsilon E]\n"
+                 "                       [--pixel K] [--max-edge M] [--cell-top T] [--initial-extent X]\n"
+                 "                       [--test occlusion-unit|readback|both] [--shard I/N] [--driver llvmpipe|softpipe]\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
     std::exit(error.empty() ? 0 : 2);
 }
@@ -94,10 +115,13 @@ struct Options {
     std::vector<std::string> inputs;   // merge, views
     int every = 1;                     // views
     occu::SkinOptions skins;           // skins
+    occu::ViewCellOptions cells;       // view-cells
+    occu::ViewCellVisibilityOptions visibility;
+    std::string test = "occlusion-unit";
 };
 
-// Whether `path` begins as a skin database (occluder_skins.h) does.
-bool is_skin_database(const std::string &path)
+// The first word of `path` (comments skipped): what kind of database it is.
+std::string first_word(const std::string &path)
 {
     std::ifstream in(path);
     std::string line, word;
@@ -105,9 +129,14 @@ bool is_skin_database(const std::string &path)
         if (const auto hash = line.find('#'); hash != std::string::npos)
             line.erase(hash);
         if (std::istringstream(line) >> word)
-            return word == "occu-occluder-skins";
+            return word;
     }
-    return false;
+    return "";
+}
+
+bool is_skin_database(const std::string &path)
+{
+    return first_word(path) == "occu-occluder-skins";
 }
 
 int merge_skins(const Options &o)
@@ -123,8 +152,22 @@ int merge_skins(const Options &o)
                                                    : (std::fprintf(stderr, "occu-preprocess: meshes missing\n"), 1);
 }
 
+int merge_pvs(const Options &o)
+{
+    std::vector<occu::PvsDatabase> shards;
+    for (const std::string &path : o.inputs)
+        shards.push_back(occu::PvsDatabase::load(path));
+    const auto db = occu::PvsDatabase::merge(shards, o.inputs);
+    db.save(o.out);
+    std::printf("%s: visible sets of %zu of %zu view cells from %zu shards\n", o.out.c_str(), db.visible.size(),
+                db.cells.size(), shards.size());
+    return 0;
+}
+
 int merge(const Options &o)
 {
+    if (first_word(o.inputs.front()) == "occu-pvs-database")
+        return merge_pvs(o);
     if (is_skin_database(o.inputs.front()))
         return merge_skins(o);
     std::vector<occu::OccluderDatabase> shards;
@@ -274,22 +317,123 @@ int skins(const Options &o)
     return 0;
 }
 
+int view_cells(const Options &o)
+{
+    using namespace occu;
+    if (!o.scene.empty())
+        throw std::runtime_error("view-cells needs 2.5D occluders (building footprints with heights, Wonka et al. "
+                                 "section 4.1), which only the generated city provides: '" + o.scene +
+                                 "' is a loaded scene whose meshes do not say which are solid");
+    gl::select_driver(gl::parse_driver(o.driver));
+    CityOptions city;
+    city.copies = o.city_copies;
+    const Scene scene = generate_city(city);
+    HierarchyOptions ho;
+    ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
+    const Hierarchy hierarchy = Hierarchy::build(scene, ho);
+    const auto cells_start = std::chrono::steady_clock::now();
+    const ViewCells cells({scene.bounds.min.x, scene.bounds.min.z}, {scene.bounds.max.x, scene.bounds.max.z},
+                          scene.prism_occluders, o.cells);
+    const double cells_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - cells_start).count();
+
+    gl::OffscreenContext ctx(64, 64);
+    const bool both = o.test == "both";
+    const CullMapTest test = o.test == "readback" ? CullMapTest::readback : CullMapTest::occlusion_unit;
+    ViewCellVisibility visibility(scene, hierarchy, cells, o.visibility);
+
+    PvsDatabase db;
+    db.provenance.hierarchy = hierarchy.fingerprint();
+    db.provenance.leaves = hierarchy.leaf_count();
+    db.provenance.epsilon = o.visibility.epsilon;
+    db.provenance.pixel = o.visibility.pixel;
+    db.provenance.initial_extent = o.visibility.initial_extent;
+    db.provenance.max_edge = o.cells.max_edge;
+    db.provenance.bottom = o.cells.bottom;
+    db.provenance.top = o.cells.top;
+    for (std::size_t c = 0; c < cells.size(); ++c)
+        db.cells.push_back(cells.triangle(c));
+
+    std::vector<std::uint32_t> mine;
+    for (std::uint32_t c = 0; c < cells.size(); ++c)
+        if (int(c % std::uint32_t(o.shards)) == o.shard - 1)
+            mine.push_back(c);
+    std::printf("scene: %zu triangles, %zu leaves, %zu prism occluders (%zu parts shrunk by %g m); %zu view cells "
+                "(edges <= %g m, made in %.2f s), shard %d/%d: %zu cells; cull map pixels %g m; %s\n",
+                scene.triangle_count(), hierarchy.leaf_count(), scene.prism_occluders.size(),
+                visibility.shrunk_occluders(), o.visibility.epsilon, cells.size(), o.cells.max_edge, cells_s, o.shard,
+                o.shards, mine.size(), o.visibility.pixel, ctx.renderer().c_str());
+
+    // Triangles of the leaves, for the share of the scene each set leaves out.
+    std::vector<std::uint32_t> leaf_triangles(hierarchy.nodes().size(), 0);
+    for (std::uint32_t n = 0; n < hierarchy.nodes().size(); ++n)
+        if (hierarchy.nodes()[n].leaf())
+            leaf_triangles[n] = hierarchy.nodes()[n].triangle_count;
+    struct Sum {
+        double ms = 0, map_ms = 0, test_ms = 0, maps = 0, passes = 0, samples = 0;
+    } sum[2];
+    double visible_leaves = 0, visible_triangles = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+        const std::uint32_t c = mine[i];
+        std::vector<CellVisibility> results;
+        for (CullMapTest t : both ? std::vector<CullMapTest>{CullMapTest::occlusion_unit, CullMapTest::readback}
+                                  : std::vector<CullMapTest>{test}) {
+            results.push_back(visibility.compute(c, t));
+            Sum &s = sum[t == CullMapTest::readback];
+            s.map_ms += results.back().map_ms;
+            s.test_ms += results.back().test_ms;
+            s.ms += results.back().map_ms + results.back().test_ms;
+            s.maps += double(results.back().maps);
+            s.passes += double(results.back().unit_passes);
+            s.samples += double(results.back().sample_points);
+        }
+        if (both && results[0].visible_leaves != results[1].visible_leaves)
+            throw std::runtime_error("view cell " + std::to_string(c) + ": the Occlusion Unit finds " +
+                                     std::to_string(results[0].visible_leaves.size()) +
+                                     " visible leaves, the read-back " + std::to_string(results[1].visible_leaves.size()) +
+                                     ", and they are not the same");
+        db.visible[c] = results[0].visible_leaves;
+        visible_leaves += double(results[0].visible_leaves.size());
+        for (std::uint32_t n : results[0].visible_leaves)
+            visible_triangles += leaf_triangles[n];
+        progress("view cells", long(i + 1), long(mine.size()));
+    }
+    db.save(o.out);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double n = double(std::max<std::size_t>(mine.size(), 1));
+    std::printf("%s: %zu cells in %.1f s; per cell %.1f visible leaves of %zu, %.3f%% of the triangles occluded\n",
+                o.out.c_str(), mine.size(), s, visible_leaves / n, hierarchy.leaf_count(),
+                100.0 * (1.0 - visible_triangles / n / double(scene.triangle_count())));
+    for (int k = 0; k < 2; ++k) {
+        if (!both && (k == 1) != (test == CullMapTest::readback))
+            continue;
+        const Sum &m = sum[k];
+        std::printf("  %-14s ms per cell %.2f (maps %.2f, object tests %.2f); %.2f maps, %.1f sample points%s\n",
+                    k ? "read-back" : "occlusion-unit", m.ms / n, m.map_ms / n, m.test_ms / n, m.maps / n, m.samples / n,
+                    k ? "" : (", " + std::to_string(m.passes / n) + " brief passes").c_str());
+    }
+    if (both)
+        std::printf("  object tests: read-back %.2fx the Occlusion Unit's time; every cell's sets equal\n",
+                    sum[1].test_ms / std::max(sum[0].test_ms, 1e-9));
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
 {
     if (argc < 2)
-        usage("give a command: build, merge, views or skins");
+        usage("give a command: build, merge, views, skins or view-cells");
     const std::string command = argv[1];
     if (command == "-h" || command == "--help")
         usage("");
-    if (command != "build" && command != "merge" && command != "views" && command != "skins")
-        usage("unknown command '" + command + "' (build, merge, views or skins)");
+    if (command != "build" && command != "merge" && command != "views" && command != "skins" && command != "view-cells")
+        usage("unknown command '" + command + "' (build, merge, views, skins or view-cells)");
     Options o;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
         if (a.rfind("--", 0) != 0) {
-            if (command == "build" || command == "skins")
+            if (command == "build" || command == "skins" || command == "view-cells")
                 usage("unexpected argument '" + a + "'");
             o.inputs.push_back(a);
             continue;
@@ -314,6 +458,21 @@ int main(int argc, char **argv)
             else if (command == "skins" && a != "--scene" && a != "--city-copies" && a != "--shard")
                 usage("skins takes only --out, --scene, --city-copies, --voxel-size, --max-boxes, --min-volume, "
                       "--start and --shard, not " + a);
+            else if (command == "view-cells" && a == "--epsilon") o.visibility.epsilon = occu::number_option(a, v, 0.0, 1e4, true);
+            else if (command == "view-cells" && a == "--pixel") o.visibility.pixel = occu::number_option(a, v, 0.0, 1e4, true);
+            else if (command == "view-cells" && a == "--initial-extent")
+                o.visibility.initial_extent = occu::number_option(a, v, 0.0, 1e6, true);
+            else if (command == "view-cells" && a == "--max-edge") o.cells.max_edge = occu::number_option(a, v, 0.0, 1e6, true);
+            else if (command == "view-cells" && a == "--cell-top") o.cells.top = occu::number_option(a, v, 0.0, 1e4, true);
+            else if (command == "view-cells" && a == "--test") {
+                if (v != "occlusion-unit" && v != "readback" && v != "both")
+                    usage("--test wants occlusion-unit, readback or both, got '" + v + "'");
+                o.test = v;
+            }
+            else if (command == "view-cells" && a != "--scene" && a != "--city-copies" && a != "--shard" &&
+                     a != "--driver" && a != "--leaf-triangles")
+                usage("view-cells takes only --out, --city-copies, --leaf-triangles, --epsilon, --pixel, --max-edge, "
+                      "--cell-top, --initial-extent, --test, --shard and --driver, not " + a);
             else if (a == "--scene") o.scene = v;
             else if (a == "--driver") o.driver = v;
             else if (a == "--city-copies") o.city_copies = int(occu::integer_option(a, v, 1, 64));
@@ -358,7 +517,11 @@ int main(int argc, char **argv)
     if (command == "views" && o.inputs.size() != 1)
         usage("views needs one database");
     try {
-        return command == "merge" ? merge(o) : command == "views" ? views(o) : command == "skins" ? skins(o) : build(o);
+        return command == "merge"        ? merge(o)
+               : command == "views"      ? views(o)
+               : command == "skins"      ? skins(o)
+               : command == "view-cells" ? view_cells(o)
+                                         : build(o);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "occu-preprocess: %s\n", e.what());
         return 1;
