@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +13,17 @@ namespace occu {
 namespace {
 
 constexpr double depth_steps = 16777215.0;   // 2^24 - 1: the map's depth buffer is 24-bit
+
+// A counter-clockwise polygon turning left (or straight) at every corner.
+bool is_convex(const std::vector<glm::dvec2> &poly)
+{
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const glm::dvec2 a = poly[i], b = poly[(i + 1) % poly.size()], c = poly[(i + 2) % poly.size()];
+        if ((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x) < 0.0)
+            return false;
+    }
+    return true;
+}
 
 }  // namespace
 
@@ -79,10 +91,39 @@ void CullMap::draw_shadows(const glm::dvec3 &p, const std::vector<const PrismOcc
     };
     for (const PrismOccluder *o : occluders) {
         const double h = o->top;
+        // A convex footprint: seen from below its top (h > p.y) the edges
+        // facing the eye cast the higher shadow over the whole silhouette's
+        // angle (a sight line over a front edge at distance d1 climbs
+        // faster than over a back edge at d2 > d1), seen from above its top
+        // the back edges do; so half the edges suffice. A concave one or
+        // one with courtyards draws every edge (each is valid on its own).
+        const bool convex = o->holes.empty() && is_convex(o->outline);
+        // A ray through an edge point at distance d from the eye reaches
+        // (t - 1) d beyond the edge at parameter t: the nearest edge point
+        // (not the nearest corner) decides how far t must go.
+        double nearest = std::numeric_limits<double>::infinity();
+        auto nearest_in = [&](const std::vector<glm::dvec2> &poly) {
+            for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+                const glm::dvec2 ab = poly[i] - poly[j];
+                const double len2 = glm::dot(ab, ab);
+                const double t = len2 > 0.0 ? std::clamp(glm::dot(eye - poly[j], ab) / len2, 0.0, 1.0) : 0.0;
+                nearest = std::min(nearest, glm::length(eye - (poly[j] + t * ab)));
+            }
+        };
+        nearest_in(o->outline);
+        for (const auto &hole : o->holes)
+            nearest_in(hole);
+        const double occluder_t_far = 1.0 + reach / std::max(nearest, 1e-9);
         auto ring = [&](const std::vector<glm::dvec2> &poly) {
             for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
                 const glm::dvec2 a = poly[j], b = poly[i];
                 const glm::dvec2 ea = a - eye, eb = b - eye;
+                if (convex && h != p.y) {
+                    // Counter-clockwise outline: the eye is in front of edge a->b when it lies to its right.
+                    const bool facing = (b.x - a.x) * (eye.y - a.y) - (b.y - a.y) * (eye.x - a.x) < 0.0;
+                    if (facing != (h > p.y))
+                        continue;
+                }
                 if (std::abs(ea.x * eb.y - ea.y * eb.x) <= 1e-12 * glm::dot(ea, ea) + 1e-18)
                     continue;   // the eye on the edge's line: no wedge
                 // Along a ray from the eye, the shadow's height at parameter
@@ -90,7 +131,10 @@ void CullMap::draw_shadows(const glm::dvec3 &p, const std::vector<const PrismOcc
                 // beyond the map (t_far), or where its plane leaves
                 // [bottom, top]: above top everything is hidden (a flat
                 // part at top), below bottom nothing is.
-                const double t_far = 1.0 + reach / std::min(glm::length(ea), glm::length(eb));
+                // One t_far for the whole occluder: neighbouring edges' wedges
+                // then share their side rays' vertices exactly, and the
+                // rasterizer's fill rule leaves no crack along them.
+                const double t_far = occluder_t_far;
                 double t_end = t_far;
                 bool capped = false;
                 if (h > p.y) {
