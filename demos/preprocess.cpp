@@ -12,7 +12,7 @@
 //   occu-preprocess skins --out FILE [--scene FILE] [--city-copies N] [--voxel-size V]
 //                   [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]
 //   occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N]
-//                   [--epsilon E] [--pixel K] [--max-edge M] [--cell-top T] [--initial-extent X]
+//                   [--epsilon E] [--pixel K] [--max-edge M] [--cell-top T] [--clearance C] [--initial-extent X]
 //                   [--test occlusion-unit|readback|both] [--shard I/N] [--driver llvmpipe|softpipe]
 //
 // --cache DIR names the database by its key (DatabaseProvenance::key: the
@@ -51,7 +51,8 @@
 // `view-cells` precomputes the potentially visible set of every view cell
 // (Wonka, Wimmer and Schmalstieg 2000; preprocessing/view_cell_visibility.h
 // and pvs_database.h): cells over the city's streets with edges of at most
-// --max-edge m, prisms up to --cell-top m, sample points --epsilon apart,
+// --max-edge m kept --clearance m from the buildings, prisms up to
+// --cell-top m, sample points --epsilon apart,
 // occluders shrunk by epsilon, cull maps of --pixel m pixels growing from
 // --initial-extent m around the cell. --test picks how objects are tested
 // against a cull map: with the Occlusion Unit (the default) or by reading
@@ -100,7 +101,7 @@ namespace {
                  "       occu-preprocess skins --out FILE [--scene FILE] [--city-copies N] [--voxel-size V]\n"
                  "                       [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]\n"
                  "       occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N] [--epsilon E]\n"
-                 "                       [--pixel K] [--max-edge M] [--cell-top T] [--initial-extent X]\n"
+                 "                       [--pixel K] [--max-edge M] [--cell-top T] [--clearance C] [--initial-extent X]\n"
                  "                       [--test occlusion-unit|readback|both] [--shard I/N] [--driver llvmpipe|softpipe]\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
     std::exit(error.empty() ? 0 : 2);
@@ -348,6 +349,7 @@ int view_cells(const Options &o)
     db.provenance.pixel = o.visibility.pixel;
     db.provenance.initial_extent = o.visibility.initial_extent;
     db.provenance.max_edge = o.cells.max_edge;
+    db.provenance.clearance = o.cells.clearance;
     db.provenance.bottom = o.cells.bottom;
     db.provenance.top = o.cells.top;
     for (std::size_t c = 0; c < cells.size(); ++c)
@@ -464,6 +466,7 @@ int main(int argc, char **argv)
                 o.visibility.initial_extent = occu::number_option(a, v, 0.0, 1e6, true);
             else if (command == "view-cells" && a == "--max-edge") o.cells.max_edge = occu::number_option(a, v, 0.0, 1e6, true);
             else if (command == "view-cells" && a == "--cell-top") o.cells.top = occu::number_option(a, v, 0.0, 1e4, true);
+            else if (command == "view-cells" && a == "--clearance") o.cells.clearance = occu::number_option(a, v, 0.0, 1e4);
             else if (command == "view-cells" && a == "--test") {
                 if (v != "occlusion-unit" && v != "readback" && v != "both")
                     usage("--test wants occlusion-unit, readback or both, got '" + v + "'");
@@ -472,7 +475,7 @@ int main(int argc, char **argv)
             else if (command == "view-cells" && a != "--scene" && a != "--city-copies" && a != "--shard" &&
                      a != "--driver" && a != "--leaf-triangles")
                 usage("view-cells takes only --out, --city-copies, --leaf-triangles, --epsilon, --pixel, --max-edge, "
-                      "--cell-top, --initial-extent, --test, --shard and --driver, not " + a);
+                      "--cell-top, --clearance, --initial-extent, --test, --shard and --driver, not " + a);
             else if (a == "--scene") o.scene = v;
             else if (a == "--driver") o.driver = v;
             else if (a == "--city-copies") o.city_copies = int(occu::integer_option(a, v, 1, 64));

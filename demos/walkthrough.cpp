@@ -253,6 +253,9 @@ void write_summary(const Options &o, const std::vector<Run> &runs)
     }
     if (!csv.flush())
         throw std::runtime_error("cannot write '" + path + "'");
+    for (const Run &r : runs)
+        if (const std::string note = r.strategy.culler->note(); !note.empty())
+            std::printf("%s: %s\n", r.label().c_str(), note.c_str());
     std::printf("\nvs vfc: vfc's mean ms / the strategy's; x floor: the strategy's mean ms / ideal's (the oracle's\n"
                 "visible leaves alone); efficiency: occluded leaves culled / occluded leaves.\n"
                 "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png\n",

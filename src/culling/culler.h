@@ -28,6 +28,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "camera/camera.h"
@@ -91,6 +92,9 @@ public:
     // The caller drew leaf `node`.
     virtual void rendered(std::uint32_t node) { (void)node; }
     virtual CullerStats stats() const { return {}; }
+    // A sentence for the run's summary about what the figures do not show
+    // (frames it could not cull as it claims to, work done on the way); empty: none.
+    virtual std::string note() const { return {}; }
 };
 
 }  // namespace occu

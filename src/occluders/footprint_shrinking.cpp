@@ -89,33 +89,36 @@ double depth_inside(const PrismOccluder &footprint, const glm::dvec2 &p)
     return d;
 }
 
-std::vector<PrismOccluder> shrink_footprint(const PrismOccluder &footprint, double epsilon)
+namespace {
+
+void check_footprint(const PrismOccluder &footprint)
 {
-    if (!(epsilon >= 0.0) || !std::isfinite(epsilon))
-        throw std::invalid_argument("occluder shrinking by " + std::to_string(epsilon) + " m: want a finite epsilon >= 0");
     if (footprint.outline.size() < 3 || !finite(footprint.outline))
         throw std::invalid_argument("a footprint needs at least 3 finite points (within 1e9 m)");
     for (const auto &hole : footprint.holes)
         if (hole.size() < 3 || !finite(hole))
             throw std::invalid_argument("a footprint's hole needs at least 3 finite points (within 1e9 m)");
+}
 
+// The footprint's rings as Clipper paths: outline positive, holes negative,
+// whatever the input's windings.
+ClipperLib::Paths footprint_paths(const PrismOccluder &footprint)
+{
     ClipperLib::Paths paths{to_path(footprint.outline)};
     for (const auto &hole : footprint.holes)
         paths.push_back(to_path(hole));
-    // Whatever the input's windings: outline positive, holes negative.
     if (!ClipperLib::Orientation(paths[0]))
         ClipperLib::ReversePath(paths[0]);
     for (std::size_t i = 1; i < paths.size(); ++i)
         if (ClipperLib::Orientation(paths[i]))
             ClipperLib::ReversePath(paths[i]);
+    return paths;
+}
 
-    ClipperLib::ClipperOffset offset;
-    offset.AddPaths(paths, ClipperLib::jtSquare, ClipperLib::etClosedPolygon);
-    ClipperLib::PolyTree tree;
-    offset.Execute(tree, -(epsilon * clipper_units_per_metre + 1.0));
-
+// The outer rings of a Clipper tree with their holes, as footprints.
+std::vector<PrismOccluder> footprints_of(const ClipperLib::PolyTree &tree, double bottom, double top)
+{
     std::vector<PrismOccluder> parts;
-    // Outer rings are the tree's non-hole nodes, their children the holes.
     std::vector<const ClipperLib::PolyNode *> stack(tree.Childs.begin(), tree.Childs.end());
     while (!stack.empty()) {
         const ClipperLib::PolyNode *node = stack.back();
@@ -123,8 +126,8 @@ std::vector<PrismOccluder> shrink_footprint(const PrismOccluder &footprint, doub
         if (node->IsHole())
             continue;
         PrismOccluder part;
-        part.bottom = footprint.bottom;
-        part.top = footprint.top;
+        part.bottom = bottom;
+        part.top = top;
         part.outline = from_path(node->Contour);
         if (signed_area(part.outline) < 0.0)
             std::reverse(part.outline.begin(), part.outline.end());
@@ -140,6 +143,53 @@ std::vector<PrismOccluder> shrink_footprint(const PrismOccluder &footprint, doub
         parts.push_back(std::move(part));
     }
     return parts;
+}
+
+}  // namespace
+
+std::vector<PrismOccluder> shrink_footprint(const PrismOccluder &footprint, double epsilon)
+{
+    if (!(epsilon >= 0.0) || !std::isfinite(epsilon))
+        throw std::invalid_argument("occluder shrinking by " + std::to_string(epsilon) + " m: want a finite epsilon >= 0");
+    check_footprint(footprint);
+    ClipperLib::ClipperOffset offset;
+    offset.AddPaths(footprint_paths(footprint), ClipperLib::jtSquare, ClipperLib::etClosedPolygon);
+    ClipperLib::PolyTree tree;
+    offset.Execute(tree, -(epsilon * clipper_units_per_metre + 1.0));
+    return footprints_of(tree, footprint.bottom, footprint.top);
+}
+
+std::vector<PrismOccluder> grown_union(const std::vector<PrismOccluder> &footprints, double margin, double close_gaps)
+{
+    if (!(margin >= 0.0) || !std::isfinite(margin) || !(close_gaps >= 0.0) || !std::isfinite(close_gaps))
+        throw std::invalid_argument("growing footprints by " + std::to_string(margin) + " m, closing gaps of " +
+                                    std::to_string(close_gaps) + " m: want finite values >= 0");
+    ClipperLib::ClipperOffset grow;
+    for (const PrismOccluder &f : footprints) {
+        check_footprint(f);
+        grow.AddPaths(footprint_paths(f), ClipperLib::jtSquare, ClipperLib::etClosedPolygon);
+    }
+    // One offset of every path at once: overlapping results come out as their union.
+    ClipperLib::Paths grown;
+    grow.Execute(grown, margin * clipper_units_per_metre + 1.0);
+    ClipperLib::Clipper all;
+    all.AddPaths(grown, ClipperLib::ptSubject, true);
+    if (close_gaps > 0.0) {
+        // Grown by half the gap and shrunk back: gaps narrower than it fill.
+        // Square joins make the shrink cut corners, so the union with the
+        // grown footprints keeps every point within margin of a footprint.
+        const double half = 0.5 * close_gaps * clipper_units_per_metre;
+        ClipperLib::ClipperOffset out, in;
+        ClipperLib::Paths wide, closed;
+        out.AddPaths(grown, ClipperLib::jtSquare, ClipperLib::etClosedPolygon);
+        out.Execute(wide, half);
+        in.AddPaths(wide, ClipperLib::jtSquare, ClipperLib::etClosedPolygon);
+        in.Execute(closed, -half);
+        all.AddPaths(closed, ClipperLib::ptClip, true);
+    }
+    ClipperLib::PolyTree tree;
+    all.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    return footprints_of(tree, 0.0, 0.0);
 }
 
 }  // namespace occu

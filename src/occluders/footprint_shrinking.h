@@ -31,6 +31,14 @@ namespace occu {
 // footprint with fewer than 3 points or non-finite ones.
 std::vector<PrismOccluder> shrink_footprint(const PrismOccluder &footprint, double epsilon);
 
+// The union of the footprints grown by `margin` metres (every point within
+// margin of one is inside; square joins, so corners reach a little
+// farther), with the gaps between them narrower than `close_gaps` metres
+// filled (a morphological closing), as outlines with holes; heights are
+// not kept. Throws as shrink_footprint.
+std::vector<PrismOccluder> grown_union(const std::vector<PrismOccluder> &footprints, double margin,
+                                       double close_gaps = 0.0);
+
 // Distance from p to the nearest point outside `footprint` (0 outside it):
 // the reference the tests hold shrink_footprint to.
 double depth_inside(const PrismOccluder &footprint, const glm::dvec2 &p);

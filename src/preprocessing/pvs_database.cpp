@@ -46,7 +46,7 @@ std::uint64_t count(const std::string &path, std::size_t line, const std::string
 
 std::string PvsProvenance::describe_options() const
 {
-    return "epsilon=" + number(epsilon) + " pixel=" + number(pixel) + " max-edge=" + number(max_edge) +
+    return "epsilon=" + number(epsilon) + " pixel=" + number(pixel) + " max-edge=" + number(max_edge) + " clearance=" + number(clearance) +
            " bottom=" + number(bottom) + " top=" + number(top) + " initial-extent=" + number(initial_extent);
 }
 
@@ -65,6 +65,7 @@ ViewCellOptions PvsDatabase::cell_options() const
 {
     ViewCellOptions c;
     c.max_edge = provenance.max_edge;
+    c.clearance = provenance.clearance;
     c.bottom = provenance.bottom;
     c.top = provenance.top;
     return c;
@@ -123,12 +124,12 @@ PvsDatabase PvsDatabase::load(const std::string &path)
     db.provenance.hierarchy = w[1];
     db.provenance.leaves = count(path, line, w[2], "leaves", 1ull << 32);
     w = next("options");
-    if (w.size() != 7 || w[0] != "options")
-        fail(path, line, "want 'options epsilon=E pixel=K max-edge=M bottom=B top=T initial-extent=X'");
-    const char *keys[] = {"epsilon", "pixel", "max-edge", "bottom", "top", "initial-extent"};
-    double *fields[] = {&db.provenance.epsilon, &db.provenance.pixel, &db.provenance.max_edge,
+    if (w.size() != 8 || w[0] != "options")
+        fail(path, line, "want 'options epsilon=E pixel=K max-edge=M clearance=C bottom=B top=T initial-extent=X'");
+    const char *keys[] = {"epsilon", "pixel", "max-edge", "clearance", "bottom", "top", "initial-extent"};
+    double *fields[] = {&db.provenance.epsilon, &db.provenance.pixel, &db.provenance.max_edge, &db.provenance.clearance,
                         &db.provenance.bottom, &db.provenance.top, &db.provenance.initial_extent};
-    for (int i = 0; i < 6; ++i) {
+    for (int i = 0; i < 7; ++i) {
         const std::string prefix = std::string(keys[i]) + "=";
         if (w[std::size_t(i + 1)].rfind(prefix, 0) != 0)
             fail(path, line, "option " + std::to_string(i + 1) + " is '" + w[std::size_t(i + 1)] + "', want " + prefix + "...");
@@ -136,6 +137,8 @@ PvsDatabase PvsDatabase::load(const std::string &path)
     }
     if (!(db.provenance.bottom < db.provenance.top))
         fail(path, line, "bottom is not below top");
+    if (db.provenance.clearance < 0.0)
+        fail(path, line, "the clearance is negative");
     w = next("cells");
     if (w.size() != 2 || w[0] != "cells")
         fail(path, line, "want 'cells N'");

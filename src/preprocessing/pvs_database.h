@@ -7,7 +7,7 @@
 //
 //   occu-pvs-database 1
 //   hierarchy FINGERPRINT LEAVES        Hierarchy::fingerprint(), its leaf count
-//   options epsilon=E pixel=K max-edge=M bottom=B top=T initial-extent=X
+//   options epsilon=E pixel=K max-edge=M clearance=C bottom=B top=T initial-extent=X
 //   cells N
 //   cell I X0 Z0 X1 Z1 X2 Z2             N lines, I = 0 .. N - 1 (metres, %.17g)
 //   pvs I COUNT LEAF...                   one per cell made, ascending leaves
@@ -32,7 +32,7 @@ namespace occu {
 struct PvsProvenance {
     std::string hierarchy;        // Hierarchy::fingerprint()
     std::uint64_t leaves = 0;     // leaves of that hierarchy
-    double epsilon = 0, pixel = 0, max_edge = 0, bottom = 0, top = 0, initial_extent = 0;
+    double epsilon = 0, pixel = 0, max_edge = 0, clearance = 0, bottom = 0, top = 0, initial_extent = 0;
 
     std::string describe_options() const;
     // The first field that differs, both values named; empty when none does.

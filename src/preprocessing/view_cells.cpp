@@ -94,8 +94,11 @@ ViewCells::ViewCells(const glm::dvec2 &ground_min, const glm::dvec2 &ground_max,
                               {ground_max.x, ground_max.y}, {ground_min.x, ground_max.y}};
     for (int i = 0; i < 4; ++i)
         cdt.insert_constraint(corners[i], corners[(i + 1) % 4]);
+    if (!(options.clearance >= 0.0) || !std::isfinite(options.clearance) || !(options.close_gaps >= 0.0) ||
+        !std::isfinite(options.close_gaps))
+        throw std::invalid_argument("view cells: the clearance and the gaps closed must be finite and >= 0");
     std::list<Point> seeds;
-    for (const PrismOccluder &f : footprints) {
+    for (const PrismOccluder &f : grown_union(footprints, options.clearance, options.close_gaps)) {
         if (f.outline.size() < 3)
             throw std::invalid_argument("a footprint with fewer than 3 points");
         auto ring = [&](const std::vector<glm::dvec2> &poly) {

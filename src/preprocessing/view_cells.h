@@ -12,8 +12,9 @@
 // point. This implies that sample points need only be placed on the 3
 // edges bounding the top triangle of the view cell."
 //
-// Free space is the ground rectangle less the footprints (scene.h), which
-// are the triangulation's constraints; CGAL's Delaunay mesher bounds the
+// Free space is the ground rectangle less the footprints (scene.h) grown by
+// the clearance and merged, whose outlines are the triangulation's
+// constraints; CGAL's Delaunay mesher bounds the
 // edges. A cell is the prism from `bottom` to `top` over its triangle; an
 // eye belongs to a cell when it lies over the triangle (boundary included,
 // the first cell in index order on a shared edge) at a height in
@@ -34,6 +35,17 @@ namespace occu {
 
 struct ViewCellOptions {
     double max_edge = 24.0;   // metres: no cell edge longer (the paper's threshold)
+    // Metres kept free between the cells and every footprint. A frame is
+    // drawn with a near plane: an eye nearer a wall than the plane's reach
+    // (the distance to its farthest corner) has the wall clipped away and
+    // sees through the building, which no occluder shadow allows for. Eyes
+    // in that band belong to no cell (renderers fall back to their own
+    // culling), and narrow gaps between buildings close.
+    double clearance = 1.0;
+    // Free space narrower than this between the footprints grown by the
+    // clearance (the slits between neighbouring buildings) holds no cells:
+    // a conforming triangulation would fill it with slivers.
+    double close_gaps = 4.0;
     double bottom = 0.0;      // the prisms' height range: street level
     double top = 2.0;         // to the highest eye the cells serve
 };
@@ -44,7 +56,7 @@ public:
     // [min.y, max.y]) outside the footprints. Throws std::invalid_argument
     // for a non-finite or empty ground, a max_edge not finite and positive
     // (or so small that the ground would need more than 2^22 cells), or
-    // bottom >= top.
+    // bottom >= top, or a clearance that is negative or not finite.
     ViewCells(const glm::dvec2 &ground_min, const glm::dvec2 &ground_max, const std::vector<PrismOccluder> &footprints,
               const ViewCellOptions &options);
     // Cells given as data (a database's): checked for finite, non-degenerate triangles.

@@ -8,6 +8,7 @@
 #include "strategies/leone_occluder_skins/family.h"
 #include "strategies/moller_haines_occlusion_culling/family.h"
 #include "strategies/poon_wang_opacity_maps/family.h"
+#include "strategies/wonka_view_cells/family.h"
 
 namespace occu {
 
@@ -25,6 +26,7 @@ const std::vector<StrategyFamily> &strategy_families()
         strategies::supporting_plane_family(),  // planes: Moeller and Haines (Coorg and Teller)
         strategies::opacity_map_family(),       // om: Poon and Wang
         strategies::occluder_skins_family(),    // skins: Leone et al.
+        strategies::view_cell_family(),         // pvs: Wonka, Wimmer and Schmalstieg
     };
     return families;
 }

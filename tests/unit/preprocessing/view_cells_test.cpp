@@ -121,11 +121,26 @@ TEST(PrismOccluderShrinking, CourtyardsStayHolesAndThinOccludersVanish)
 TEST(ViewCells, TileTheFreeSpaceWithShortEdges)
 {
     const std::vector<PrismOccluder> occluders = {l_shape(), courtyard(), rectangle(100, 10, 130, 25)};
+    // Without clearance the cells are exactly the ground less the footprints.
+    {
+        ViewCellOptions o;
+        o.max_edge = 12.0;
+        o.clearance = 0.0;
+        const ViewCells cells({-20, -20}, {160, 120}, occluders, o);
+        double free_area = 180.0 * 140.0, cell_area = 0.0;
+        for (const PrismOccluder &f : occluders)
+            free_area -= area(f);
+        for (std::size_t i = 0; i < cells.size(); ++i)
+            cell_area += triangle_area(cells.triangle(i));
+        // Up to Clipper's grid: holes grown by one 0.1 mm unit, times a perimeter of about 450 m.
+        EXPECT_NEAR(cell_area, free_area, 0.1) << "the cells are exactly the free space";
+    }
     ViewCellOptions o;
     o.max_edge = 12.0;
+    o.clearance = 1.5;
     const ViewCells cells({-20, -20}, {160, 120}, occluders, o);
     double free_area = 180.0 * 140.0;
-    for (const PrismOccluder &f : occluders)
+    for (const PrismOccluder &f : grown_union(occluders, o.clearance))
         free_area -= area(f);
     double cell_area = 0.0;
     for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -134,11 +149,27 @@ TEST(ViewCells, TileTheFreeSpaceWithShortEdges)
         cell_area += triangle_area(t);
         for (int e = 0; e < 3; ++e)
             EXPECT_LE(glm::length(t[std::size_t((e + 1) % 3)] - t[std::size_t(e)]), o.max_edge + 1e-9);
-        const glm::dvec2 centroid = (t[0] + t[1] + t[2]) / 3.0;
-        for (const PrismOccluder &f : occluders)
-            EXPECT_FALSE(inside(f, centroid)) << "cell " << i << " lies in an occluder";
+        // Every corner keeps the clearance from every footprint (and so
+        // every point: the footprints grown by it are the cells' holes).
+        for (const glm::dvec2 &p : t)
+            for (const PrismOccluder &f : occluders) {
+                EXPECT_FALSE(inside(f, p)) << "cell " << i << " corner in an occluder";
+                double nearest = 1e300;
+                for (std::size_t a = 0, b = f.outline.size() - 1; a < f.outline.size(); b = a++) {
+                    const glm::dvec2 u = f.outline[b], v = f.outline[a], uv = v - u;
+                    const double tt = std::clamp(glm::dot(p - u, uv) / glm::dot(uv, uv), 0.0, 1.0);
+                    nearest = std::min(nearest, glm::length(p - (u + tt * uv)));
+                }
+                for (const auto &hole : f.holes)
+                    for (std::size_t a = 0, b = hole.size() - 1; a < hole.size(); b = a++) {
+                        const glm::dvec2 u = hole[b], v = hole[a], uv = v - u;
+                        const double tt = std::clamp(glm::dot(p - u, uv) / glm::dot(uv, uv), 0.0, 1.0);
+                        nearest = std::min(nearest, glm::length(p - (u + tt * uv)));
+                    }
+                EXPECT_GE(nearest, o.clearance - 1e-3) << "cell " << i << " corner (" << p.x << ", " << p.y << ")";
+            }
     }
-    EXPECT_NEAR(cell_area, free_area, 1e-6 * free_area) << "the cells are exactly the free space";
+    EXPECT_NEAR(cell_area, free_area, 1e-6 * free_area) << "the cells are exactly the free space with its clearance";
 
     // locate() against every triangle.
     std::mt19937 rng(11);
@@ -160,11 +191,12 @@ TEST(ViewCells, TileTheFreeSpaceWithShortEdges)
         const std::optional<std::uint32_t> c = cells.locate(eye);
         EXPECT_EQ(c.has_value(), in_some && in_height) << "(" << eye.x << ", " << eye.y << ", " << eye.z << ")";
         located += c.has_value();
-        in_courtyard += c.has_value() && p.x > 50 && p.x < 70 && p.y > 50 && p.y < 70;
+        in_courtyard += c.has_value() && p.x > 52 && p.x < 68 && p.y > 52 && p.y < 68;
     }
     EXPECT_GT(located, 1000);
     EXPECT_GT(in_courtyard, 5) << "the courtyard is free space";
     EXPECT_FALSE(cells.locate({25.0f, 1.0f, 5.0f})) << "inside the L";
+    EXPECT_FALSE(cells.locate({25.0f, 1.0f, -1.0f})) << "within the clearance of the L";
     EXPECT_FALSE(cells.locate({0.0f, 1.0f, std::numeric_limits<float>::quiet_NaN()}));
 }
 
@@ -203,6 +235,9 @@ TEST(ViewCells, RefuseBadInput)
     o.max_edge = 10.0;
     o.top = o.bottom;
     EXPECT_THROW(ViewCells({0, 0}, {10, 10}, {}, o), std::invalid_argument);
+    o = ViewCellOptions{};
+    o.clearance = -1.0;
+    EXPECT_THROW(ViewCells({0, 0}, {10, 10}, {}, o), std::invalid_argument);
     EXPECT_THROW(ViewCells(std::vector<std::array<glm::dvec2, 3>>{{glm::dvec2(0), glm::dvec2(1), glm::dvec2(2)}},
                            ViewCellOptions{}),
                  std::invalid_argument)
@@ -218,6 +253,9 @@ TEST(ViewCells, CoverTheCitysStreets)
     const ViewCells cells({scene.bounds.min.x, scene.bounds.min.z}, {scene.bounds.max.x, scene.bounds.max.z},
                           scene.prism_occluders, ViewCellOptions{});
     EXPECT_TRUE(cells.locate({40.0f, 1.7f, 4.0f})) << "a street";
+    const PrismOccluder &first = scene.prism_occluders.front();   // the lower left building of the first block
+    EXPECT_FALSE(cells.locate({float(first.outline[0].x) + 3.0f, 1.7f, float(first.outline[0].y) - 0.5f}))
+        << "within the clearance of a building";
     EXPECT_TRUE(cells.locate({120.0f, 1.7f, 120.0f})) << "the middle block's courtyard";
     EXPECT_FALSE(cells.locate({12.0f, 1.7f, 12.0f})) << "inside the first building";
 }

@@ -1,0 +1,213 @@
+// View-cell visibility (Wonka, Wimmer and Schmalstieg 2000;
+// preprocessing/view_cell_visibility.h, strategies/wonka_view_cells/): on a
+// 3x3-block city, the potentially visible sets found with the Occlusion Unit
+// equal those found by reading the cull maps back; and the `pvs` strategy,
+// fed a database of those sets, draws frames equal to unculled frames from
+// random eyes anywhere in their cells (corners, edges, street level and the
+// cells' top included, looking any way, straight up and down too), culls
+// far more than vfc, and falls back to view-frustum culling, saying so, for
+// eyes in no cell.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <set>
+
+#include "camera/route.h"
+#include "culling/registry.h"
+#include "evaluation/oracle.h"
+#include "frame_comparison.h"
+#include "gl/offscreen_context.h"
+#include "preprocessing/pvs_database.h"
+#include "render/scene_renderer.h"
+#include "scene/city.h"
+#include "traversal/traversal.h"
+
+using namespace occu;
+using namespace occu::integration;
+
+namespace {
+
+constexpr int size = 128;
+
+struct City {
+    gl::OffscreenContext ctx{size, size};
+    CityOptions options;
+    Scene scene;
+    std::optional<Hierarchy> h;
+    std::optional<SceneRenderer> renderer;
+    std::optional<ViewCells> cells;
+    City()
+    {
+        options.blocks_x = options.blocks_z = 3;
+        scene = generate_city(options);
+        h.emplace(Hierarchy::build(scene));
+        renderer.emplace(scene, *h);
+        cells.emplace(glm::dvec2(scene.bounds.min.x, scene.bounds.min.z), glm::dvec2(scene.bounds.max.x, scene.bounds.max.z),
+                      scene.prism_occluders, ViewCellOptions{});
+        glViewport(0, 0, size, size);
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_CULL_FACE);
+        glClearColor(0, 0, 0, 0);
+    }
+};
+
+// A point of cell c's prism: barycentric (u, v, 1 - u - v), height y.
+glm::vec3 point_in(const ViewCells &cells, std::size_t c, double u, double v, double y)
+{
+    const auto &t = cells.triangle(c);
+    const glm::dvec2 p = t[0] * u + t[1] * v + t[2] * (1.0 - u - v);
+    return {float(p.x), float(y), float(p.y)};
+}
+
+}  // namespace
+
+TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
+{
+    City city;
+    const StrategyContext context{city.scene, *city.h, *city.renderer};
+    ViewCellVisibility visibility(city.scene, *city.h, *city.cells, ViewCellVisibilityOptions{});
+
+    // The eyes: random points of random cells at random heights in the
+    // prism, and the awkward ones: a corner at street level, an edge's
+    // middle at the cell's top; random headings, and straight up and down.
+    std::mt19937 rng(2000);
+    std::uniform_int_distribution<std::size_t> pick(0, city.cells->size() - 1);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<Camera> cameras;
+    std::set<std::uint32_t> needed;
+    for (int i = 0; i < 24; ++i) {
+        const std::size_t c = pick(rng);
+        double u = unit(rng), v = unit(rng);
+        if (u + v > 1.0)
+            u = 1.0 - u, v = 1.0 - v;
+        double y = unit(rng) * 2.0;
+        if (i == 0)
+            u = 1.0, v = 0.0, y = 0.0;   // a corner, at street level
+        if (i == 1)
+            u = 0.5, v = 0.5, y = 2.0;   // an edge's middle, at the top
+        Camera cam;
+        cam.position = point_in(*city.cells, c, u, v, y);
+        const double heading = unit(rng) * 2.0 * std::acos(-1.0);
+        const double pitch = i == 2 ? 1.5707 : i == 3 ? -1.5707 : (unit(rng) - 0.3) * 0.8;
+        cam.target = cam.position + glm::vec3(float(std::cos(heading) * std::cos(pitch)), float(std::sin(pitch)),
+                                              float(std::sin(heading) * std::cos(pitch)));
+        cam.near_plane = 0.1f;
+        cam.far_plane = 2000.0f;
+        const std::optional<std::uint32_t> located = city.cells->locate(cam.position);
+        ASSERT_TRUE(located) << "eye " << i << " is in cell " << c;
+        needed.insert(*located);
+        cameras.push_back(cam);
+    }
+
+    // Their cells' sets, both ways: the same leaves.
+    PvsDatabase db;
+    db.provenance.hierarchy = city.h->fingerprint();
+    db.provenance.leaves = city.h->leaf_count();
+    const ViewCellVisibilityOptions vo;
+    db.provenance.epsilon = vo.epsilon;
+    db.provenance.pixel = vo.pixel;
+    db.provenance.initial_extent = vo.initial_extent;
+    db.provenance.max_edge = ViewCellOptions{}.max_edge;
+    db.provenance.clearance = ViewCellOptions{}.clearance;
+    db.provenance.bottom = ViewCellOptions{}.bottom;
+    db.provenance.top = ViewCellOptions{}.top;
+    for (std::size_t c = 0; c < city.cells->size(); ++c)
+        db.cells.push_back(city.cells->triangle(c));
+    for (std::uint32_t c : needed) {
+        const CellVisibility by_unit = visibility.compute(c, CullMapTest::occlusion_unit);
+        const CellVisibility by_readback = visibility.compute(c, CullMapTest::readback);
+        EXPECT_EQ(by_unit.visible_leaves, by_readback.visible_leaves) << "cell " << c;
+        EXPECT_LT(by_unit.visible_leaves.size(), city.h->leaf_count()) << "cell " << c << " hides nothing";
+        db.visible[c] = by_unit.visible_leaves;
+    }
+    const std::string path = testing::TempDir() + "/occu-view-cells-test.pvs";
+    db.save(path);
+    EXPECT_TRUE(PvsDatabase::load(path) == db) << "the database reads back as written";
+
+    Strategy none = make_strategy("none", context);
+    Strategy vfc = make_strategy("vfc", context);
+    Strategy pvs = make_strategy("pvs:pvs-database=" + path, context);
+    Oracle oracle(*city.renderer, *city.h);
+    std::uint64_t drawn_vfc = 0, drawn_pvs = 0;
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+        const VisibilityTruth truth = oracle.see(cameras[i], size, size);
+        const Frame frame(cameras[i], size, size, &truth);
+        const DrawnFrame reference = draw_frame(city.ctx, *city.renderer, *city.h, *none.culler, frame, {});
+        const DrawnFrame culled = draw_frame(city.ctx, *city.renderer, *city.h, *pvs.culler, frame, {});
+        drawn_vfc += draw_frame(city.ctx, *city.renderer, *city.h, *vfc.culler, frame, {}).triangles;
+        drawn_pvs += culled.triangles;
+        std::string missing;
+        {
+            const std::set<std::uint32_t> drawn(culled.leaves.begin(), culled.leaves.end());
+            for (std::uint32_t leaf : truth.visible)
+                if (!drawn.count(leaf)) {
+                    const Aabb &b = city.h->nodes()[leaf].bounds;
+                    char buf[200];
+                    std::snprintf(buf, sizeof buf, " %u [%.2f %.2f %.2f - %.2f %.2f %.2f]", leaf, b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
+                    missing += buf;
+                }
+        }
+        EXPECT_EQ(differing_pixels(reference.pixels, culled.pixels), 0u)
+            << "visible leaves not drawn:" << missing << "; eye " << i << " at (" << cameras[i].position.x << ", " << cameras[i].position.y << ", "
+            << cameras[i].position.z << ")";
+    }
+    EXPECT_LT(drawn_pvs * 2, drawn_vfc) << "pvs culled less than half of what vfc draws";
+    EXPECT_EQ(pvs.culler->note().rfind("0 of 24 frames with the eye in no view cell", 0), 0u) << pvs.culler->note();
+
+    // Eyes in no cell: inside a building, above the cells' tops. Drawn with
+    // view-frustum culling, so equal frames, and counted in the note.
+    const PrismOccluder &b = city.scene.prism_occluders.front();
+    Camera inside;
+    inside.position = glm::vec3(float(0.5 * (b.outline[0].x + b.outline[2].x)), 1.7f,
+                                float(0.5 * (b.outline[0].y + b.outline[2].y)));
+    inside.target = inside.position + glm::vec3(1, 0, 0);
+    Camera above = cameras[4];
+    above.position.y = 40.0f;
+    for (const Camera &c : {inside, above}) {
+        ASSERT_FALSE(city.cells->locate(c.position));
+        const VisibilityTruth truth = oracle.see(c, size, size);
+        const Frame frame(c, size, size, &truth);
+        const DrawnFrame reference = draw_frame(city.ctx, *city.renderer, *city.h, *none.culler, frame, {});
+        const DrawnFrame culled = draw_frame(city.ctx, *city.renderer, *city.h, *pvs.culler, frame, {});
+        EXPECT_EQ(differing_pixels(reference.pixels, culled.pixels), 0u);
+    }
+    EXPECT_EQ(pvs.culler->note().rfind("2 of 26 frames with the eye in no view cell", 0), 0u) << pvs.culler->note();
+    std::filesystem::remove(path);
+}
+
+TEST(ViewCellFrames, RefusesADatabaseOfAnotherHierarchyAndScenesWithout25DOccluders)
+{
+    City city;
+    const StrategyContext context{city.scene, *city.h, *city.renderer};
+    PvsDatabase db;
+    db.provenance.hierarchy = "0123456789abcdef";
+    db.provenance.leaves = 1;
+    db.provenance.epsilon = db.provenance.pixel = 1.0;
+    db.provenance.max_edge = 24.0;
+    db.provenance.top = 2.0;
+    db.provenance.initial_extent = 64.0;
+    db.cells = {{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1)}};
+    const std::string path = testing::TempDir() + "/occu-other.pvs";
+    db.save(path);
+    try {
+        make_strategy("pvs:pvs-database=" + path, context);
+        ADD_FAILURE() << "a database of another hierarchy was taken";
+    } catch (const std::runtime_error &e) {
+        EXPECT_NE(std::string(e.what()).find("another scene or hierarchy"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(path);
+
+    Scene plain = city.scene;
+    plain.prism_occluders.clear();
+    const Hierarchy h = Hierarchy::build(plain);
+    const SceneRenderer renderer(plain, h);
+    try {
+        make_strategy("pvs", StrategyContext{plain, h, renderer});
+        ADD_FAILURE() << "a scene without 2.5D occluders was taken";
+    } catch (const std::invalid_argument &e) {
+        EXPECT_NE(std::string(e.what()).find("2.5D occluders"), std::string::npos) << e.what();
+    }
+}
