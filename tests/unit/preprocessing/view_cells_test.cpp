@@ -121,11 +121,12 @@ TEST(PrismOccluderShrinking, CourtyardsStayHolesAndThinOccludersVanish)
 TEST(ViewCells, TileTheFreeSpaceWithShortEdges)
 {
     const std::vector<PrismOccluder> occluders = {l_shape(), courtyard(), rectangle(100, 10, 130, 25)};
-    // Without clearance the cells are exactly the ground less the footprints.
+    // Without clearance (and no slits closed) the cells are exactly the ground less the footprints.
     {
         ViewCellOptions o;
         o.max_edge = 12.0;
         o.clearance = 0.0;
+        o.close_gaps = 0.0;
         const ViewCells cells({-20, -20}, {160, 120}, occluders, o);
         double free_area = 180.0 * 140.0, cell_area = 0.0;
         for (const PrismOccluder &f : occluders)
@@ -140,7 +141,7 @@ TEST(ViewCells, TileTheFreeSpaceWithShortEdges)
     o.clearance = 1.5;
     const ViewCells cells({-20, -20}, {160, 120}, occluders, o);
     double free_area = 180.0 * 140.0;
-    for (const PrismOccluder &f : grown_union(occluders, o.clearance))
+    for (const PrismOccluder &f : grown_union(occluders, o.clearance, o.close_gaps))
         free_area -= area(f);
     double cell_area = 0.0;
     for (std::size_t i = 0; i < cells.size(); ++i) {
