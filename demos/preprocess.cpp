@@ -13,8 +13,8 @@
 //                   [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]
 //   occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N]
 //                   [--epsilon E] [--pixel K] [--max-edge M] [--cell-top T] [--clearance C] [--initial-extent X]
-//                   [--test occlusion-unit|readback|both] [--cells FIRST-LAST] [--shard I/N]
-//                   [--driver llvmpipe|softpipe]
+//                   [--test occlusion-unit|readback|both] [--cells FIRST-LAST]
+//                   [--route R [--frames N]] [--shard I/N] [--driver llvmpipe|softpipe]
 //
 // --cache DIR names the database by its key (DatabaseProvenance::key: the
 // preprocessing code, options, scene, hierarchy, Mesa build and grid),
@@ -59,7 +59,9 @@
 // against a cull map: with the Occlusion Unit (the default) or by reading
 // the map back (the paper's); `both` does each per cell, checks that they
 // find the same visible leaves (failing otherwise) and reports the time of
-// each. --cells FIRST-LAST makes only those cells (a quick look; the
+// each. --cells FIRST-LAST makes only those cells, --route R (with
+// --frames N, as the walkthrough's) only the cells its cameras are in (a
+// quick look, or a database for measuring a route of a large city; the
 // others are missing from the database, and pvs view-frustum culls in
 // them). --shard I/N takes the cells c with c % N == I - 1; `merge` joins
 // PVS shards too. Only the generated city qualifies: a loaded scene has no
@@ -105,8 +107,8 @@ namespace {
                  "                       [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]\n"
                  "       occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N] [--epsilon E]\n"
                  "                       [--pixel K] [--max-edge M] [--cell-top T] [--clearance C] [--initial-extent X]\n"
-                 "                       [--test occlusion-unit|readback|both] [--cells FIRST-LAST] [--shard I/N]\n"
-                 "                       [--driver llvmpipe|softpipe]\n",
+                 "                       [--test occlusion-unit|readback|both] [--cells FIRST-LAST]\n"
+                 "                       [--route R [--frames N]] [--shard I/N] [--driver llvmpipe|softpipe]\n",
                  error.empty() ? "" : "occu-preprocess: ", error.empty() ? "" : (error + "\n").c_str());
     std::exit(error.empty() ? 0 : 2);
 }
@@ -124,6 +126,8 @@ struct Options {
     occu::ViewCellVisibilityOptions visibility;
     std::string test = "occlusion-unit";
     std::uint32_t first_cell = 0, last_cell = 0xFFFFFFFFu;   // view-cells --cells
+    std::string route;                 // view-cells --route: only the cells its cameras are in
+    int route_frames = 60;
 };
 
 // The first word of `path` (comments skipped): what kind of database it is.
@@ -364,8 +368,14 @@ int view_cells(const Options &o)
     if (o.first_cell >= cells.size())
         throw std::runtime_error("--cells starts at cell " + std::to_string(o.first_cell) + "; there are " +
                                  std::to_string(cells.size()));
+    std::vector<bool> on_route(cells.size(), o.route.empty());
+    if (!o.route.empty()) {
+        for (const Camera &camera : make_route(o.route, scene.bounds, city, o.route_frames, 1.0f))
+            if (const auto c = cells.locate(camera.position))
+                on_route[*c] = true;
+    }
     for (std::uint32_t c = o.first_cell; c < cells.size() && c <= o.last_cell; ++c)
-        if (int(c % std::uint32_t(o.shards)) == o.shard - 1)
+        if (on_route[c] && int(c % std::uint32_t(o.shards)) == o.shard - 1)
             mine.push_back(c);
     std::printf("scene: %zu triangles, %zu leaves, %zu prism occluders (%zu parts shrunk by %g m); %zu view cells "
                 "(edges <= %g m, made in %.2f s), shard %d/%d: %zu cells; cull map pixels %g m; %s\n",
@@ -475,6 +485,8 @@ int main(int argc, char **argv)
             else if (command == "view-cells" && a == "--max-edge") o.cells.max_edge = occu::number_option(a, v, 0.0, 1e6, true);
             else if (command == "view-cells" && a == "--cell-top") o.cells.top = occu::number_option(a, v, 0.0, 1e4, true);
             else if (command == "view-cells" && a == "--clearance") o.cells.clearance = occu::number_option(a, v, 0.0, 1e4);
+            else if (command == "view-cells" && a == "--route") o.route = v;
+            else if (command == "view-cells" && a == "--frames") o.route_frames = int(occu::integer_option(a, v, 1, 1000000));
             else if (command == "view-cells" && a == "--cells") {
                 const auto dash = v.find('-');
                 if (dash == std::string::npos)
@@ -490,7 +502,7 @@ int main(int argc, char **argv)
             else if (command == "view-cells" && a != "--scene" && a != "--city-copies" && a != "--shard" &&
                      a != "--driver" && a != "--leaf-triangles")
                 usage("view-cells takes only --out, --city-copies, --leaf-triangles, --epsilon, --pixel, --max-edge, "
-                      "--cell-top, --clearance, --initial-extent, --test, --cells, --shard and --driver, not " + a);
+                      "--cell-top, --clearance, --initial-extent, --test, --cells, --route, --frames, --shard and --driver, not " + a);
             else if (a == "--scene") o.scene = v;
             else if (a == "--driver") o.driver = v;
             else if (a == "--city-copies") o.city_copies = int(occu::integer_option(a, v, 1, 64));

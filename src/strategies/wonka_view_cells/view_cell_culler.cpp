@@ -1,6 +1,7 @@
 #include "strategies/wonka_view_cells/family.h"
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
@@ -21,6 +22,9 @@ class ViewCellCuller final : public Culler {
 public:
     ViewCellCuller(const StrategyContext &context, const Settings &settings) : hierarchy_(context.hierarchy)
     {
+        for (const HierarchyNode &n : hierarchy_.nodes())
+            if (n.leaf())
+                scene_triangles_ += n.triangle_count;
         const std::string &path = settings.text("pvs-database");
         if (!path.empty()) {
             database_.emplace(PvsDatabase::load(path));
@@ -84,9 +88,12 @@ public:
         cell_ = cell;
         const auto &nodes = hierarchy_.nodes();
         shows_.assign(nodes.size(), 0);
+        ++frames_in_cells_;
         for (std::uint32_t leaf : *set)
-            if (leaf < nodes.size())
+            if (leaf < nodes.size()) {
                 shows_[leaf] = 1;
+                set_triangles_ += nodes[leaf].triangle_count;
+            }
         // Children follow their parents in the node array: mark bottom-up.
         for (std::size_t i = nodes.size(); i-- > 0;)
             for (std::uint32_t c = 0; c < nodes[i].child_count; ++c)
@@ -107,6 +114,13 @@ public:
     {
         std::string s = std::to_string(frames_outside_) + " of " + std::to_string(frames_) +
                         " frames with the eye in no view cell (view-frustum culling there)";
+        if (frames_in_cells_ && scene_triangles_) {
+            char share[96];
+            std::snprintf(share, sizeof(share), "; in cells, the set held %.3f%% of the scene's triangles (%.3f%% occluded)",
+                          100.0 * set_triangles_ / double(frames_in_cells_) / scene_triangles_,
+                          100.0 - 100.0 * set_triangles_ / double(frames_in_cells_) / scene_triangles_);
+            s += share;
+        }
         if (frames_near_plane_)
             s += "; " + std::to_string(frames_near_plane_) + " with a near plane reaching past the cells' clearance of " +
                  std::to_string(cells_->options().clearance) + " m (view-frustum culling)";
@@ -127,7 +141,8 @@ private:
     std::optional<Frustum> frustum_;
     std::optional<std::uint32_t> cell_;
     std::vector<std::uint8_t> shows_;
-    std::size_t frames_ = 0, frames_outside_ = 0, frames_missing_ = 0, frames_near_plane_ = 0;
+    std::size_t frames_ = 0, frames_outside_ = 0, frames_missing_ = 0, frames_near_plane_ = 0, frames_in_cells_ = 0;
+    double scene_triangles_ = 0, set_triangles_ = 0;   // for the share of the scene the sets hold
 };
 
 }  // namespace
