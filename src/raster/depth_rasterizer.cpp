@@ -83,6 +83,7 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
     const std::size_t tiles = std::size_t(tiles_x_) * std::size_t(tiles_y_);
     tiles_.assign(tiles * tile_pixels, 1.0f);
     tile_max_.assign(tiles, 1.0f);
+    farthest_bound_.assign(tiles, 1.0f);
     dirty_.assign(tiles, 0);
     any_dirty_ = false;
     stats_ = {};
@@ -257,7 +258,6 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
         s.ea[e] = float(a);
         s.eb[e] = float(b);
         s.ec[e] = float(folded - margin);
-        s.inverse_ea[e] = s.ea[e] != 0.0f ? 1.0f / s.ea[e] : 0.0f;
     }
 
     // Depth: the farthest over the samples, never past the farthest vertex
@@ -299,7 +299,7 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
         }
     }
 
-    const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), tiles_x_, tiles_x_ * tile_size};
+    const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
     if (isa_ == Isa::avx2)
         raster::fill_avx2(s, buffer);
     else
@@ -324,6 +324,7 @@ void DepthRasterizer::merge_nearest(const DepthRasterizer &other)
             dirty_[t] = 1;
             any_dirty_ = true;
         }
+        farthest_bound_[t] = std::min(farthest_bound_[t], other.farthest_bound_[t]);
     }
     stats_.polygons += other.stats_.polygons;
     stats_.rasterized += other.stats_.rasterized;

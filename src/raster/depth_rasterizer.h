@@ -129,6 +129,7 @@ private:
     int tiles_x_ = 0, tiles_y_ = 0;  // 8 x 8 tiles
     std::vector<float> tiles_;       // tile by tile, each 8 rows of 8
     mutable std::vector<float> tile_max_;        // farthest depth per tile
+    std::vector<float> farthest_bound_;          // per tile, no nearer than its farthest depth (raster::TileBuffer)
     mutable std::vector<std::uint8_t> dirty_;    // tile written since its maximum was taken
     mutable bool any_dirty_ = false;
     Stats stats_;

@@ -23,7 +23,6 @@ constexpr int tile_pixels = tile_size * tile_size;
 struct PolygonSetup {
     int edges = 0;
     float ea[max_edges], eb[max_edges], ec[max_edges];
-    float inverse_ea[max_edges];   // 1 / ea, 0 where ea is 0: row_span's bounds
     float za = 0.0f, zb = 0.0f, zc = 0.0f, zcap = 1.0f;
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;   // the pixels that may be covered, half-open, inside the buffer
 };
@@ -31,57 +30,102 @@ struct PolygonSetup {
 struct TileBuffer {
     float *tiles;            // tile by tile, each tile_size rows of tile_size
     std::uint8_t *dirty;     // per tile: written
+    // Per tile, a depth no nearer than its farthest pixel (1 when cleared;
+    // lowered when a polygon covers the whole tile): a polygon no nearer
+    // than it over the tile can write nothing there.
+    float *farthest_bound;
     int tiles_x;
-    int padded_width;        // tiles_x * tile_size
 };
 
-// The 8-aligned span of row Y that may hold covered pixels: [*xl, *xr).
-// Each edge bounds X from one side; a pixel of slack on each side absorbs
-// the reciprocal's rounding (the loops still test every pixel), and the
-// bounds are clamped in float before conversion, as a nearly horizontal
-// edge gives a huge quotient. Shared by both loops, so both visit the same
-// pixels. Internal to each loop's file, and free of library templates: an
-// inline function the AVX2 file compiles must not be the one the scalar
-// file links to on a CPU without AVX2.
+// Both loops walk the polygon's bounding box tile by tile, each tile being
+// 8 x 8 depth pixels (section 7's tiled buffer). Each function and depth
+// they evaluate, a X + (b Y + c) in float, is monotone in X and in Y apart
+// (float products and sums round monotonically), so its least and largest
+// values over a tile's pixels are its values at two of the tile's corners,
+// evaluated by the same expression as at every pixel: a tile outside one
+// edge at its nearest corner holds no covered pixel, a tile inside every
+// edge at its farthest corners is covered wholly and needs no edge test per
+// pixel, and a tile whose farthest depth bound is no farther than the
+// polygon's nearest depth there takes nothing. Each of these decisions is
+// the one the per-pixel tests would make, so the buffer is the same as
+// testing every pixel of the box.
+//
+// Internal to each loop's file, and free of library templates: an inline
+// function the AVX2 file compiles must not be the one the scalar file links
+// to on a CPU without AVX2.
 namespace {
 
-// The tile row holding depth pixels x8 .. x8 + 7 of row y (x8 a multiple of 8).
-inline float *tile_row(const TileBuffer &b, int x8, int y)
+// The tile holding depth pixels x8 .. x8 + 7 of rows y8 .. y8 + 7 (x8, y8
+// multiples of 8), and its index.
+inline std::size_t tile_index(const TileBuffer &b, int x8, int y8)
 {
-    return b.tiles + (std::size_t(y / tile_size) * std::size_t(b.tiles_x) + std::size_t(x8 / tile_size)) * tile_pixels +
-           std::size_t(y % tile_size) * tile_size;
+    return std::size_t(y8 / tile_size) * std::size_t(b.tiles_x) + std::size_t(x8 / tile_size);
 }
-inline std::uint8_t &tile_dirty(const TileBuffer &b, int x8, int y)
+inline float *tile_at(const TileBuffer &b, std::size_t tile) { return b.tiles + tile * tile_pixels; }
+
+// Rows [row0, row1) of one band of tiles (row0 / 8 == (row1 - 1) / 8), and
+// the terms the loops need there: each edge's and the depth's row term
+// eb Y + ec (zb Y + zc) at each row, and at the rows where each is least
+// and largest.
+struct Band {
+    int y8, row0, row1;
+    float edge_term[tile_size][max_edges];
+    float depth_term[tile_size];
+    float least_edge_term[max_edges], largest_edge_term[max_edges];
+    float nearest_depth_term, farthest_depth_term;
+};
+
+inline void band_terms(const PolygonSetup &s, int row0, int row1, Band *band)
 {
-    return b.dirty[std::size_t(y / tile_size) * std::size_t(b.tiles_x) + std::size_t(x8 / tile_size)];
+    band->y8 = row0 / tile_size * tile_size;
+    band->row0 = row0;
+    band->row1 = row1;
+    const float first = float(row0), last = float(row1 - 1);
+    for (int y = row0; y < row1; ++y) {
+        const float fy = float(y);
+        for (int e = 0; e < s.edges; ++e)
+            band->edge_term[y - band->y8][e] = s.eb[e] * fy + s.ec[e];
+        band->depth_term[y - band->y8] = s.zb * fy + s.zc;
+    }
+    for (int e = 0; e < s.edges; ++e) {
+        band->least_edge_term[e] = s.eb[e] * (s.eb[e] > 0.0f ? first : last) + s.ec[e];
+        band->largest_edge_term[e] = s.eb[e] * (s.eb[e] > 0.0f ? last : first) + s.ec[e];
+    }
+    band->nearest_depth_term = s.zb * (s.zb > 0.0f ? first : last) + s.zc;
+    band->farthest_depth_term = s.zb * (s.zb > 0.0f ? last : first) + s.zc;
 }
 
-inline void row_span(const PolygonSetup &s, int y, int padded_width, int *xl, int *xr)
+enum class Cover { none, part, whole };
+
+// How the polygon covers the band's rows of the tile at columns x8 .. x8 + 7.
+inline Cover tile_cover(const PolygonSetup &s, const Band &band, int x8)
 {
-    float lo = float(s.x0) - 1.0f, hi = float(s.x1) + 1.0f;
-    const float fy = float(y);
+    const float left = float(x8), right = float(x8 + tile_size - 1);
+    bool whole = true;
     for (int e = 0; e < s.edges; ++e) {
-        const float t = s.eb[e] * fy + s.ec[e];
-        if (s.ea[e] > 0.0f) {
-            const float bound = -t * s.inverse_ea[e] - 1.0f;
-            lo = bound > lo ? bound : lo;
-        } else if (s.ea[e] < 0.0f) {
-            const float bound = -t * s.inverse_ea[e] + 2.0f;
-            hi = bound < hi ? bound : hi;
-        } else if (t < 0.0f) {
-            hi = lo;
-        }
+        const bool rising = s.ea[e] > 0.0f;
+        const float largest = s.ea[e] * (rising ? right : left) + band.largest_edge_term[e];
+        if (largest < 0.0f)
+            return Cover::none;
+        const float least = s.ea[e] * (rising ? left : right) + band.least_edge_term[e];
+        whole = whole && least >= 0.0f;   // false for NaN: tested pixel by pixel
     }
-    lo = lo > float(s.x0) ? lo : float(s.x0);
-    hi = hi < float(s.x1) ? hi : float(s.x1);
-    if (!(lo < hi)) {
-        *xl = *xr = 0;
-        return;
-    }
-    *xl = (int(std::floor(lo)) / tile_size) * tile_size;
-    const int right = int(std::ceil(hi));
-    *xr = right < padded_width ? right : padded_width;
+    return whole ? Cover::whole : Cover::part;
 }
+
+// The polygon's nearest and farthest depth over the band's rows of the
+// tile at columns x8 .. x8 + 7, the per-pixel expression at two corners.
+inline float tile_nearest_depth(const PolygonSetup &s, const Band &band, int x8)
+{
+    const float z = s.za * float(s.za > 0.0f ? x8 : x8 + tile_size - 1) + band.nearest_depth_term;
+    return s.zcap < z ? s.zcap : z;
+}
+inline float tile_farthest_depth(const PolygonSetup &s, const Band &band, int x8)
+{
+    const float z = s.za * float(s.za > 0.0f ? x8 + tile_size - 1 : x8) + band.farthest_depth_term;
+    return s.zcap < z ? s.zcap : z;
+}
+
 }  // namespace
 
 void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer);

@@ -1,36 +1,50 @@
 // The scalar loops: the reference the AVX2 loops must equal bit for bit.
 #include "raster/raster_kernels.h"
 
+#include <algorithm>
+
 namespace occu::raster {
 
 void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
 {
-    float row_term[max_edges];
-    for (int y = s.y0; y < s.y1; ++y) {
-        int xl, xr;
-        row_span(s, y, buffer.padded_width, &xl, &xr);
-        if (xl >= xr)
-            continue;
-        const float fy = float(y);
-        for (int e = 0; e < s.edges; ++e)
-            row_term[e] = s.eb[e] * fy + s.ec[e];
-        const float z_row = s.zb * fy + s.zc;
-        for (int x8 = xl; x8 < xr; x8 += tile_size) {
-            float *row = tile_row(buffer, x8, y);
+    Band band;
+    for (int y8 = s.y0 / tile_size * tile_size; y8 < s.y1; y8 += tile_size) {
+        band_terms(s, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
+        const bool all_rows = band.row0 == y8 && band.row1 == y8 + tile_size;
+        for (int x8 = s.x0 / tile_size * tile_size; x8 < s.x1; x8 += tile_size) {
+            const Cover cover = tile_cover(s, band, x8);
+            if (cover == Cover::none)
+                continue;
+            const std::size_t t = tile_index(buffer, x8, y8);
+            if (tile_nearest_depth(s, band, x8) >= buffer.farthest_bound[t])
+                continue;
+            float *tile = tile_at(buffer, t);
             bool wrote = false;
-            for (int lane = 0; lane < tile_size; ++lane) {
-                const float fx = float(x8 + lane);
-                bool inside = true;
-                for (int e = 0; e < s.edges; ++e)
-                    inside &= s.ea[e] * fx + row_term[e] >= 0.0f;
-                const float z = std::min(s.za * fx + z_row, s.zcap);
-                if (inside && z < row[lane]) {
-                    row[lane] = z;
-                    wrote = true;
+            for (int y = band.row0; y < band.row1; ++y) {
+                const float *edge_term = band.edge_term[y - y8];
+                const float depth_term = band.depth_term[y - y8];
+                float *row = tile + (y - y8) * tile_size;
+                for (int lane = 0; lane < tile_size; ++lane) {
+                    const float fx = float(x8 + lane);
+                    bool inside = true;
+                    if (cover == Cover::part)
+                        for (int e = 0; e < s.edges; ++e)
+                            inside &= s.ea[e] * fx + edge_term[e] >= 0.0f;
+                    const float z = std::min(s.za * fx + depth_term, s.zcap);
+                    if (inside && z < row[lane]) {
+                        row[lane] = z;
+                        wrote = true;
+                    }
                 }
             }
             if (wrote)
-                tile_dirty(buffer, x8, y) = 1;
+                buffer.dirty[t] = 1;
+            if (cover == Cover::whole && all_rows) {
+                // Every pixel is now no farther than the polygon's farthest here.
+                const float farthest = tile_farthest_depth(s, band, x8);
+                if (farthest < buffer.farthest_bound[t])
+                    buffer.farthest_bound[t] = farthest;
+            }
         }
     }
 }
