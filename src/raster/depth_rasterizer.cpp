@@ -92,11 +92,55 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
 void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::uint32_t *indices,
                                        std::size_t triangle_count)
 {
+    if (isa_ == Isa::avx2) {
+        render_triangles_avx2(positions, indices, triangle_count);
+        return;
+    }
     glm::vec4 clip[3];
     for (std::size_t t = 0; t < triangle_count; ++t) {
         for (int i = 0; i < 3; ++i)
             clip[i] = view_projection_ * glm::vec4(positions[indices[3 * t + std::size_t(i)]], 1.0f);
         polygon(clip, 3);
+    }
+}
+
+void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices,
+                                            std::size_t triangle_count)
+{
+    // Eight at a time to the end of the projection and the bounding box
+    // (raster::screen_triangles_avx2); the few left go on one at a time,
+    // from the same window coordinates polygon would compute.
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && sizeof(glm::mat4) == 16 * sizeof(float),
+                  "the AVX2 screen reads positions and the matrix as packed floats");
+    constexpr std::size_t batch = 256;
+    raster::ScreenedTriangle kept[batch];
+    const double k = options_.divisor;
+    const raster::TriangleScreen screen{&view_projection_[0][0],
+                                        0.5f * float(frame_width_) / float(options_.divisor),
+                                        0.5f * float(frame_height_) / float(options_.divisor),
+                                        0.5 / k,
+                                        (k - 0.5) / k,
+                                        width_,
+                                        height_};
+    for (std::size_t first = 0; first < triangle_count; first += batch) {
+        const std::size_t count = std::min(batch, triangle_count - first);
+        const std::uint32_t *batch_indices = indices + 3 * first;
+        const std::size_t n = raster::screen_triangles_avx2(screen, &positions[0].x, batch_indices, count, kept);
+        stats_.polygons += count;
+        for (std::size_t i = 0; i < n; ++i) {
+            const raster::ScreenedTriangle &t = kept[i];
+            if (!t.projected) {
+                glm::vec4 clip[3];
+                for (int v = 0; v < 3; ++v)
+                    clip[v] = view_projection_ * glm::vec4(positions[batch_indices[3 * t.triangle + std::uint32_t(v)]], 1.0f);
+                --stats_.polygons;   // polygon counts it
+                polygon(clip, 3);
+                continue;
+            }
+            const glm::vec2 window[3] = {{t.window_x[0], t.window_y[0]}, {t.window_x[1], t.window_y[1]},
+                                         {t.window_x[2], t.window_y[2]}};
+            rasterize(window, t.depth, 3);
+        }
     }
 }
 

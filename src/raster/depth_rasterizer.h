@@ -117,6 +117,7 @@ public:
     const Stats &stats() const { return stats_; }
 
 private:
+    void render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t triangle_count);
     void polygon(const glm::vec4 *clip, int count);
     void rasterize(const glm::vec2 *window, const float *depth, int count);
     void update_tile_maxima() const;

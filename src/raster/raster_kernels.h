@@ -37,6 +37,36 @@ struct TileBuffer {
     int tiles_x;
 };
 
+// Triangles' first steps, eight at a time in AVX2 lanes: transform, the
+// clip-plane tests, the back-face test, projection and the bounding box
+// of the depth pixels they may cover, the same float (and, for the box,
+// double) expressions in the same order as DepthRasterizer::polygon and
+// rasterize take one triangle at a time. Most triangles end here (outside
+// the frustum, back faces, or covering no depth pixel wholly: section 7's
+// small triangles); the rest come out projected, or unprojected when they
+// need the near plane or the guard band (or are not finite) and take the
+// one-at-a-time way. Rejects only what that way rejects, so the buffer
+// stays the same. Clip coordinates are m * (x, y, z, 1) in glm's order,
+// (m0 x + m1 y) + (m2 z + m3).
+struct TriangleScreen {
+    const float *view_projection;   // column-major 4 x 4, as glm
+    float scale_x, scale_y;         // half the buffer's size: window = (ndc + 1) * scale
+    double first, last;             // a depth pixel's first and last sample offsets
+    int width, height;              // the buffer, depth pixels
+};
+
+struct ScreenedTriangle {
+    std::uint32_t triangle;   // its number in the call
+    bool projected;           // false: it needs clipping, or its transform is not finite
+    float window_x[3], window_y[3], depth[3];
+};
+
+// Writes the triangles among indices[0 .. 3 count) that may cover a depth
+// pixel to `out` (room for count), in order; returns how many. Vertex
+// indices must be below 2^31 / 3.
+std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *positions, const std::uint32_t *indices,
+                                  std::size_t count, ScreenedTriangle *out);
+
 // Both loops walk the polygon's bounding box tile by tile, each tile being
 // 8 x 8 depth pixels (section 7's tiled buffer). Each function and depth
 // they evaluate, a X + (b Y + c) in float, is monotone in X and in Y apart

@@ -88,3 +88,165 @@ bool tile_behind_avx2(const float *tile, int c0, int c1, int r0, int r1, float z
 }
 
 }  // namespace occu::raster
+
+namespace occu::raster {
+
+namespace {
+
+struct ClipVertex {
+    __m256 x, y, z, w;
+};
+
+// One vertex of eight triangles (float offsets of its x), gathered and transformed.
+ClipVertex clip_vertex(const float *m, const float *positions, __m256i index3)
+{
+    const __m256 x = _mm256_i32gather_ps(positions, index3, 4);
+    const __m256 y = _mm256_i32gather_ps(positions + 1, index3, 4);
+    const __m256 z = _mm256_i32gather_ps(positions + 2, index3, 4);
+    __m256 c[4];
+    for (int i = 0; i < 4; ++i)
+        c[i] = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[i]), x), _mm256_mul_ps(_mm256_set1_ps(m[4 + i]), y)),
+                             _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[8 + i]), z), _mm256_set1_ps(m[12 + i])));
+    return {c[0], c[1], c[2], c[3]};
+}
+
+// Whether the depth pixels [ceil(lo - first), floor(hi - last)] clamped to
+// [0, size) are none, for four lanes in double, as rasterize computes them.
+__m256d span_empty(__m128 lo, __m128 hi, double first, double last, int size)
+{
+    const __m256d start = _mm256_max_pd(_mm256_setzero_pd(),
+                                        _mm256_round_pd(_mm256_sub_pd(_mm256_cvtps_pd(lo), _mm256_set1_pd(first)),
+                                                        _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC));
+    const __m256d end = _mm256_min_pd(
+        _mm256_set1_pd(double(size)),
+        _mm256_add_pd(_mm256_round_pd(_mm256_sub_pd(_mm256_cvtps_pd(hi), _mm256_set1_pd(last)),
+                                      _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC),
+                      _mm256_set1_pd(1.0)));
+    return _mm256_cmp_pd(start, end, _CMP_GE_OQ);
+}
+
+__m256 span_empty(__m256 lo, __m256 hi, double first, double last, int size)
+{
+    const __m256d low = span_empty(_mm256_castps256_ps128(lo), _mm256_castps256_ps128(hi), first, last, size);
+    const __m256d high =
+        span_empty(_mm256_extractf128_ps(lo, 1), _mm256_extractf128_ps(hi, 1), first, last, size);
+    // Each double lane's mask, all ones or zeros, narrowed to a float lane.
+    const __m128 low_mask = _mm256_cvtpd_ps(_mm256_and_pd(low, _mm256_set1_pd(1.0)));
+    const __m128 high_mask = _mm256_cvtpd_ps(_mm256_and_pd(high, _mm256_set1_pd(1.0)));
+    return _mm256_cmp_ps(_mm256_set_m128(high_mask, low_mask), _mm256_setzero_ps(), _CMP_NEQ_OQ);
+}
+
+}  // namespace
+
+std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *positions, const std::uint32_t *indices,
+                                  std::size_t count, ScreenedTriangle *out)
+{
+    const float *m = screen.view_projection;
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
+    const __m256 two = _mm256_set1_ps(2.0f);   // the guard band, as polygon's float(guard)
+    const __m256 scale_x = _mm256_set1_ps(screen.scale_x), scale_y = _mm256_set1_ps(screen.scale_y);
+    // Gathers take 32-bit offsets: a vertex index past this one (a float
+    // offset past 2^31) goes the one-at-a-time way, gathered here at this.
+    const __m256i largest_index = _mm256_set1_epi32(0x2aaaaaaa);
+    std::size_t kept = 0;
+    for (std::size_t first = 0; first < count; first += 8) {
+        const int lanes = count - first < 8 ? int(count - first) : 8;
+        // Past the end, the batch's last triangle again, its result dropped.
+        const __m256i lane_ids = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+        const __m256i clamped = _mm256_min_epi32(lane_ids, _mm256_set1_epi32(lanes - 1));
+        const __m256i offsets = _mm256_mullo_epi32(clamped, _mm256_set1_epi32(3));
+        const int *batch = reinterpret_cast<const int *>(indices + 3 * first);
+        ClipVertex v[3];
+        __m256i index_too_large = _mm256_setzero_si256();
+        for (int corner = 0; corner < 3; ++corner) {
+            const __m256i index = _mm256_i32gather_epi32(batch + corner, offsets, 4);
+            const __m256i usable = _mm256_min_epu32(index, largest_index);
+            index_too_large = _mm256_or_si256(index_too_large,
+                                              _mm256_xor_si256(_mm256_cmpeq_epi32(usable, index), _mm256_set1_epi32(-1)));
+            v[corner] = clip_vertex(m, positions, _mm256_mullo_epi32(usable, _mm256_set1_epi32(3)));
+        }
+
+        // Outside one clip plane with every vertex: nothing to draw.
+        const __m256 all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+        __m256 out_right = all, out_left = all, out_top = all, out_bottom = all, out_far = all, out_near = all;
+        __m256 needs_clip = _mm256_castsi256_ps(index_too_large);
+        for (const ClipVertex &c : v) {
+            const __m256 minus_w = _mm256_sub_ps(zero, c.w);
+            out_right = _mm256_and_ps(out_right, _mm256_cmp_ps(c.x, c.w, _CMP_GT_OQ));
+            out_left = _mm256_and_ps(out_left, _mm256_cmp_ps(c.x, minus_w, _CMP_LT_OQ));
+            out_top = _mm256_and_ps(out_top, _mm256_cmp_ps(c.y, c.w, _CMP_GT_OQ));
+            out_bottom = _mm256_and_ps(out_bottom, _mm256_cmp_ps(c.y, minus_w, _CMP_LT_OQ));
+            out_far = _mm256_and_ps(out_far, _mm256_cmp_ps(c.z, c.w, _CMP_GT_OQ));
+            out_near = _mm256_and_ps(out_near, _mm256_cmp_ps(c.z, minus_w, _CMP_LT_OQ));
+            const __m256 g = _mm256_mul_ps(two, c.w);
+            const __m256 minus_g = _mm256_sub_ps(zero, g);
+            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.z, minus_w, _CMP_LT_OQ));
+            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.x, g, _CMP_GT_OQ));
+            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.x, minus_g, _CMP_LT_OQ));
+            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.y, g, _CMP_GT_OQ));
+            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.y, minus_g, _CMP_LT_OQ));
+            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.w, zero, _CMP_NGT_UQ));
+        }
+        const __m256 all_out = _mm256_or_ps(_mm256_or_ps(_mm256_or_ps(out_right, out_left), _mm256_or_ps(out_top, out_bottom)),
+                                            _mm256_or_ps(out_far, out_near));
+        // polygon's test of the first vertex's sum; a non-finite one draws nothing.
+        const __m256 sum = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(v[0].x, v[0].y), v[0].z), v[0].w);
+        const __m256 finite = _mm256_cmp_ps(_mm256_sub_ps(sum, sum), zero, _CMP_EQ_OQ);
+        const int unknown = _mm256_movemask_ps(_mm256_castsi256_ps(index_too_large));
+        const int drawn = (_mm256_movemask_ps(_mm256_andnot_ps(all_out, finite)) | unknown) & ((1 << lanes) - 1);
+        if (drawn == 0)
+            continue;
+        const int one_at_a_time = _mm256_movemask_ps(needs_clip) & drawn;
+
+        // The winding: the sign of det(x, y, w), before any division.
+        const ClipVertex &p = v[0], &q = v[1], &r = v[2];
+        const __m256 winding = _mm256_add_ps(
+            _mm256_sub_ps(_mm256_mul_ps(p.x, _mm256_sub_ps(_mm256_mul_ps(q.y, r.w), _mm256_mul_ps(q.w, r.y))),
+                          _mm256_mul_ps(p.y, _mm256_sub_ps(_mm256_mul_ps(q.x, r.w), _mm256_mul_ps(q.w, r.x)))),
+            _mm256_mul_ps(p.w, _mm256_sub_ps(_mm256_mul_ps(q.x, r.y), _mm256_mul_ps(q.y, r.x))));
+        int projected = _mm256_movemask_ps(_mm256_cmp_ps(winding, zero, _CMP_GT_OQ)) & drawn & ~one_at_a_time;
+        __m256 wx[3], wy[3], depth[3];
+        if (projected != 0) {
+            for (int i = 0; i < 3; ++i) {
+                const __m256 inv = _mm256_div_ps(one, v[i].w);
+                wx[i] = _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(v[i].x, inv), one), scale_x);
+                wy[i] = _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(v[i].y, inv), one), scale_y);
+                depth[i] = _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(v[i].z, inv), half), half);
+            }
+            // The depth pixels the triangle may cover wholly: none for most.
+            const __m256 lo_x = _mm256_min_ps(_mm256_min_ps(wx[0], wx[1]), wx[2]);
+            const __m256 hi_x = _mm256_max_ps(_mm256_max_ps(wx[0], wx[1]), wx[2]);
+            const __m256 lo_y = _mm256_min_ps(_mm256_min_ps(wy[0], wy[1]), wy[2]);
+            const __m256 hi_y = _mm256_max_ps(_mm256_max_ps(wy[0], wy[1]), wy[2]);
+            const __m256 empty = _mm256_or_ps(span_empty(lo_x, hi_x, screen.first, screen.last, screen.width),
+                                              span_empty(lo_y, hi_y, screen.first, screen.last, screen.height));
+            projected &= ~_mm256_movemask_ps(empty);
+        }
+        const int kept_lanes = projected | one_at_a_time;
+        if (kept_lanes == 0)
+            continue;
+        alignas(32) float x[3][8], y[3][8], z[3][8];
+        if (projected != 0)
+            for (int i = 0; i < 3; ++i) {
+                _mm256_store_ps(x[i], wx[i]);
+                _mm256_store_ps(y[i], wy[i]);
+                _mm256_store_ps(z[i], depth[i]);
+            }
+        for (int lane = 0; lane < lanes; ++lane) {
+            if (!(kept_lanes >> lane & 1))
+                continue;
+            ScreenedTriangle &t = out[kept++];
+            t.triangle = std::uint32_t(first) + std::uint32_t(lane);
+            t.projected = (projected >> lane & 1) != 0;
+            if (t.projected)
+                for (int i = 0; i < 3; ++i) {
+                    t.window_x[i] = x[i][lane];
+                    t.window_y[i] = y[i][lane];
+                    t.depth[i] = z[i][lane];
+                }
+        }
+    }
+    return kept;
+}
+
+}  // namespace occu::raster
