@@ -94,13 +94,10 @@ inline std::size_t tile_index(const TileBuffer &b, int x8, int y8)
 inline float *tile_at(const TileBuffer &b, std::size_t tile) { return b.tiles + tile * tile_pixels; }
 
 // Rows [row0, row1) of one band of tiles (row0 / 8 == (row1 - 1) / 8), and
-// the terms the loops need there: each edge's and the depth's row term
-// eb Y + ec (zb Y + zc) at each row, and at the rows where each is least
-// and largest.
+// each edge's and the depth's row term eb Y + ec (zb Y + zc, as at every
+// pixel) at the rows where it is least and largest.
 struct Band {
     int y8, row0, row1;
-    float edge_term[tile_size][max_edges];
-    float depth_term[tile_size];
     float least_edge_term[max_edges], largest_edge_term[max_edges];
     float nearest_depth_term, farthest_depth_term;
 };
@@ -111,12 +108,6 @@ inline void band_terms(const PolygonSetup &s, int row0, int row1, Band *band)
     band->row0 = row0;
     band->row1 = row1;
     const float first = float(row0), last = float(row1 - 1);
-    for (int y = row0; y < row1; ++y) {
-        const float fy = float(y);
-        for (int e = 0; e < s.edges; ++e)
-            band->edge_term[y - band->y8][e] = s.eb[e] * fy + s.ec[e];
-        band->depth_term[y - band->y8] = s.zb * fy + s.zc;
-    }
     for (int e = 0; e < s.edges; ++e) {
         band->least_edge_term[e] = s.eb[e] * (s.eb[e] > 0.0f ? first : last) + s.ec[e];
         band->largest_edge_term[e] = s.eb[e] * (s.eb[e] > 0.0f ? last : first) + s.ec[e];

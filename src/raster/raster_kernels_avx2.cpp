@@ -9,65 +9,110 @@ namespace occu::raster {
 void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
 {
     const __m256 lanes = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256 eights = _mm256_mul_ps(lanes, _mm256_set1_ps(float(tile_size)));
+    const __m256 last_column = _mm256_set1_ps(float(tile_size - 1));
     const __m256 zero = _mm256_setzero_ps();
     const __m256 za = _mm256_set1_ps(s.za), zcap = _mm256_set1_ps(s.zcap);
-    __m256 ea[max_edges];
-    for (int e = 0; e < s.edges; ++e)
+    __m256 ea[max_edges], eb[max_edges], ec[max_edges];
+    bool rising[max_edges];
+    for (int e = 0; e < s.edges; ++e) {
         ea[e] = _mm256_set1_ps(s.ea[e]);
+        eb[e] = _mm256_set1_ps(s.eb[e]);
+        ec[e] = _mm256_set1_ps(s.ec[e]);
+        rising[e] = s.ea[e] > 0.0f;
+    }
+    const bool depth_rising = s.za > 0.0f;
     Band band;
+    alignas(32) float edge_rows[max_edges][tile_size], depth_rows[tile_size];
     for (int y8 = s.y0 / tile_size * tile_size; y8 < s.y1; y8 += tile_size) {
         band_terms(s, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
         const bool all_rows = band.row0 == y8 && band.row1 == y8 + tile_size;
-        for (int x8 = s.x0 / tile_size * tile_size; x8 < s.x1; x8 += tile_size) {
-            const Cover cover = tile_cover(s, band, x8);
-            if (cover == Cover::none)
-                continue;
-            const std::size_t t = tile_index(buffer, x8, y8);
-            if (tile_nearest_depth(s, band, x8) >= buffer.farthest_bound[t])
-                continue;
-            float *tile = tile_at(buffer, t);
-            // float(x8 + lane), exactly, as the scalar loop converts it.
-            const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(x8)), lanes);
-            const __m256 z_column = _mm256_mul_ps(za, fx);
-            if (cover == Cover::whole) {
-                // std::min(z, zcap) is (zcap < z ? zcap : z), which
-                // min_ps(zcap, z) is; keeping z where z < old is min_ps(z, old).
-                for (int y = band.row0; y < band.row1; ++y) {
-                    float *row = tile + (y - y8) * tile_size;
-                    const __m256 z =
-                        _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_set1_ps(band.depth_term[y - y8])));
-                    _mm256_storeu_ps(row, _mm256_min_ps(z, _mm256_loadu_ps(row)));
-                }
-                buffer.dirty[t] = 1;
-                if (all_rows) {
-                    // Every pixel is now no farther than the polygon's farthest here.
-                    const float farthest = tile_farthest_depth(s, band, x8);
-                    if (farthest < buffer.farthest_bound[t])
-                        buffer.farthest_bound[t] = farthest;
-                }
-                continue;
+        // The row terms of the band's eight rows, eb Y + ec lane by lane,
+        // once the band has a tile to fill.
+        bool rows_ready = false;
+        const std::size_t band_tiles = std::size_t(y8 / tile_size) * std::size_t(buffer.tiles_x);
+        // Eight tiles of the band at once: tile_cover, tile_nearest_depth
+        // and the bound test in lanes.
+        for (int x_first = s.x0 / tile_size * tile_size; x_first < s.x1; x_first += tile_size * 8) {
+            const int tiles = (s.x1 - x_first + tile_size - 1) / tile_size < 8 ? (s.x1 - x_first + tile_size - 1) / tile_size : 8;
+            const __m256 left = _mm256_add_ps(_mm256_set1_ps(float(x_first)), eights);
+            const __m256 right = _mm256_add_ps(left, last_column);
+            __m256 none = zero, whole = _mm256_cmp_ps(zero, zero, _CMP_EQ_OQ);
+            for (int e = 0; e < s.edges; ++e) {
+                const __m256 largest = _mm256_add_ps(_mm256_mul_ps(ea[e], rising[e] ? right : left),
+                                                     _mm256_set1_ps(band.largest_edge_term[e]));
+                none = _mm256_or_ps(none, _mm256_cmp_ps(largest, zero, _CMP_LT_OQ));
+                const __m256 least = _mm256_add_ps(_mm256_mul_ps(ea[e], rising[e] ? left : right),
+                                                   _mm256_set1_ps(band.least_edge_term[e]));
+                whole = _mm256_and_ps(whole, _mm256_cmp_ps(least, zero, _CMP_GE_OQ));
             }
-            __m256 wrote = zero;
-            for (int y = band.row0; y < band.row1; ++y) {
-                const float *edge_term = band.edge_term[y - y8];
-                __m256 inside = _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea[0], fx), _mm256_set1_ps(edge_term[0])),
-                                              zero, _CMP_GE_OQ);
-                for (int e = 1; e < s.edges; ++e)
-                    inside = _mm256_and_ps(inside, _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea[e], fx),
-                                                                               _mm256_set1_ps(edge_term[e])),
-                                                                 zero, _CMP_GE_OQ));
-                if (_mm256_movemask_ps(inside) == 0)
+            const int in_band = (1 << tiles) - 1;
+            int fill = ~_mm256_movemask_ps(none) & in_band;
+            if (fill == 0)
+                continue;
+            const std::size_t first_tile = band_tiles + std::size_t(x_first / tile_size);
+            const __m256 nearest = _mm256_min_ps(
+                zcap, _mm256_add_ps(_mm256_mul_ps(za, depth_rising ? left : right), _mm256_set1_ps(band.nearest_depth_term)));
+            const __m256i load = _mm256_cmpgt_epi32(_mm256_set1_epi32(tiles), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+            const __m256 bound = _mm256_maskload_ps(buffer.farthest_bound + first_tile, load);
+            fill &= ~_mm256_movemask_ps(_mm256_cmp_ps(nearest, bound, _CMP_GE_OQ));
+            if (fill == 0)
+                continue;
+            const int whole_tiles = _mm256_movemask_ps(whole);
+            if (!rows_ready) {
+                const __m256 fy = _mm256_add_ps(_mm256_set1_ps(float(y8)), lanes);
+                for (int e = 0; e < s.edges; ++e)
+                    _mm256_store_ps(edge_rows[e], _mm256_add_ps(_mm256_mul_ps(eb[e], fy), ec[e]));
+                _mm256_store_ps(depth_rows, _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(s.zb), fy), _mm256_set1_ps(s.zc)));
+                rows_ready = true;
+            }
+            for (; fill != 0; fill &= fill - 1) {
+                const int i = __builtin_ctz(unsigned(fill));
+                const int x8 = x_first + i * tile_size;
+                const std::size_t t = first_tile + std::size_t(i);
+                float *tile = tile_at(buffer, t);
+                // float(x8 + lane), exactly, as the scalar loop converts it.
+                const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(x8)), lanes);
+                const __m256 z_column = _mm256_mul_ps(za, fx);
+                if (whole_tiles >> i & 1) {
+                    // std::min(z, zcap) is (zcap < z ? zcap : z), which
+                    // min_ps(zcap, z) is; keeping z where z < old is min_ps(z, old).
+                    for (int y = band.row0; y < band.row1; ++y) {
+                        float *row = tile + (y - y8) * tile_size;
+                        const __m256 z =
+                            _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_broadcast_ss(depth_rows + (y - y8))));
+                        _mm256_storeu_ps(row, _mm256_min_ps(z, _mm256_loadu_ps(row)));
+                    }
+                    buffer.dirty[t] = 1;
+                    if (all_rows) {
+                        // Every pixel is now no farther than the polygon's farthest here.
+                        const float farthest = tile_farthest_depth(s, band, x8);
+                        if (farthest < buffer.farthest_bound[t])
+                            buffer.farthest_bound[t] = farthest;
+                    }
                     continue;
-                const __m256 z =
-                    _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_set1_ps(band.depth_term[y - y8])));
-                float *row = tile + (y - y8) * tile_size;
-                const __m256 old = _mm256_loadu_ps(row);
-                const __m256 write = _mm256_and_ps(inside, _mm256_cmp_ps(z, old, _CMP_LT_OQ));
-                _mm256_storeu_ps(row, _mm256_blendv_ps(old, z, write));
-                wrote = _mm256_or_ps(wrote, write);
+                }
+                __m256 wrote = zero;
+                for (int y = band.row0; y < band.row1; ++y) {
+                    const int r = y - y8;
+                    __m256 inside = _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea[0], fx), _mm256_broadcast_ss(edge_rows[0] + r)),
+                                                  zero, _CMP_GE_OQ);
+                    for (int e = 1; e < s.edges; ++e)
+                        inside = _mm256_and_ps(inside, _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea[e], fx),
+                                                                                   _mm256_broadcast_ss(edge_rows[e] + r)),
+                                                                     zero, _CMP_GE_OQ));
+                    if (_mm256_movemask_ps(inside) == 0)
+                        continue;
+                    const __m256 z = _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_broadcast_ss(depth_rows + r)));
+                    float *row = tile + r * tile_size;
+                    const __m256 old = _mm256_loadu_ps(row);
+                    const __m256 write = _mm256_and_ps(inside, _mm256_cmp_ps(z, old, _CMP_LT_OQ));
+                    _mm256_storeu_ps(row, _mm256_blendv_ps(old, z, write));
+                    wrote = _mm256_or_ps(wrote, write);
+                }
+                if (_mm256_movemask_ps(wrote) != 0)
+                    buffer.dirty[t] = 1;
             }
-            if (_mm256_movemask_ps(wrote) != 0)
-                buffer.dirty[t] = 1;
         }
     }
 }

@@ -21,8 +21,11 @@ void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
             float *tile = tile_at(buffer, t);
             bool wrote = false;
             for (int y = band.row0; y < band.row1; ++y) {
-                const float *edge_term = band.edge_term[y - y8];
-                const float depth_term = band.depth_term[y - y8];
+                const float fy = float(y);
+                float edge_term[max_edges];
+                for (int e = 0; e < s.edges; ++e)
+                    edge_term[e] = s.eb[e] * fy + s.ec[e];
+                const float depth_term = s.zb * fy + s.zc;
                 float *row = tile + (y - y8) * tile_size;
                 for (int lane = 0; lane < tile_size; ++lane) {
                     const float fx = float(x8 + lane);
