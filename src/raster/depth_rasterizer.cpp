@@ -107,9 +107,8 @@ void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::ui
 void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices,
                                             std::size_t triangle_count)
 {
-    // Eight at a time to the end of the projection and the bounding box
-    // (raster::screen_triangles_avx2); the few left go on one at a time,
-    // from the same window coordinates polygon would compute.
+    // Eight at a time through the setup (raster::screen_triangles_avx2);
+    // those that need clipping go on one at a time.
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && sizeof(glm::mat4) == 16 * sizeof(float),
                   "the AVX2 screen reads positions and the matrix as packed floats");
     constexpr std::size_t batch = 256;
@@ -118,10 +117,16 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
     const raster::TriangleScreen screen{&view_projection_[0][0],
                                         0.5f * float(frame_width_) / float(options_.divisor),
                                         0.5f * float(frame_height_) / float(options_.divisor),
+                                        width_,
+                                        height_,
+                                        options_.per_pixel_depth,
                                         0.5 / k,
                                         (k - 0.5) / k,
-                                        width_,
-                                        height_};
+                                        edge_margin / k,
+                                        guard * std::max(width_, height_) + tile_size,
+                                        float_error,
+                                        depth_margin};
+    const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
     for (std::size_t first = 0; first < triangle_count; first += batch) {
         const std::size_t count = std::min(batch, triangle_count - first);
         const std::uint32_t *batch_indices = indices + 3 * first;
@@ -129,17 +134,17 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
         stats_.polygons += count;
         for (std::size_t i = 0; i < n; ++i) {
             const raster::ScreenedTriangle &t = kept[i];
-            if (!t.projected) {
-                glm::vec4 clip[3];
-                for (int v = 0; v < 3; ++v)
-                    clip[v] = view_projection_ * glm::vec4(positions[batch_indices[3 * t.triangle + std::uint32_t(v)]], 1.0f);
-                --stats_.polygons;   // polygon counts it
-                polygon(clip, 3);
+            if (t.set_up) {
+                ++stats_.rasterized;
+                raster::fill_avx2(t.setup, buffer);
+                any_dirty_ = true;
                 continue;
             }
-            const glm::vec2 window[3] = {{t.window_x[0], t.window_y[0]}, {t.window_x[1], t.window_y[1]},
-                                         {t.window_x[2], t.window_y[2]}};
-            rasterize(window, t.depth, 3);
+            glm::vec4 clip[3];
+            for (int v = 0; v < 3; ++v)
+                clip[v] = view_projection_ * glm::vec4(positions[batch_indices[3 * t.triangle + std::uint32_t(v)]], 1.0f);
+            --stats_.polygons;   // polygon counts it
+            polygon(clip, 3);
         }
     }
 }

@@ -38,27 +38,32 @@ struct TileBuffer {
 };
 
 // Triangles' first steps, eight at a time in AVX2 lanes: transform, the
-// clip-plane tests, the back-face test, projection and the bounding box
-// of the depth pixels they may cover, the same float (and, for the box,
-// double) expressions in the same order as DepthRasterizer::polygon and
-// rasterize take one triangle at a time. Most triangles end here (outside
-// the frustum, back faces, or covering no depth pixel wholly: section 7's
-// small triangles); the rest come out projected, or unprojected when they
-// need the near plane or the guard band (or are not finite) and take the
-// one-at-a-time way. Rejects only what that way rejects, so the buffer
-// stays the same. Clip coordinates are m * (x, y, z, 1) in glm's order,
+// clip-plane tests, the back-face test, projection, the bounding box of the
+// depth pixels they may cover, and the setup of those that cover some: the
+// same float and double expressions in the same order as
+// DepthRasterizer::polygon and rasterize take one triangle at a time.
+// Most triangles end before the setup (outside the frustum, back faces, or
+// covering no depth pixel wholly: section 7's small triangles); the rest
+// come out set up, or, when they need the near plane or the guard band (or
+// their transform is not finite), bare, to take the one-at-a-time way.
+// Sets up exactly what that way sets up, so the buffer stays the same.
+// Clip coordinates are m * (x, y, z, 1) in glm's order,
 // (m0 x + m1 y) + (m2 z + m3).
 struct TriangleScreen {
     const float *view_projection;   // column-major 4 x 4, as glm
     float scale_x, scale_y;         // half the buffer's size: window = (ndc + 1) * scale
-    double first, last;             // a depth pixel's first and last sample offsets
     int width, height;              // the buffer, depth pixels
+    bool per_pixel_depth;
+    // rasterize's constants: a depth pixel's first and last sample
+    // offsets, the edge margin per unit of edge normal, the coordinate
+    // extent and relative float error its margins scale, the depth margin.
+    double first, last, edge_margin, extent, float_error, depth_margin;
 };
 
 struct ScreenedTriangle {
     std::uint32_t triangle;   // its number in the call
-    bool projected;           // false: it needs clipping, or its transform is not finite
-    float window_x[3], window_y[3], depth[3];
+    bool set_up;              // false: it needs clipping, or its transform is not finite
+    PolygonSetup setup;
 };
 
 // Writes the triangles among indices[0 .. 3 count) that may cover a depth

@@ -181,6 +181,121 @@ __m256 span_empty(__m256 lo, __m256 hi, double first, double last, int size)
     return _mm256_cmp_ps(_mm256_set_m128(high_mask, low_mask), _mm256_setzero_ps(), _CMP_NEQ_OQ);
 }
 
+
+// rasterize's setup of four projected triangles in double lanes, its
+// expressions in its order: the bounding box, the area test, the edges
+// with their sample offsets and margins, the depth plane lifted over the
+// vertices. Lanes whose area is not positive come back clear in *front.
+struct FourSetups {
+    alignas(32) double x0[4], y0[4], x1[4], y1[4];
+    alignas(16) float ea[3][4], eb[3][4], ec[3][4];
+    alignas(16) float za[4], zb[4], zc[4], zcap[4];
+};
+
+__m256d select(__m256d mask, __m256d if_true, __m256d if_false) { return _mm256_blendv_pd(if_false, if_true, mask); }
+__m256d absolute(__m256d v) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), v); }
+
+int set_up_four(const TriangleScreen &screen, const __m128 *wx, const __m128 *wy, const __m128 *depth,
+                FourSetups *out)
+{
+    const __m256d zero = _mm256_setzero_pd();
+    const __m256d first = _mm256_set1_pd(screen.first), last = _mm256_set1_pd(screen.last);
+    const __m256d extent = _mm256_set1_pd(screen.extent), float_error = _mm256_set1_pd(screen.float_error);
+    __m256d x[3], y[3], d[3];
+    for (int i = 0; i < 3; ++i) {
+        x[i] = _mm256_cvtps_pd(wx[i]);
+        y[i] = _mm256_cvtps_pd(wy[i]);
+        d[i] = _mm256_cvtps_pd(depth[i]);
+    }
+    const __m128 lo_x = _mm_min_ps(_mm_min_ps(wx[0], wx[1]), wx[2]), hi_x = _mm_max_ps(_mm_max_ps(wx[0], wx[1]), wx[2]);
+    const __m128 lo_y = _mm_min_ps(_mm_min_ps(wy[0], wy[1]), wy[2]), hi_y = _mm_max_ps(_mm_max_ps(wy[0], wy[1]), wy[2]);
+    const __m128 farthest = _mm_max_ps(_mm_max_ps(depth[0], depth[1]), depth[2]);
+    _mm256_store_pd(out->x0, _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(_mm256_cvtps_pd(lo_x), first),
+                                                                 _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC)));
+    _mm256_store_pd(out->y0, _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(_mm256_cvtps_pd(lo_y), first),
+                                                                 _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC)));
+    const __m256d one = _mm256_set1_pd(1.0);
+    _mm256_store_pd(out->x1, _mm256_min_pd(_mm256_set1_pd(double(screen.width)),
+                                           _mm256_add_pd(_mm256_round_pd(_mm256_sub_pd(_mm256_cvtps_pd(hi_x), last),
+                                                                         _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC),
+                                                         one)));
+    _mm256_store_pd(out->y1, _mm256_min_pd(_mm256_set1_pd(double(screen.height)),
+                                           _mm256_add_pd(_mm256_round_pd(_mm256_sub_pd(_mm256_cvtps_pd(hi_y), last),
+                                                                         _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC),
+                                                         one)));
+
+    // Front faces wind counter-clockwise in window coordinates (y up).
+    __m256d area = zero;
+    for (int i = 0; i < 3; ++i) {
+        const int j = i + 1 == 3 ? 0 : i + 1;
+        area = _mm256_add_pd(area, _mm256_sub_pd(_mm256_mul_pd(x[i], y[j]), _mm256_mul_pd(x[j], y[i])));
+    }
+    const int front = _mm256_movemask_pd(_mm256_cmp_pd(area, zero, _CMP_GT_OQ));
+    if (front == 0)
+        return 0;
+
+    const __m256d sign = _mm256_set1_pd(-0.0), margin_per_unit = _mm256_set1_pd(screen.edge_margin);
+    for (int e = 0; e < 3; ++e) {
+        const int f = e + 1 == 3 ? 0 : e + 1;
+        const __m256d a = _mm256_sub_pd(y[e], y[f]), b = _mm256_sub_pd(x[f], x[e]);
+        const __m256d c = _mm256_xor_pd(sign, _mm256_add_pd(_mm256_mul_pd(a, x[e]), _mm256_mul_pd(b, y[e])));
+        const __m256d folded =
+            _mm256_add_pd(_mm256_add_pd(c, _mm256_mul_pd(a, select(_mm256_cmp_pd(a, zero, _CMP_GT_OQ), first, last))),
+                          _mm256_mul_pd(b, select(_mm256_cmp_pd(b, zero, _CMP_GT_OQ), first, last)));
+        const __m256d size = _mm256_add_pd(absolute(a), absolute(b));
+        const __m256d margin =
+            _mm256_add_pd(_mm256_mul_pd(size, margin_per_unit),
+                          _mm256_mul_pd(float_error, _mm256_add_pd(_mm256_mul_pd(size, extent), absolute(folded))));
+        _mm_store_ps(out->ea[e], _mm256_cvtpd_ps(a));
+        _mm_store_ps(out->eb[e], _mm256_cvtpd_ps(b));
+        _mm_store_ps(out->ec[e], _mm256_cvtpd_ps(_mm256_sub_pd(folded, margin)));
+    }
+
+    // Depth: the farthest over the samples, never past the farthest vertex.
+    const __m128 zcap = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(farthest), _mm256_set1_pd(screen.depth_margin)));
+    _mm_store_ps(out->zcap, zcap);
+    if (!screen.per_pixel_depth) {
+        _mm_store_ps(out->za, _mm_setzero_ps());
+        _mm_store_ps(out->zb, _mm_setzero_ps());
+        _mm_store_ps(out->zc, zcap);
+        return front;
+    }
+    // The plane through the three vertices, lifted so that none lies above it.
+    const __m256d ux = _mm256_sub_pd(x[1], x[0]), uy = _mm256_sub_pd(y[1], y[0]);
+    const __m256d vx = _mm256_sub_pd(x[2], x[0]), vy = _mm256_sub_pd(y[2], y[0]);
+    const __m256d twice = _mm256_sub_pd(_mm256_mul_pd(ux, vy), _mm256_mul_pd(uy, vx));
+    const __m256d best_area = select(_mm256_cmp_pd(twice, zero, _CMP_GT_OQ), twice, zero);
+    const __m256d du = _mm256_sub_pd(d[1], d[0]), dv = _mm256_sub_pd(d[2], d[0]);
+    const __m256d za = _mm256_div_pd(_mm256_sub_pd(_mm256_mul_pd(du, vy), _mm256_mul_pd(dv, uy)), best_area);
+    const __m256d zb = _mm256_div_pd(_mm256_sub_pd(_mm256_mul_pd(dv, ux), _mm256_mul_pd(du, vx)), best_area);
+    __m256d zc = _mm256_sub_pd(_mm256_sub_pd(d[0], _mm256_mul_pd(za, x[0])), _mm256_mul_pd(zb, y[0]));
+    __m256d lift = zero;
+    for (int i = 0; i < 3; ++i) {
+        const __m256d above =
+            _mm256_sub_pd(d[i], _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(za, x[i]), _mm256_mul_pd(zb, y[i])), zc));
+        lift = _mm256_max_pd(above, lift);   // std::max(lift, above)
+    }
+    zc = _mm256_add_pd(
+        zc, _mm256_add_pd(
+                _mm256_add_pd(lift, _mm256_mul_pd(za, select(_mm256_cmp_pd(za, zero, _CMP_GT_OQ), last, first))),
+                _mm256_mul_pd(zb, select(_mm256_cmp_pd(zb, zero, _CMP_GT_OQ), last, first))));
+    zc = _mm256_add_pd(
+        zc, _mm256_add_pd(_mm256_set1_pd(screen.depth_margin),
+                          _mm256_mul_pd(float_error, _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(absolute(za), absolute(zb)),
+                                                                                 extent),
+                                                                   absolute(zc)))));
+    const __m128 za_f = _mm256_cvtpd_ps(za), zb_f = _mm256_cvtpd_ps(zb), zc_f = _mm256_cvtpd_ps(zc);
+    // A sliver with no usable plane: its farthest vertex.
+    const __m128 infinity = _mm_set1_ps(__builtin_inff());
+    const __m128 finite = _mm_and_ps(_mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), za_f), infinity),
+                                                _mm_cmplt_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), zb_f), infinity)),
+                                     _mm_cmplt_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), zc_f), infinity));
+    _mm_store_ps(out->za, _mm_and_ps(finite, za_f));
+    _mm_store_ps(out->zb, _mm_and_ps(finite, zb_f));
+    _mm_store_ps(out->zc, _mm_blendv_ps(zcap, zc_f, finite));
+    return front;
+}
+
 }  // namespace
 
 std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *positions, const std::uint32_t *indices,
@@ -250,7 +365,7 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
                           _mm256_mul_ps(p.y, _mm256_sub_ps(_mm256_mul_ps(q.x, r.w), _mm256_mul_ps(q.w, r.x)))),
             _mm256_mul_ps(p.w, _mm256_sub_ps(_mm256_mul_ps(q.x, r.y), _mm256_mul_ps(q.y, r.x))));
         int projected = _mm256_movemask_ps(_mm256_cmp_ps(winding, zero, _CMP_GT_OQ)) & drawn & ~one_at_a_time;
-        __m256 wx[3], wy[3], depth[3];
+        __m256 wx[3] = {}, wy[3] = {}, depth[3] = {};
         if (projected != 0) {
             for (int i = 0; i < 3; ++i) {
                 const __m256 inv = _mm256_div_ps(one, v[i].w);
@@ -267,28 +382,45 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
                                               span_empty(lo_y, hi_y, screen.first, screen.last, screen.height));
             projected &= ~_mm256_movemask_ps(empty);
         }
-        const int kept_lanes = projected | one_at_a_time;
-        if (kept_lanes == 0)
-            continue;
-        alignas(32) float x[3][8], y[3][8], z[3][8];
-        if (projected != 0)
-            for (int i = 0; i < 3; ++i) {
-                _mm256_store_ps(x[i], wx[i]);
-                _mm256_store_ps(y[i], wy[i]);
-                _mm256_store_ps(z[i], depth[i]);
+        // Set up, four lanes at a time; a lane whose area is not positive drops out.
+        FourSetups setups[2];
+        for (int four = 0; four < 2; ++four)
+            if (projected >> (4 * four) & 15) {
+                __m128 x[3], y[3], z[3];
+                for (int i = 0; i < 3; ++i) {
+                    x[i] = four ? _mm256_extractf128_ps(wx[i], 1) : _mm256_castps256_ps128(wx[i]);
+                    y[i] = four ? _mm256_extractf128_ps(wy[i], 1) : _mm256_castps256_ps128(wy[i]);
+                    z[i] = four ? _mm256_extractf128_ps(depth[i], 1) : _mm256_castps256_ps128(depth[i]);
+                }
+                const int front = set_up_four(screen, x, y, z, &setups[four]);
+                projected &= ~((15 & ~front) << (4 * four));
             }
+        const int kept_lanes = projected | one_at_a_time;
         for (int lane = 0; lane < lanes; ++lane) {
             if (!(kept_lanes >> lane & 1))
                 continue;
             ScreenedTriangle &t = out[kept++];
             t.triangle = std::uint32_t(first) + std::uint32_t(lane);
-            t.projected = (projected >> lane & 1) != 0;
-            if (t.projected)
-                for (int i = 0; i < 3; ++i) {
-                    t.window_x[i] = x[i][lane];
-                    t.window_y[i] = y[i][lane];
-                    t.depth[i] = z[i][lane];
-                }
+            t.set_up = (projected >> lane & 1) != 0;
+            if (!t.set_up)
+                continue;
+            const FourSetups &f = setups[lane / 4];
+            const int l = lane % 4;
+            PolygonSetup &setup = t.setup;
+            setup.edges = 3;
+            for (int e = 0; e < 3; ++e) {
+                setup.ea[e] = f.ea[e][l];
+                setup.eb[e] = f.eb[e][l];
+                setup.ec[e] = f.ec[e][l];
+            }
+            setup.za = f.za[l];
+            setup.zb = f.zb[l];
+            setup.zc = f.zc[l];
+            setup.zcap = f.zcap[l];
+            setup.x0 = int(f.x0[l]);
+            setup.y0 = int(f.y0[l]);
+            setup.x1 = int(f.x1[l]);
+            setup.y1 = int(f.y1[l]);
         }
     }
     return kept;
