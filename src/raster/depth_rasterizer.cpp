@@ -273,7 +273,7 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     // pixel wholly and end here, before any other setup.
     const double k = options_.divisor;
     const double first = 0.5 / k, last = (k - 0.5) / k;
-    raster::PolygonSetup s;
+    raster::PolygonSetup s{};
     s.x0 = std::max(0, int(std::ceil(double(lo.x) - first)));
     s.y0 = std::max(0, int(std::ceil(double(lo.y) - first)));
     s.x1 = std::min(width_, int(std::floor(double(hi.x) - last)) + 1);

@@ -20,11 +20,13 @@ constexpr int tile_pixels = tile_size * tile_size;
 // depth pixel (X, Y) is covered when ea[e] X + (eb[e] Y + ec[e]) >= 0 for
 // every edge e (the sample offsets and margins are folded into ec), and its
 // depth is then min(za X + (zb Y + zc), zcap).
+// No member initializers: the AVX2 path keeps a batch of these on the
+// stack and fills in every field it uses.
 struct PolygonSetup {
-    int edges = 0;
+    int edges;
     float ea[max_edges], eb[max_edges], ec[max_edges];
-    float za = 0.0f, zb = 0.0f, zc = 0.0f, zcap = 1.0f;
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;   // the pixels that may be covered, half-open, inside the buffer
+    float za, zb, zc, zcap;
+    int x0, y0, x1, y1;   // the pixels that may be covered, half-open, inside the buffer
 };
 
 struct TileBuffer {
