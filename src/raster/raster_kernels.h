@@ -109,13 +109,14 @@ struct Band {
     float nearest_depth_term, farthest_depth_term;
 };
 
-inline void band_terms(const PolygonSetup &s, int row0, int row1, Band *band)
+// `edges` is s.edges (a constant where a loop specializes on it).
+inline void band_terms(const PolygonSetup &s, int edges, int row0, int row1, Band *band)
 {
     band->y8 = row0 / tile_size * tile_size;
     band->row0 = row0;
     band->row1 = row1;
     const float first = float(row0), last = float(row1 - 1);
-    for (int e = 0; e < s.edges; ++e) {
+    for (int e = 0; e < edges; ++e) {
         band->least_edge_term[e] = s.eb[e] * (s.eb[e] > 0.0f ? first : last) + s.ec[e];
         band->largest_edge_term[e] = s.eb[e] * (s.eb[e] > 0.0f ? last : first) + s.ec[e];
     }

@@ -6,8 +6,14 @@
 
 namespace occu::raster {
 
-void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
+namespace {
+
+// fill_avx2 for polygons of `Edges` edges, or of s.edges for 0: triangles,
+// most of the polygons, get their edge loops unrolled.
+template <int Edges>
+void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
 {
+    const int edges = Edges > 0 ? Edges : s.edges;
     const __m256 lanes = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
     const __m256 eights = _mm256_mul_ps(lanes, _mm256_set1_ps(float(tile_size)));
     const __m256 last_column = _mm256_set1_ps(float(tile_size - 1));
@@ -15,7 +21,7 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
     const __m256 za = _mm256_set1_ps(s.za), zcap = _mm256_set1_ps(s.zcap);
     __m256 ea[max_edges], eb[max_edges], ec[max_edges];
     bool rising[max_edges];
-    for (int e = 0; e < s.edges; ++e) {
+    for (int e = 0; e < edges; ++e) {
         ea[e] = _mm256_set1_ps(s.ea[e]);
         eb[e] = _mm256_set1_ps(s.eb[e]);
         ec[e] = _mm256_set1_ps(s.ec[e]);
@@ -25,7 +31,7 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
     Band band;
     alignas(32) float edge_rows[max_edges][tile_size], depth_rows[tile_size];
     for (int y8 = s.y0 / tile_size * tile_size; y8 < s.y1; y8 += tile_size) {
-        band_terms(s, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
+        band_terms(s, edges, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
         const bool all_rows = band.row0 == y8 && band.row1 == y8 + tile_size;
         // The row terms of the band's eight rows, eb Y + ec lane by lane,
         // once the band has a tile to fill.
@@ -38,7 +44,7 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
             const __m256 left = _mm256_add_ps(_mm256_set1_ps(float(x_first)), eights);
             const __m256 right = _mm256_add_ps(left, last_column);
             __m256 none = zero, whole = _mm256_cmp_ps(zero, zero, _CMP_EQ_OQ);
-            for (int e = 0; e < s.edges; ++e) {
+            for (int e = 0; e < edges; ++e) {
                 const __m256 largest = _mm256_add_ps(_mm256_mul_ps(ea[e], rising[e] ? right : left),
                                                      _mm256_set1_ps(band.largest_edge_term[e]));
                 none = _mm256_or_ps(none, _mm256_cmp_ps(largest, zero, _CMP_LT_OQ));
@@ -61,7 +67,7 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
             const int whole_tiles = _mm256_movemask_ps(whole);
             if (!rows_ready) {
                 const __m256 fy = _mm256_add_ps(_mm256_set1_ps(float(y8)), lanes);
-                for (int e = 0; e < s.edges; ++e)
+                for (int e = 0; e < edges; ++e)
                     _mm256_store_ps(edge_rows[e], _mm256_add_ps(_mm256_mul_ps(eb[e], fy), ec[e]));
                 _mm256_store_ps(depth_rows, _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(s.zb), fy), _mm256_set1_ps(s.zc)));
                 rows_ready = true;
@@ -97,7 +103,7 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
                     const int r = y - y8;
                     __m256 inside = _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea[0], fx), _mm256_broadcast_ss(edge_rows[0] + r)),
                                                   zero, _CMP_GE_OQ);
-                    for (int e = 1; e < s.edges; ++e)
+                    for (int e = 1; e < edges; ++e)
                         inside = _mm256_and_ps(inside, _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea[e], fx),
                                                                                    _mm256_broadcast_ss(edge_rows[e] + r)),
                                                                      zero, _CMP_GE_OQ));
@@ -115,6 +121,16 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
             }
         }
     }
+}
+
+}  // namespace
+
+void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
+{
+    if (s.edges == 3)
+        fill_polygon<3>(s, buffer);
+    else
+        fill_polygon<0>(s, buffer);
 }
 
 bool tile_behind_avx2(const float *tile, int c0, int c1, int r0, int r1, float z)

@@ -9,7 +9,7 @@ void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
 {
     Band band;
     for (int y8 = s.y0 / tile_size * tile_size; y8 < s.y1; y8 += tile_size) {
-        band_terms(s, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
+        band_terms(s, s.edges, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
         const bool all_rows = band.row0 == y8 && band.row1 == y8 + tile_size;
         for (int x8 = s.x0 / tile_size * tile_size; x8 < s.x1; x8 += tile_size) {
             const Cover cover = tile_cover(s, band, x8);
