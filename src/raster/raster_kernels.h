@@ -46,8 +46,8 @@ struct TileBuffer {
 // DepthRasterizer::polygon and rasterize take one triangle at a time.
 // Most triangles end before the setup (outside the frustum, back faces, or
 // covering no depth pixel wholly: section 7's small triangles); the rest
-// come out set up, or, when they need the near plane or the guard band (or
-// their transform is not finite), bare, to take the one-at-a-time way.
+// come out set up, or, when they need the near plane or the guard band,
+// bare, to take the one-at-a-time way.
 // Sets up exactly what that way sets up, so the buffer stays the same.
 // Clip coordinates are m * (x, y, z, 1) in glm's order,
 // (m0 x + m1 y) + (m2 z + m3).
@@ -64,13 +64,12 @@ struct TriangleScreen {
 
 struct ScreenedTriangle {
     std::uint32_t triangle;   // its number in the call
-    bool set_up;              // false: it needs clipping, or its transform is not finite
+    bool set_up;              // false: it needs clipping
     PolygonSetup setup;
 };
 
 // Writes the triangles among indices[0 .. 3 count) that may cover a depth
-// pixel to `out` (room for count), in order; returns how many. Vertex
-// indices must be below 2^31 / 3.
+// pixel to `out` (room for count), in order; returns how many.
 std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *positions, const std::uint32_t *indices,
                                   std::size_t count, ScreenedTriangle *out);
 

@@ -158,12 +158,21 @@ struct ClipVertex {
     __m256 x, y, z, w;
 };
 
-// One vertex of eight triangles (float offsets of its x), gathered and transformed.
-ClipVertex clip_vertex(const float *m, const float *positions, __m256i index3)
+// One corner of eight triangles: its positions loaded (x, y, z, and no
+// fourth float: a masked load reads nothing past a vertex, the array's
+// last included), turned into lanes of x, y and z, and transformed.
+// Gathers would be shorter to write and are much slower here.
+ClipVertex clip_vertex(const float *m, const float *const corner[8])
 {
-    const __m256 x = _mm256_i32gather_ps(positions, index3, 4);
-    const __m256 y = _mm256_i32gather_ps(positions + 1, index3, 4);
-    const __m256 z = _mm256_i32gather_ps(positions + 2, index3, 4);
+    const __m128i xyz = _mm_setr_epi32(-1, -1, -1, 0);
+    __m256 pair[4];   // corners j and j + 4
+    for (int j = 0; j < 4; ++j)
+        pair[j] = _mm256_set_m128(_mm_maskload_ps(corner[j + 4], xyz), _mm_maskload_ps(corner[j], xyz));
+    const __m256 xy01 = _mm256_unpacklo_ps(pair[0], pair[1]), z01 = _mm256_unpackhi_ps(pair[0], pair[1]);
+    const __m256 xy23 = _mm256_unpacklo_ps(pair[2], pair[3]), z23 = _mm256_unpackhi_ps(pair[2], pair[3]);
+    const __m256 x = _mm256_shuffle_ps(xy01, xy23, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 y = _mm256_shuffle_ps(xy01, xy23, _MM_SHUFFLE(3, 2, 3, 2));
+    const __m256 z = _mm256_shuffle_ps(z01, z23, _MM_SHUFFLE(1, 0, 1, 0));
     __m256 c[4];
     for (int i = 0; i < 4; ++i)
         c[i] = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[i]), x), _mm256_mul_ps(_mm256_set1_ps(m[4 + i]), y)),
@@ -320,32 +329,26 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
     const float *m = screen.view_projection;
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
     const __m256 two = _mm256_set1_ps(2.0f);   // the guard band, as polygon's float(guard)
+    const __m256 sign = _mm256_set1_ps(-0.0f);
     const __m256 scale_x = _mm256_set1_ps(screen.scale_x), scale_y = _mm256_set1_ps(screen.scale_y);
-    // Gathers take 32-bit offsets: a vertex index past this one (a float
-    // offset past 2^31) goes the one-at-a-time way, gathered here at this.
-    const __m256i largest_index = _mm256_set1_epi32(0x2aaaaaaa);
     std::size_t kept = 0;
     for (std::size_t first = 0; first < count; first += 8) {
         const int lanes = count - first < 8 ? int(count - first) : 8;
         // Past the end, the batch's last triangle again, its result dropped.
-        const __m256i lane_ids = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-        const __m256i clamped = _mm256_min_epi32(lane_ids, _mm256_set1_epi32(lanes - 1));
-        const __m256i offsets = _mm256_mullo_epi32(clamped, _mm256_set1_epi32(3));
-        const int *batch = reinterpret_cast<const int *>(indices + 3 * first);
         ClipVertex v[3];
-        __m256i index_too_large = _mm256_setzero_si256();
         for (int corner = 0; corner < 3; ++corner) {
-            const __m256i index = _mm256_i32gather_epi32(batch + corner, offsets, 4);
-            const __m256i usable = _mm256_min_epu32(index, largest_index);
-            index_too_large = _mm256_or_si256(index_too_large,
-                                              _mm256_xor_si256(_mm256_cmpeq_epi32(usable, index), _mm256_set1_epi32(-1)));
-            v[corner] = clip_vertex(m, positions, _mm256_mullo_epi32(usable, _mm256_set1_epi32(3)));
+            const float *position[8];
+            for (int j = 0; j < 8; ++j) {
+                const std::size_t t = first + std::size_t(j < lanes ? j : lanes - 1);
+                position[j] = positions + 3 * std::size_t(indices[3 * t + std::size_t(corner)]);
+            }
+            v[corner] = clip_vertex(m, position);
         }
 
         // Outside one clip plane with every vertex: nothing to draw.
         const __m256 all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
         __m256 out_right = all, out_left = all, out_top = all, out_bottom = all, out_far = all, out_near = all;
-        __m256 needs_clip = _mm256_castsi256_ps(index_too_large);
+        __m256 needs_clip = zero;
         for (const ClipVertex &c : v) {
             const __m256 minus_w = _mm256_sub_ps(zero, c.w);
             out_right = _mm256_and_ps(out_right, _mm256_cmp_ps(c.x, c.w, _CMP_GT_OQ));
@@ -353,14 +356,13 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
             out_top = _mm256_and_ps(out_top, _mm256_cmp_ps(c.y, c.w, _CMP_GT_OQ));
             out_bottom = _mm256_and_ps(out_bottom, _mm256_cmp_ps(c.y, minus_w, _CMP_LT_OQ));
             out_far = _mm256_and_ps(out_far, _mm256_cmp_ps(c.z, c.w, _CMP_GT_OQ));
-            out_near = _mm256_and_ps(out_near, _mm256_cmp_ps(c.z, minus_w, _CMP_LT_OQ));
+            const __m256 before_near = _mm256_cmp_ps(c.z, minus_w, _CMP_LT_OQ);
+            out_near = _mm256_and_ps(out_near, before_near);
+            // x > g || x < -g is |x| > g, NaN included (false either way).
             const __m256 g = _mm256_mul_ps(two, c.w);
-            const __m256 minus_g = _mm256_sub_ps(zero, g);
-            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.z, minus_w, _CMP_LT_OQ));
-            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.x, g, _CMP_GT_OQ));
-            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.x, minus_g, _CMP_LT_OQ));
-            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.y, g, _CMP_GT_OQ));
-            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.y, minus_g, _CMP_LT_OQ));
+            needs_clip = _mm256_or_ps(needs_clip, before_near);
+            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(_mm256_andnot_ps(sign, c.x), g, _CMP_GT_OQ));
+            needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(_mm256_andnot_ps(sign, c.y), g, _CMP_GT_OQ));
             needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.w, zero, _CMP_NGT_UQ));
         }
         const __m256 all_out = _mm256_or_ps(_mm256_or_ps(_mm256_or_ps(out_right, out_left), _mm256_or_ps(out_top, out_bottom)),
@@ -368,8 +370,7 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
         // polygon's test of the first vertex's sum; a non-finite one draws nothing.
         const __m256 sum = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(v[0].x, v[0].y), v[0].z), v[0].w);
         const __m256 finite = _mm256_cmp_ps(_mm256_sub_ps(sum, sum), zero, _CMP_EQ_OQ);
-        const int unknown = _mm256_movemask_ps(_mm256_castsi256_ps(index_too_large));
-        const int drawn = (_mm256_movemask_ps(_mm256_andnot_ps(all_out, finite)) | unknown) & ((1 << lanes) - 1);
+        const int drawn = _mm256_movemask_ps(_mm256_andnot_ps(all_out, finite)) & ((1 << lanes) - 1);
         if (drawn == 0)
             continue;
         const int one_at_a_time = _mm256_movemask_ps(needs_clip) & drawn;
