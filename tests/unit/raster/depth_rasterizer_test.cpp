@@ -252,6 +252,65 @@ TEST(DepthRasterizer, ScalarAndAvx2BuffersAreEqualBitForBit)
     EXPECT_GT(covered, 10000) << "the comparison saw covered pixels";
 }
 
+// Meshes as the city's: many small triangles sharing vertices, both
+// windings, some across the near plane and some outside the view; in one
+// call, so that the AVX2 path screens them eight at a time across its
+// batches and their ends.
+TEST(DepthRasterizer, ScalarAndAvx2AgreeOnLargeMeshesTriangleByTriangle)
+{
+    if (!DepthRasterizer::avx2_supported())
+        GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
+    const glm::mat4 vp = test_camera().view_projection();
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    DepthRasterizer scalar(DepthRasterizer::Isa::scalar), avx2(DepthRasterizer::Isa::avx2);
+    std::vector<float> a, b;
+    long covered = 0;
+    std::uint64_t rasterized = 0, clipped = 0;
+    for (int trial = 0; trial < 24; ++trial) {
+        // A rumpled grid of n x n quads, two triangles each, tilted at
+        // random, facing the eye in three trials of four.
+        const int n = 8 + trial * 3;
+        const glm::vec3 centre{unit(rng) * 4 - 2, unit(rng) * 4 - 2, -0.05f - unit(rng) * (trial % 2 ? 8.0f : 1.0f)};
+        const glm::vec3 u = glm::normalize(glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f});
+        const float away = trial % 4 == 3 ? 1.0f : -1.0f;
+        const glm::vec3 v = glm::normalize(glm::cross(u, glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, away}));
+        const float size = 1.0f + unit(rng) * 12.0f;
+        std::vector<glm::vec3> positions;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i)
+                positions.push_back(centre + u * (size * (float(i) / float(n) - 0.5f)) +
+                                    v * (size * (float(j) / float(n) - 0.5f)) +
+                                    glm::cross(u, v) * (0.05f * size * (unit(rng) - 0.5f) / float(n)));
+        std::vector<std::uint32_t> indices;
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const auto at = [&](int x, int y) { return std::uint32_t(y * (n + 1) + x); };
+                indices.insert(indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+                indices.insert(indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+            }
+        const std::size_t triangles = indices.size() / 3 - std::size_t(trial % 7);   // ends off the eights
+        const DepthRasterizer::Options o{1 + trial % 4, trial % 3 != 0};
+        for (DepthRasterizer *r : {&scalar, &avx2}) {
+            r->begin(vp, frame_size, frame_size, o);
+            r->render_triangles(positions.data(), indices.data(), triangles);
+        }
+        scalar.read(a);
+        avx2.read(b);
+        ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << "trial " << trial;
+        EXPECT_EQ(scalar.stats().polygons, avx2.stats().polygons);
+        EXPECT_EQ(scalar.stats().rasterized, avx2.stats().rasterized);
+        EXPECT_EQ(scalar.stats().clipped, avx2.stats().clipped);
+        rasterized += scalar.stats().rasterized;
+        clipped += scalar.stats().clipped;
+        for (float d : a)
+            covered += d < 1.0f;
+    }
+    EXPECT_GT(covered, 20000) << "the comparison saw covered pixels";
+    EXPECT_GT(rasterized, 3000u);
+    EXPECT_GT(clipped, 5u) << "some triangles took the one-at-a-time way";
+}
+
 TEST(DepthRasterizer, RectangleTestEqualsAScanOfTheBuffer)
 {
     const glm::mat4 vp = test_camera().view_projection();
