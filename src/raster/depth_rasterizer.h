@@ -35,7 +35,11 @@
 //
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
 // the caller); both evaluate the same float expressions in the same order,
-// with no fused multiply-add, so their buffers are equal bit for bit.
+// with no fused multiply-add, so their buffers are equal bit for bit. The
+// AVX2 path also takes triangles through transform, the clip and back-face
+// tests, projection and setup eight at a time, with the same float and
+// double expressions as the one-at-a-time way, which quads, boxes and
+// triangles that need clipping take.
 #pragma once
 
 #include <cstddef>

@@ -84,7 +84,10 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
 // pixel, and a tile whose farthest depth bound is no farther than the
 // polygon's nearest depth there takes nothing. Each of these decisions is
 // the one the per-pixel tests would make, so the buffer is the same as
-// testing every pixel of the box.
+// testing every pixel of the box's rows in every tile the box reaches.
+// Masked Occlusion Culling (Hasselgren et al.) rejects and accepts whole
+// tiles alike; here the test is the pixels' own float expression, so the
+// scalar and AVX2 loops need not agree on which tiles they skip.
 //
 // Internal to each loop's file, and free of library templates: an inline
 // function the AVX2 file compiles must not be the one the scalar file links
