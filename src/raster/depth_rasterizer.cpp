@@ -35,6 +35,14 @@ constexpr double depth_margin = 1.0 / (1 << 20);
 // buffer: a few roundings of the largest term.
 constexpr double float_error = 4.0 * std::numeric_limits<float>::epsilon();
 
+// m * (p, 1), summed as (m0 x + m1 y) + (m2 z + m3): written out rather
+// than left to glm, because the AVX2 screen (raster_kernels.h) must sum in
+// the same order.
+glm::vec4 clip_position(const glm::mat4 &m, const glm::vec3 &p)
+{
+    return (m[0] * p.x + m[1] * p.y) + (m[2] * p.z + m[3]);
+}
+
 // Signed distances of clip-space vertex v to the clip planes: near, then
 // the guard band's four sides. Inside where >= 0.
 double plane_distance(const glm::dvec4 &v, int plane)
@@ -99,7 +107,7 @@ void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::ui
     glm::vec4 clip[3];
     for (std::size_t t = 0; t < triangle_count; ++t) {
         for (int i = 0; i < 3; ++i)
-            clip[i] = view_projection_ * glm::vec4(positions[indices[3 * t + std::size_t(i)]], 1.0f);
+            clip[i] = clip_position(view_projection_, positions[indices[3 * t + std::size_t(i)]]);
         polygon(clip, 3);
     }
 }
@@ -142,7 +150,7 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
             }
             glm::vec4 clip[3];
             for (int v = 0; v < 3; ++v)
-                clip[v] = view_projection_ * glm::vec4(positions[batch_indices[3 * t.triangle + std::uint32_t(v)]], 1.0f);
+                clip[v] = clip_position(view_projection_, positions[batch_indices[3 * t.triangle + std::uint32_t(v)]]);
             --stats_.polygons;   // polygon counts it
             polygon(clip, 3);
         }
@@ -154,7 +162,7 @@ void DepthRasterizer::render_quads(const glm::vec3 *positions, const std::uint32
     glm::vec4 clip[4];
     for (std::size_t q = 0; q < quad_count; ++q) {
         for (int i = 0; i < 4; ++i)
-            clip[i] = view_projection_ * glm::vec4(positions[indices[4 * q + std::size_t(i)]], 1.0f);
+            clip[i] = clip_position(view_projection_, positions[indices[4 * q + std::size_t(i)]]);
         polygon(clip, 4);
     }
 }
@@ -168,7 +176,7 @@ void DepthRasterizer::render_box(const Aabb &box)
                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     glm::vec4 corners[8];
     for (int i = 0; i < 8; ++i)
-        corners[i] = view_projection_ * glm::vec4(box.corner(i), 1.0f);
+        corners[i] = clip_position(view_projection_, box.corner(i));
     glm::vec4 quad[4];
     for (const auto &face : faces) {
         for (int i = 0; i < 4; ++i)

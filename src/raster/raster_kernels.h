@@ -45,12 +45,12 @@ struct TileBuffer {
 // same float and double expressions in the same order as
 // DepthRasterizer::polygon and rasterize take one triangle at a time.
 // Most triangles end before the setup (outside the frustum, back faces, or
-// covering no depth pixel wholly: section 7's small triangles); the rest
+// covering no depth pixel wholly, as most of a detailed mesh's do); the rest
 // come out set up, or, when they need the near plane or the guard band,
 // bare, to take the one-at-a-time way.
 // Sets up exactly what that way sets up, so the buffer stays the same.
-// Clip coordinates are m * (x, y, z, 1) in glm's order,
-// (m0 x + m1 y) + (m2 z + m3).
+// Clip coordinates are m * (x, y, z, 1) summed as clip_position does
+// (depth_rasterizer.cpp): (m0 x + m1 y) + (m2 z + m3).
 struct TriangleScreen {
     const float *view_projection;   // column-major 4 x 4, as glm
     float scale_x, scale_y;         // half the buffer's size: window = (ndc + 1) * scale
