@@ -119,7 +119,7 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
     // those that need clipping go on one at a time.
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && sizeof(glm::mat4) == 16 * sizeof(float),
                   "the AVX2 screen reads positions and the matrix as packed floats");
-    constexpr std::size_t batch = 256;
+    constexpr std::size_t batch = 64;
     raster::ScreenedTriangle kept[batch];
     const double k = options_.divisor;
     const raster::TriangleScreen screen{&view_projection_[0][0],
