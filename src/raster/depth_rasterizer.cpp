@@ -368,15 +368,19 @@ void DepthRasterizer::merge_nearest(const DepthRasterizer &other)
 {
     if (other.width_ != width_ || other.height_ != height_ || other.tiles_.size() != tiles_.size())
         throw std::invalid_argument("depth rasterizer: merging a buffer of another size");
+    if (&other == this)
+        return;   // nothing is nearer than itself
     for (std::size_t t = 0; t < dirty_.size(); ++t) {
-        float *to = tiles_.data() + t * tile_pixels;
-        const float *from = other.tiles_.data() + t * tile_pixels;
-        bool nearer = false;
-        for (int i = 0; i < tile_pixels; ++i)
-            if (from[i] < to[i]) {
-                to[i] = from[i];
-                nearer = true;
-            }
+        // Two buffers, never one: each pixel stored, nearer or not, so that
+        // the loop vectorizes.
+        float *__restrict to = tiles_.data() + t * tile_pixels;
+        const float *__restrict from = other.tiles_.data() + t * tile_pixels;
+        int nearer = 0;
+        for (int i = 0; i < tile_pixels; ++i) {
+            const int from_nearer = from[i] < to[i];
+            to[i] = from_nearer ? from[i] : to[i];
+            nearer |= from_nearer;
+        }
         if (nearer) {
             dirty_[t] = 1;
             any_dirty_ = true;
