@@ -1,5 +1,7 @@
-// The AVX2 loops: eight depth pixels of a tile row at once, the scalar
-// loops' expressions lane by lane (raster_kernels_scalar.cpp).
+// The AVX2 loops: eight depth pixels of a tile row, or eight tiles of a
+// band, at once, the scalar loops' expressions lane by lane
+// (raster_kernels_scalar.cpp); and the triangles' screen and setup, eight
+// triangles at once, DepthRasterizer::polygon's and rasterize's.
 #include "raster/raster_kernels.h"
 
 #include <immintrin.h>
@@ -40,7 +42,8 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
         // Eight tiles of the band at once: tile_cover, tile_nearest_depth
         // and the bound test in lanes.
         for (int x_first = s.x0 / tile_size * tile_size; x_first < s.x1; x_first += tile_size * 8) {
-            const int tiles = (s.x1 - x_first + tile_size - 1) / tile_size < 8 ? (s.x1 - x_first + tile_size - 1) / tile_size : 8;
+            const int tiles_left = (s.x1 - x_first + tile_size - 1) / tile_size;
+            const int tiles = tiles_left < 8 ? tiles_left : 8;
             const __m256 left = _mm256_add_ps(_mm256_set1_ps(float(x_first)), eights);
             const __m256 right = _mm256_add_ps(left, last_column);
             __m256 none = zero, whole = _mm256_cmp_ps(zero, zero, _CMP_EQ_OQ);
@@ -57,9 +60,10 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
             if (fill == 0)
                 continue;
             const std::size_t first_tile = band_tiles + std::size_t(x_first / tile_size);
-            const __m256 nearest = _mm256_min_ps(
-                zcap, _mm256_add_ps(_mm256_mul_ps(za, depth_rising ? left : right), _mm256_set1_ps(band.nearest_depth_term)));
-            const __m256i load = _mm256_cmpgt_epi32(_mm256_set1_epi32(tiles), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+            const __m256 nearest = _mm256_min_ps(zcap, _mm256_add_ps(_mm256_mul_ps(za, depth_rising ? left : right),
+                                                                     _mm256_set1_ps(band.nearest_depth_term)));
+            const __m256i load =
+                _mm256_cmpgt_epi32(_mm256_set1_epi32(tiles), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
             const __m256 bound = _mm256_maskload_ps(buffer.farthest_bound + first_tile, load);
             fill &= ~_mm256_movemask_ps(_mm256_cmp_ps(nearest, bound, _CMP_GE_OQ));
             if (fill == 0)
@@ -69,7 +73,8 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
                 const __m256 fy = _mm256_add_ps(_mm256_set1_ps(float(y8)), lanes);
                 for (int e = 0; e < edges; ++e)
                     _mm256_store_ps(edge_rows[e], _mm256_add_ps(_mm256_mul_ps(eb[e], fy), ec[e]));
-                _mm256_store_ps(depth_rows, _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(s.zb), fy), _mm256_set1_ps(s.zc)));
+                _mm256_store_ps(depth_rows,
+                                _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(s.zb), fy), _mm256_set1_ps(s.zc)));
                 rows_ready = true;
             }
             for (; fill != 0; fill &= fill - 1) {
@@ -101,15 +106,16 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
                 __m256 wrote = zero;
                 for (int y = band.row0; y < band.row1; ++y) {
                     const int r = y - y8;
-                    __m256 inside = _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea[0], fx), _mm256_broadcast_ss(edge_rows[0] + r)),
-                                                  zero, _CMP_GE_OQ);
-                    for (int e = 1; e < edges; ++e)
-                        inside = _mm256_and_ps(inside, _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea[e], fx),
-                                                                                   _mm256_broadcast_ss(edge_rows[e] + r)),
-                                                                     zero, _CMP_GE_OQ));
+                    __m256 inside = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+                    for (int e = 0; e < edges; ++e) {
+                        const __m256 edge =
+                            _mm256_add_ps(_mm256_mul_ps(ea[e], fx), _mm256_broadcast_ss(edge_rows[e] + r));
+                        inside = _mm256_and_ps(inside, _mm256_cmp_ps(edge, zero, _CMP_GE_OQ));
+                    }
                     if (_mm256_movemask_ps(inside) == 0)
                         continue;
-                    const __m256 z = _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_broadcast_ss(depth_rows + r)));
+                    const __m256 z =
+                        _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_broadcast_ss(depth_rows + r)));
                     float *row = tile + r * tile_size;
                     const __m256 old = _mm256_loadu_ps(row);
                     const __m256 write = _mm256_and_ps(inside, _mm256_cmp_ps(z, old, _CMP_LT_OQ));
@@ -175,8 +181,9 @@ ClipVertex clip_vertex(const float *m, const float *const corner[8])
     const __m256 z = _mm256_shuffle_ps(z01, z23, _MM_SHUFFLE(1, 0, 1, 0));
     __m256 c[4];
     for (int i = 0; i < 4; ++i)
-        c[i] = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[i]), x), _mm256_mul_ps(_mm256_set1_ps(m[4 + i]), y)),
-                             _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[8 + i]), z), _mm256_set1_ps(m[12 + i])));
+        c[i] = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[i]), x), _mm256_mul_ps(_mm256_set1_ps(m[4 + i]), y)),
+            _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[8 + i]), z), _mm256_set1_ps(m[12 + i])));
     return {c[0], c[1], c[2], c[3]};
 }
 
@@ -300,15 +307,15 @@ int set_up_four(const TriangleScreen &screen, const __m128 *wx, const __m128 *wy
             _mm256_sub_pd(d[i], _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(za, x[i]), _mm256_mul_pd(zb, y[i])), zc));
         lift = _mm256_max_pd(above, lift);   // std::max(lift, above)
     }
-    zc = _mm256_add_pd(
-        zc, _mm256_add_pd(
-                _mm256_add_pd(lift, _mm256_mul_pd(za, select(_mm256_cmp_pd(za, zero, _CMP_GT_OQ), last, first))),
-                _mm256_mul_pd(zb, select(_mm256_cmp_pd(zb, zero, _CMP_GT_OQ), last, first))));
-    zc = _mm256_add_pd(
-        zc, _mm256_add_pd(_mm256_set1_pd(screen.depth_margin),
-                          _mm256_mul_pd(float_error, _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(absolute(za), absolute(zb)),
-                                                                                 extent),
-                                                                   absolute(zc)))));
+    // zc += lift + za * (last or first) + zb * (last or first): the farthest sample.
+    const __m256d za_sample = select(_mm256_cmp_pd(za, zero, _CMP_GT_OQ), last, first);
+    const __m256d zb_sample = select(_mm256_cmp_pd(zb, zero, _CMP_GT_OQ), last, first);
+    const __m256d lift_to_sample = _mm256_add_pd(lift, _mm256_mul_pd(za, za_sample));
+    zc = _mm256_add_pd(zc, _mm256_add_pd(lift_to_sample, _mm256_mul_pd(zb, zb_sample)));
+    // zc += depth_margin + float_error * ((|za| + |zb|) * extent + |zc|).
+    const __m256d slope = _mm256_add_pd(absolute(za), absolute(zb));
+    const __m256d rounding = _mm256_mul_pd(float_error, _mm256_add_pd(_mm256_mul_pd(slope, extent), absolute(zc)));
+    zc = _mm256_add_pd(zc, _mm256_add_pd(_mm256_set1_pd(screen.depth_margin), rounding));
     const __m128 za_f = _mm256_cvtpd_ps(za), zb_f = _mm256_cvtpd_ps(zb), zc_f = _mm256_cvtpd_ps(zc);
     // A sliver with no usable plane: its farthest vertex.
     const __m128 infinity = _mm_set1_ps(__builtin_inff());
@@ -365,8 +372,9 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
             needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(_mm256_andnot_ps(sign, c.y), g, _CMP_GT_OQ));
             needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(c.w, zero, _CMP_NGT_UQ));
         }
-        const __m256 all_out = _mm256_or_ps(_mm256_or_ps(_mm256_or_ps(out_right, out_left), _mm256_or_ps(out_top, out_bottom)),
-                                            _mm256_or_ps(out_far, out_near));
+        const __m256 all_out =
+            _mm256_or_ps(_mm256_or_ps(_mm256_or_ps(out_right, out_left), _mm256_or_ps(out_top, out_bottom)),
+                         _mm256_or_ps(out_far, out_near));
         // polygon's test of the first vertex's sum; a non-finite one draws nothing.
         const __m256 sum = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(v[0].x, v[0].y), v[0].z), v[0].w);
         const __m256 finite = _mm256_cmp_ps(_mm256_sub_ps(sum, sum), zero, _CMP_EQ_OQ);
