@@ -152,9 +152,13 @@ PvsDatabase PvsDatabase::load(const std::string &path)
             fail(path, line, "want 'cell I X0 Z0 X1 Z1 X2 Z2'");
         if (count(path, line, w[1], "cell number", n) != i)
             fail(path, line, "cell " + w[1] + " where cell " + std::to_string(i) + " belongs");
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < 3; ++c) {
             db.cells[i][std::size_t(c)] = {finite_number(path, line, w[std::size_t(2 + 2 * c)], "x"),
                                            finite_number(path, line, w[std::size_t(3 + 2 * c)], "z")};
+            const glm::dvec2 &p = db.cells[i][std::size_t(c)];
+            if (std::abs(p.x) > 1e9 || std::abs(p.y) > 1e9)
+                fail(path, line, "a corner beyond 1e9 m of the origin");
+        }
         const auto &t = db.cells[i];
         if ((t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x) == 0.0)
             fail(path, line, "cell " + std::to_string(i) + " has no area");

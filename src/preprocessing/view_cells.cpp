@@ -153,8 +153,10 @@ ViewCells::ViewCells(std::vector<std::array<glm::dvec2, 3>> triangles, const Vie
         throw std::invalid_argument("view cells: the prisms' bottom must be below their top");
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
         auto &t = triangles_[i];
-        if (!finite(t[0]) || !finite(t[1]) || !finite(t[2]))
-            throw std::invalid_argument("view cell " + std::to_string(i) + " has a corner that is not finite");
+        for (const glm::dvec2 &p : t)
+            if (!finite(p) || std::abs(p.x) > 1e9 || std::abs(p.y) > 1e9)
+                throw std::invalid_argument("view cell " + std::to_string(i) +
+                                            " has a corner that is not finite or beyond 1e9 m");
         const double area2 = cross(t[1] - t[0], t[2] - t[0]);
         if (area2 == 0.0)
             throw std::invalid_argument("view cell " + std::to_string(i) + " has no area");
@@ -184,14 +186,16 @@ void ViewCells::build_grid()
     // About one cell per grid square.
     const double square = std::max(mean_size, 1e-9 + 1e-12 * std::max(hi.x - lo.x, hi.y - lo.y));
     grid_min_ = lo;
-    grid_size_ = glm::ivec2(std::clamp(int((hi.x - lo.x) / square) + 1, 1, 4096),
-                            std::clamp(int((hi.y - lo.y) / square) + 1, 1, 4096));
+    // Clamped in double: a far-flung cell must not overflow an int.
+    grid_size_ = glm::ivec2(int(std::clamp((hi.x - lo.x) / square + 1.0, 1.0, 4096.0)),
+                            int(std::clamp((hi.y - lo.y) / square + 1.0, 1.0, 4096.0)));
     grid_cell_ = glm::max((hi - lo) / glm::dvec2(grid_size_), glm::dvec2(1e-12));
     grid_.assign(std::size_t(grid_size_.x) * std::size_t(grid_size_.y), {});
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
         const Bounds b = bounds(i);
-        const glm::ivec2 g0 = glm::clamp(glm::ivec2(glm::floor((b.min - grid_min_) / grid_cell_)), glm::ivec2(0), grid_size_ - 1);
-        const glm::ivec2 g1 = glm::clamp(glm::ivec2(glm::floor((b.max - grid_min_) / grid_cell_)), glm::ivec2(0), grid_size_ - 1);
+        const glm::dvec2 top(grid_size_ - 1);
+        const glm::ivec2 g0(glm::clamp(glm::floor((b.min - grid_min_) / grid_cell_), glm::dvec2(0.0), top));
+        const glm::ivec2 g1(glm::clamp(glm::floor((b.max - grid_min_) / grid_cell_), glm::dvec2(0.0), top));
         for (int y = g0.y; y <= g1.y; ++y)
             for (int x = g0.x; x <= g1.x; ++x)
                 grid_[std::size_t(y) * std::size_t(grid_size_.x) + std::size_t(x)].push_back(std::uint32_t(i));
