@@ -24,6 +24,9 @@ TEST_PACKAGES=(
     assimp-testmodels   # real models the demos must refuse (BoxWithInfinites.glb: infinite vertices)
     clang libclang-rt-14-dev   # the fuzz targets: libFuzzer and the sanitizers' runtimes (tools/fuzz)
     chromium            # headless, renders the walkthrough's report page in its test (walkthrough-report.sh)
+    # view-cells-slurm.sh starts a single-node Slurm cluster of its own (munged, slurmctld,
+    # slurmd) to run tools/slurm/preprocess-view-cells.sh, and runs the GNU parallel script
+    slurm-wlm slurmctld slurmd slurm-client munge parallel
 )
 # To plot the walkthrough's frames (tools/plot-walkthrough.sh; tools/demo and
 # its test) and the benches' results, and to make the video of its route.
