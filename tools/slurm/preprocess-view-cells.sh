@@ -10,8 +10,8 @@
 # task unchanged, so the merged database is byte for byte the one a single
 # `occu-preprocess view-cells OPTIONS --out OUT` makes.
 #
-# Prints the array job's id and the merge job's. --wait blocks until the merge
-# job ends and exits with its status (showing the logs' ends when it failed);
+# Prints the array job's id and the merge job's. --wait blocks until both jobs
+# end and fails unless the merge completed (showing the logs' ends);
 # --sbatch ARG passes ARG to both sbatch calls (e.g. --sbatch --partition=big).
 # OUT and OCCU-PREPROCESS must be on a file system every node sees; the
 # environment of this shell (GALLIUM_DRIVER, ...) reaches the jobs (sbatch's
@@ -58,7 +58,7 @@ mkdir -p "$(dirname "$out")"
 out=$(cd "$(dirname "$out")" && pwd)/$(basename "$out")
 dir=$out.shards
 mkdir -p "$dir"
-rm -f "$out" "$dir"/shard-*.pvs "$dir"/shard-*.log "$dir"/merge.log "$dir"/merge.id
+rm -f "$out" "$dir"/shard-*.pvs "$dir"/shard-*.log "$dir"/merge.log
 
 # --parsable prints "JOBID" or "JOBID;CLUSTER".
 array=$(sbatch --parsable --array="1-$n" --output="$dir/shard-%a.log" "${sbatch_args[@]}" \
@@ -67,16 +67,27 @@ array=${array%%;*}
 echo "array job $array: $n shards into $dir/shard-I.pvs (logs $dir/shard-I.log)"
 merge_args=(--parsable --dependency="afterok:$array" --kill-on-invalid-dep=yes --output="$dir/merge.log"
             "${sbatch_args[@]}" "$here/view-cells-merge.sbatch" "$bin" "$n" "$dir" "$out")
-if [ $wait = 0 ]; then
-    merge=$(sbatch "${merge_args[@]}")
-    echo "merge job ${merge%%;*}: after every shard, into $out (log $dir/merge.log)"
-    exit 0
-fi
-status=0
-sbatch --wait "${merge_args[@]}" > "$dir/merge.id" || status=$?
-merge=$(head -n 1 "$dir/merge.id")
-echo "merge job ${merge%%;*}: after every shard, into $out (log $dir/merge.log)"
-if [ $status != 0 ] || [ ! -s "$out" ]; then
+merge=$(sbatch "${merge_args[@]}")
+merge=${merge%%;*}
+echo "merge job $merge: after every shard, into $out (log $dir/merge.log)"
+[ $wait = 1 ] || exit 0
+
+# Waits by asking squeue each second (sbatch --wait polls at up to 10 s and
+# exits 0 for a job cancelled before it ran), then asks for the merge's end.
+fails=0
+while :; do
+    if ! jobs=$(squeue --noheader --jobs="$array,$merge" --states=PD,CF,R,CG,S --format=%i 2>/dev/null); then
+        fails=$((fails + 1))
+        [ $fails -lt 30 ] || die "squeue failed 30 times in a row; jobs $array and $merge are left to Slurm"
+    elif [ -z "$jobs" ]; then
+        break
+    else
+        fails=0
+    fi
+    sleep 1
+done
+state=$(scontrol --oneliner show job "$merge" 2>/dev/null | sed -n 's/.* JobState=\([^ ]*\) .*/\1/p')
+if [ "$state" != COMPLETED ] || [ ! -s "$out" ]; then
     # Each log's last lines, without occu-preprocess's usage text.
     for log in "$dir"/shard-*.log "$dir"/merge.log; do
         if [ -f "$log" ]; then
@@ -84,6 +95,6 @@ if [ $status != 0 ] || [ ! -s "$out" ]; then
             awk '/^usage:/ { skip = 1; next } /^[^ ]/ { skip = 0 } !skip' "$log" | tail -n 5
         fi
     done >&2
-    die "the merge job ${merge%%;*} did not make $out (a failed shard cancels it; sbatch --wait said $status)"
+    die "the merge job $merge did not make $out (its state: ${state:-unknown}; a failed shard cancels it)"
 fi
 echo "$out: merged from $n shards"

@@ -170,8 +170,9 @@ if OCCU_PREPROCESS=$bin timeout 120 "$submit" --wait 2 "$dir/out/bad.pvs" --cell
 fi
 [ ! -e "$dir/out/bad.pvs" ] || fail "a database was made although its shards failed"
 grep -q -- "--epsilon wants a number" "$dir/bad.log" || { cat "$dir/bad.log"; fail "the shard's error is not shown"; }
+echo "a failing shard: $(tail -n 1 "$dir/bad.log")"
 [ -z "$(squeue --noheader)" ] || { squeue; fail "jobs left in the queue"; }
 
 stop || fail "a daemon did not stop"
 echo "4 shards through sbatch (job array + afterok merge) and under GNU parallel equal the one-process database byte for byte"
-echo "wall time, whole processes: one process ${whole_s} s; Slurm, 4 shards and the merge ${slurm_s} s (sbatch --wait polls; from the first shard's start to the merge's end ${inside_s} s by Slurm's record); GNU parallel, 4 shards and the merge ${parallel_s} s"
+echo "wall time, whole processes: one process ${whole_s} s; Slurm, 4 shards and the merge ${slurm_s} s (waits by squeue each second; from the first shard's start to the merge's end ${inside_s} s by Slurm's record); GNU parallel, 4 shards and the merge ${parallel_s} s"
