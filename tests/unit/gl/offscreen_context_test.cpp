@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <link.h>
+#include <string>
 #include <stdexcept>
 
 #include "gl/extensions.h"
@@ -19,6 +21,42 @@ std::string requested_driver()
     return d ? d : "";
 }
 }  // namespace
+
+namespace {
+
+// The directory of the loaded shared object whose file name starts `name`.
+std::string loaded_from(const std::string &name)
+{
+    struct Search {
+        std::string name, dir;
+    } search{name, ""};
+    dl_iterate_phdr(
+        [](dl_phdr_info *info, std::size_t, void *data) {
+            auto *s = static_cast<Search *>(data);
+            const std::string path = info->dlpi_name ? info->dlpi_name : "";
+            const std::size_t slash = path.rfind('/');
+            if (slash != std::string::npos && path.compare(slash + 1, s->name.size(), s->name) == 0) {
+                s->dir = path.substr(0, slash);
+                return 1;
+            }
+            return 0;
+        },
+        &search);
+    return search.dir;
+}
+
+}  // namespace
+
+// libOSMesa's own libglapi comes from the patched Mesa too, not from the
+// system (whose unpatched one its NEEDED would find without the link to it).
+TEST(OffscreenContext, LoadsThePatchedMesasGlapiBesideItsOSMesa)
+{
+    OffscreenContext ctx(4, 4);
+    const std::string osmesa = loaded_from("libOSMesa.so"), glapi = loaded_from("libglapi.so");
+    ASSERT_FALSE(osmesa.empty());
+    ASSERT_FALSE(glapi.empty());
+    EXPECT_EQ(glapi, osmesa);
+}
 
 TEST(ParseDriver, KnownNamesAndAClearError)
 {
