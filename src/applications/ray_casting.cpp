@@ -46,10 +46,6 @@ float brick_margin(const Aabb &brick, const Camera &camera, int width, int heigh
     return float(2.0 * footprint + 1e-5 * (size + 1.0));
 }
 
-// A box's faces by corner index (Aabb::corner), counter-clockwise seen from
-// outside, as SceneRenderer::draw_box winds them.
-constexpr int box_faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-
 // Where a brick lies against the near plane: wholly beyond it (view depth
 // greater than the plane's at every corner: the eye is outside the box and
 // every ray that meets it crosses one of its front faces, unclipped),
@@ -148,7 +144,7 @@ const std::vector<std::uint8_t> &OcclusionRayCasting::pixels_to_cast(const Camer
         std::vector<float> quads;
         quads.reserve(grown.size() * 6 * 4 * 3);
         for (const Aabb &g : grown)
-            for (const auto &face : box_faces)
+            for (const auto &face : aabb_faces)
                 for (int c : face) {
                     const glm::vec3 p = g.corner(c);
                     quads.insert(quads.end(), {p.x, p.y, p.z});

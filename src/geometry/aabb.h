@@ -49,4 +49,9 @@ struct Aabb {
     }
 };
 
+// A box's six faces as corner indices (Aabb::corner), each counter-clockwise
+// seen from outside, in the order -x, +x, -y, +y, -z, +z.
+inline constexpr int aabb_faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                         {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+
 }  // namespace occu

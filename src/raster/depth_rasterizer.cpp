@@ -171,16 +171,14 @@ void DepthRasterizer::render_quads(const glm::vec3 *positions, const std::uint32
 
 void DepthRasterizer::render_box(const Aabb &box)
 {
-    // Corners by Aabb::corner's bits; each face counter-clockwise seen from
-    // outside, so back-face culling after projection keeps the faces that
-    // face the eye (section 5's N . L < 0).
-    static const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    // aabb_faces wind counter-clockwise seen from outside, so back-face
+    // culling after projection keeps the faces that face the eye (section
+    // 5's N . L < 0).
     glm::vec4 corners[8];
     for (int i = 0; i < 8; ++i)
         corners[i] = clip_position(view_projection_, box.corner(i));
     glm::vec4 quad[4];
-    for (const auto &face : faces) {
+    for (const auto &face : aabb_faces) {
         for (int i = 0; i < 4; ++i)
             quad[i] = corners[face[i]];
         polygon(quad, 4);
@@ -461,11 +459,9 @@ bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
     // The box's content can be nearer than its faces nowhere, and nearer
     // than its nearest corner nowhere: both bounds less the depth margin.
     const double floor_z = double(z_near) - depth_margin;
-    static const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     if (any_dirty_)
         update_tile_maxima();
-    for (const auto &face : faces) {
+    for (const auto &face : aabb_faces) {
         glm::dvec2 p[4];
         double z[4], area = 0.0;
         glm::dvec2 lo(1e300), hi(-1e300);

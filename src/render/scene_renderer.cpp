@@ -85,10 +85,8 @@ void SceneRenderer::draw_leaf_flat(std::uint32_t node) const
 
 void SceneRenderer::draw_box(const Aabb &b)
 {
-    // Counter-clockwise seen from outside, as append_box winds them.
-    static const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     glBegin(GL_QUADS);
-    for (const auto &f : faces)
+    for (const auto &f : aabb_faces)
         for (int c : f) {
             const glm::vec3 p = b.corner(c);
             glVertex3f(p.x, p.y, p.z);

@@ -56,21 +56,13 @@ void require_finite_vertices(const Scene &scene, const std::string &source)
 
 void append_box(Mesh &mesh, const Aabb &box)
 {
-    // Each face: outward normal, then its four corners counter-clockwise
-    // seen from outside (corner index bits: x, y, z).
-    struct Face {
-        glm::vec3 normal;
-        int corners[4];
-    };
-    static const Face faces[6] = {
-        {{-1, 0, 0}, {0, 4, 6, 2}}, {{1, 0, 0}, {1, 3, 7, 5}}, {{0, -1, 0}, {0, 1, 5, 4}},
-        {{0, 1, 0}, {2, 6, 7, 3}},  {{0, 0, -1}, {0, 2, 3, 1}}, {{0, 0, 1}, {4, 5, 7, 6}},
-    };
-    for (const Face &f : faces) {
+    // Outward normals in aabb_faces' order: -x, +x, -y, +y, -z, +z.
+    static const glm::vec3 normals[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+    for (int f = 0; f < 6; ++f) {
         const auto base = std::uint32_t(mesh.positions.size());
-        for (int c : f.corners) {
+        for (int c : aabb_faces[f]) {
             mesh.positions.push_back(box.corner(c));
-            mesh.normals.push_back(f.normal);
+            mesh.normals.push_back(normals[f]);
             if (!mesh.colors.empty())
                 mesh.colors.push_back(mesh.color);
         }
