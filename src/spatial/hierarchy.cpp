@@ -129,6 +129,20 @@ std::string Hierarchy::fingerprint_of(const Scene &scene, const Hierarchy &h)
     return hex;
 }
 
+std::vector<std::uint8_t> subtrees_holding(const Hierarchy &hierarchy, const std::vector<std::uint32_t> &leaves)
+{
+    const auto &nodes = hierarchy.nodes();
+    std::vector<std::uint8_t> holds(nodes.size(), 0);
+    for (std::uint32_t leaf : leaves)
+        if (leaf < nodes.size())
+            holds[leaf] = 1;
+    // Children follow their parents in the node array: mark bottom-up.
+    for (std::size_t i = nodes.size(); i-- > 0;)
+        for (std::uint32_t c = 0; c < nodes[i].child_count; ++c)
+            holds[i] |= holds[nodes[i].first_child + c];
+    return holds;
+}
+
 std::vector<std::uint32_t> leaves_in_frustum(const Hierarchy &hierarchy, const Frustum &frustum)
 {
     std::vector<std::uint32_t> leaves;

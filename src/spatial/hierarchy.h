@@ -61,4 +61,9 @@ private:
 // Leaves not outside `frustum`, in node order.
 std::vector<std::uint32_t> leaves_in_frustum(const Hierarchy &hierarchy, const Frustum &frustum);
 
+// Per node, 1 when one of `leaves` is in its subtree (itself included), else
+// 0: the nodes a traversal must open or draw to reach those leaves. Indices
+// that are not nodes are ignored.
+std::vector<std::uint8_t> subtrees_holding(const Hierarchy &hierarchy, const std::vector<std::uint32_t> &leaves);
+
 }  // namespace occu

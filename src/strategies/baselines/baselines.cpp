@@ -45,15 +45,7 @@ public:
             throw std::runtime_error("ideal draws the oracle's visible leaves and needs the oracle's answer "
                                      "for each frame (walkthrough: --oracle on)");
         frustum_.emplace(frame.frustum);
-        const auto &nodes = hierarchy_.nodes();
-        shows_.assign(nodes.size(), 0);
-        for (std::uint32_t leaf : frame.truth->visible)
-            if (leaf < nodes.size())
-                shows_[leaf] = 1;
-        // Children follow their parents in the node array: sum bottom-up.
-        for (std::size_t i = nodes.size(); i-- > 0;)
-            for (std::uint32_t c = 0; c < nodes[i].child_count; ++c)
-                shows_[i] |= shows_[nodes[i].first_child + c];
+        shows_ = subtrees_holding(hierarchy_, frame.truth->visible);
     }
     void test(std::vector<NodeTest> &tests) override
     {

@@ -86,18 +86,12 @@ public:
         if (!set)
             return;   // view-frustum culling this frame
         cell_ = cell;
-        const auto &nodes = hierarchy_.nodes();
-        shows_.assign(nodes.size(), 0);
         ++frames_in_cells_;
+        const auto &nodes = hierarchy_.nodes();
         for (std::uint32_t leaf : *set)
-            if (leaf < nodes.size()) {
-                shows_[leaf] = 1;
+            if (leaf < nodes.size())
                 set_triangles_ += nodes[leaf].triangle_count;
-            }
-        // Children follow their parents in the node array: mark bottom-up.
-        for (std::size_t i = nodes.size(); i-- > 0;)
-            for (std::uint32_t c = 0; c < nodes[i].child_count; ++c)
-                shows_[i] |= shows_[nodes[i].first_child + c];
+        shows_ = subtrees_holding(hierarchy_, *set);
     }
 
     void test(std::vector<NodeTest> &tests) override
