@@ -15,7 +15,6 @@
 // rays gained something from the volume white) every --png-every cameras.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -25,6 +24,7 @@
 #include <vector>
 
 #include "applications/ray_casting.h"
+#include "camera/footprint.h"
 #include "camera/route.h"
 #include "cli/arguments.h"
 #include "gl/offscreen_context.h"
@@ -216,17 +216,13 @@ int main(int argc, char **argv)
             row(f, every, double(all.rays), 0, 0, all.ms, false, 0, 0);
 
             // Rays through the pixels whose ray meets the volume's box in front of the polygons.
-            // Only the pixels of the box's screen rectangle can meet it
-            // (all of them when the box holds the eye or crosses the near plane).
+            // Only the pixels of the box's footprint can meet it (all of
+            // them when it has none: it holds the eye or crosses the near plane).
             start = std::chrono::steady_clock::now();
             std::fill(box_mask.begin(), box_mask.end(), std::uint8_t(0));
             PixelRect near_box{0, 0, w, h};
-            if (const auto p = project_box(camera.view_projection(), camera.position, volume.box()))
-                near_box = PixelRect{int(std::floor((p->ndc_min.x + 1.0f) * 0.5f * float(w))) - 1,
-                                     int(std::floor((p->ndc_min.y + 1.0f) * 0.5f * float(h))) - 1,
-                                     int(std::ceil((p->ndc_max.x + 1.0f) * 0.5f * float(w))) + 1,
-                                     int(std::ceil((p->ndc_max.y + 1.0f) * 0.5f * float(h))) + 1}
-                               .clamped({0, 0, w, h});
+            if (const auto f = box_footprint(camera.view_projection(), camera.position, volume.box(), w, h))
+                near_box = f->rect;
             for (int y = near_box.y0; y < near_box.y1; ++y)
                 for (int x = near_box.x0; x < near_box.x1; ++x) {
                     const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
