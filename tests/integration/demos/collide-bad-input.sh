@@ -5,27 +5,7 @@
 # Usage: collide-bad-input.sh OCCU-COLLIDE
 set -u
 collide=$1
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-failures=0
-
-# expect_error WHAT-THE-MESSAGE-NAMES COMMAND...
-expect_error() {
-    named=$1
-    shift
-    "$@" >"$dir/out" 2>&1
-    status=$?
-    if [ $status -eq 0 ] || [ $status -gt 128 ]; then
-        echo "FAIL (status $status): $*"
-        failures=$((failures + 1))
-    elif ! grep -qF -- "$named" "$dir/out"; then
-        echo "FAIL (message does not name '$named'): $*"
-        sed 's/^/    /' "$dir/out"
-        failures=$((failures + 1))
-    else
-        echo "ok: $* -> $(head -n 1 "$dir/out")"
-    fi
-}
+. "$(dirname "$0")/expect-error.sh"
 
 printf '0 1.7 0 10 1.7 0\n0 1.7 0 nan 1.7 0\n' > "$dir/nan.route"
 out="$dir/out-dir"

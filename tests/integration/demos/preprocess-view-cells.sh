@@ -11,8 +11,7 @@
 set -eu
 bin=$1
 walkthrough=$2
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+. "$(dirname "$0")/expect-error.sh"
 fail() { echo "FAIL: $*"; exit 1; }
 
 opts="--cells 0-23 --leaf-triangles 1024"
@@ -31,13 +30,6 @@ fi
 grep -q "epsilon=1" "$dir/mixed.log" || { cat "$dir/mixed.log"; fail "the refusal does not name the difference"; }
 
 # Bad input: named, refused, no crash.
-expect_error() {
-    named=$1
-    shift
-    if "$@" >"$dir/out" 2>&1; then fail "accepted: $*"; fi
-    status=$?
-    grep -qF -- "$named" "$dir/out" || { cat "$dir/out"; fail "the message does not name '$named': $*"; }
-}
 touch "$dir/scene.obj"
 expect_error "2.5D occluders" "$bin" view-cells --scene "$dir/scene.obj" --out "$dir/x.pvs"
 expect_error "sqrt(2)" "$bin" view-cells --epsilon 0.5 --pixel 1 --cells 0-0 --out "$dir/x.pvs"
@@ -47,6 +39,7 @@ expect_error "--cells" "$bin" view-cells --cells 5 --out "$dir/x.pvs"
 expect_error "--test" "$bin" view-cells --test sometimes --out "$dir/x.pvs"
 sed 's/^cell 3 .*/cell 3 1 2 3 4 5 nan/' "$dir/whole.pvs" > "$dir/bad.pvs"
 expect_error "bad.pvs:8" "$bin" merge --out "$dir/x.pvs" "$dir/bad.pvs"
+[ "$failures" -eq 0 ] || fail "$failures bad inputs not refused as they should be"
 
 # The walkthrough culls with it (a camera in one of the cells made: the
 # first cells lie along the city's south edge, where the dense route starts).

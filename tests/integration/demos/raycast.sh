@@ -6,27 +6,7 @@
 # Usage: raycast.sh OCCU-RAYCAST
 set -u
 raycast=$1
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-failures=0
-
-# expect_error WHAT-THE-MESSAGE-NAMES COMMAND...
-expect_error() {
-    named=$1
-    shift
-    "$@" >"$dir/out" 2>&1
-    status=$?
-    if [ $status -eq 0 ] || [ $status -gt 128 ]; then
-        echo "FAIL (status $status): $*"
-        failures=$((failures + 1))
-    elif ! grep -qF -- "$named" "$dir/out"; then
-        echo "FAIL (message does not name '$named'): $*"
-        sed 's/^/    /' "$dir/out"
-        failures=$((failures + 1))
-    else
-        echo "ok: $* -> $(head -n 1 "$dir/out")"
-    fi
-}
+. "$(dirname "$0")/expect-error.sh"
 
 out="$dir/out-dir"
 expect_error "--brick" "$raycast" --frames 1 --brick 0 --out "$out"
