@@ -74,7 +74,7 @@ void CullMap::begin(const CullMapRegion &region)
     glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
 }
 
-void CullMap::draw_shadows(const glm::dvec3 &p, const std::vector<const PrismOccluder *> &occluders) const
+std::vector<double> CullMap::shadow_quads(const glm::dvec3 &p, const std::vector<const PrismOccluder *> &occluders) const
 {
     // Vertices (x, z, -(top - height)): glOrtho's depth range [0, top - bottom]
     // puts height h at window depth (top - h) / (top - bottom).
@@ -155,10 +155,7 @@ void CullMap::draw_shadows(const glm::dvec3 &p, const std::vector<const PrismOcc
         for (const auto &hole : o->holes)
             ring(hole);
     }
-    if (v.empty())
-        return;
-    glVertexPointer(3, GL_DOUBLE, 0, v.data());
-    glDrawArrays(GL_QUADS, 0, GLsizei(v.size() / 3));
+    return v;
 }
 
 void CullMap::add_sample_point(const glm::dvec3 &p, const std::vector<const PrismOccluder *> &occluders)
@@ -184,12 +181,19 @@ void CullMap::add_sample_point(const glm::dvec3 &p, const std::vector<const Pris
     glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_DEPTH_TEST);
     glEnableClientState(GL_VERTEX_ARRAY);
+    const std::vector<double> quads = shadow_quads(p, occluders);
+    auto draw_shadows = [&quads] {
+        if (quads.empty())
+            return;
+        glVertexPointer(3, GL_DOUBLE, 0, quads.data());
+        glDrawArrays(GL_QUADS, 0, GLsizei(quads.size() / 3));
+    };
     if (samples_ == 0) {
         // The first sample point's umbra: the union of its shadows.
         glDisable(GL_STENCIL_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
-        draw_shadows(p, occluders);
+        draw_shadows();
     } else {
         // Section 5's two passes: the intersection of the umbra so far with
         // this point's. First mark where a new shadow is higher than the
@@ -202,7 +206,7 @@ void CullMap::add_sample_point(const glm::dvec3 &p, const std::vector<const Pris
         glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_FALSE);
-        draw_shadows(p, occluders);
+        draw_shadows();
         // Elsewhere the new union is the smaller: reset those pixels to the
         // bottom and draw it there.
         glStencilFunc(GL_EQUAL, 0, 0xFF);
@@ -215,7 +219,7 @@ void CullMap::add_sample_point(const glm::dvec3 &p, const std::vector<const Pris
         glVertexPointer(3, GL_DOUBLE, 0, reset);
         glDrawArrays(GL_QUADS, 0, 4);
         glDepthFunc(GL_LESS);
-        draw_shadows(p, occluders);
+        draw_shadows();
     }
     glPopClientAttrib();
     ++samples_;

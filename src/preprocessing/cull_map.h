@@ -109,7 +109,9 @@ public:
                                                      std::size_t *passes = nullptr) const;
 
 private:
-    void draw_shadows(const glm::dvec3 &p, const std::vector<const PrismOccluder *> &occluders) const;
+    // The shadow quadrilaterals of `occluders` from `p`, as glVertexPointer's
+    // (x, z, depth) triples: made once per sample point, drawn by each pass.
+    std::vector<double> shadow_quads(const glm::dvec3 &p, const std::vector<const PrismOccluder *> &occluders) const;
     PixelRect box_pixels(const Aabb &box) const;
 
     double bottom_, top_;
