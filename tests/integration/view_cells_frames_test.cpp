@@ -128,6 +128,8 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
     const std::string path = testing::TempDir() + "/occu-view-cells-test.pvs";
     db.save(path);
     EXPECT_TRUE(PvsDatabase::load(path) == db) << "the database reads back as written";
+    EXPECT_THROW(make_strategy("pvs:pvs-database=" + path + ":epsilon=2", context), std::invalid_argument)
+        << "a setting the database decides, given beside it, would be ignored";
 
     Strategy none = make_strategy("none", context);
     Strategy vfc = make_strategy("vfc", context);

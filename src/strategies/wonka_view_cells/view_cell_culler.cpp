@@ -27,6 +27,13 @@ public:
                 scene_triangles_ += n.triangle_count;
         const std::string &path = settings.text("pvs-database");
         if (!path.empty()) {
+            // The database was made with its own settings (its provenance);
+            // others given beside it would be silently ignored.
+            for (const char *key : {"epsilon", "pixel", "max-edge", "cell-top", "clearance", "initial-extent"})
+                if ((":" + settings.changed()).find(":" + std::string(key) + "=") != std::string::npos)
+                    throw std::invalid_argument("pvs: " + std::string(key) +
+                                                " is the database's to say (" + path + " was made with its own); "
+                                                "give it to occu-preprocess view-cells, not beside pvs-database");
             database_.emplace(PvsDatabase::load(path));
             if (database_->provenance.hierarchy != context.hierarchy.fingerprint())
                 throw std::runtime_error(path + " was made for another scene or hierarchy (hierarchy " +
