@@ -41,3 +41,26 @@ skin_args() {
         echo "--set skin-database=$(skins_db)"
     fi
 }
+
+# The view cells' PVS database of the default city at the default settings
+# (occu-preprocess view-cells, about 7 minutes on this machine), made once
+# into build/occluders/ and again when occu-preprocess changes (its path on
+# stdout).
+pvs_db() {
+    local dir=$OCCU_ROOT/build/occluders
+    local file=$dir/view-cells.pvs
+    if [ ! -f "$file" ] || [ "$OCCU_ROOT/build/demos/occu-preprocess" -nt "$file" ]; then
+        mkdir -p "$dir"
+        "$OCCU_ROOT/build/demos/occu-preprocess" view-cells --out "$file.tmp" >&2
+        mv "$file.tmp" "$file"
+    fi
+    echo "$file"
+}
+
+# The walkthrough's arguments that give pvs its database, when STRATEGIES
+# (comma-separated) hold pvs without one.
+pvs_args() {
+    if [[ ,$1 =~ ,pvs[,:]|,pvs$ ]] && [[ $1 != *pvs-database* ]]; then
+        echo "--set pvs-database=$(pvs_db)"
+    fi
+}
