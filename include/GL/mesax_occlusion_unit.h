@@ -20,3 +20,29 @@ typedef void (APIENTRYP PFNGLOCCLUSIONBUFFERSMESAXPROC)(GLsizei count, const GLs
                                                         GLuint *const *buffers);
 
 #endif
+
+/*
+ * GL_MESAX_occlusion_unit_async: named occlusion passes whose records are
+ * read when they are ready, and conditional rendering on one tile of a
+ * pass, as spec/MESAX_occlusion_unit_async.txt defines them.
+ */
+#ifndef GL_MESAX_occlusion_unit_async
+#define GL_MESAX_occlusion_unit_async 1
+
+#define GL_OCCLUSION_PASS_RESULT_MESAX            0x9799
+#define GL_OCCLUSION_PASS_RESULT_AVAILABLE_MESAX  0x979A
+#define GL_OCCLUSION_PASS_RESULT_NO_WAIT_MESAX    0x979B
+#define GL_CURRENT_OCCLUSION_PASS_MESAX           0x979C
+
+typedef void (APIENTRYP PFNGLGENOCCLUSIONPASSESMESAXPROC)(GLsizei n, GLuint *passes);
+typedef void (APIENTRYP PFNGLDELETEOCCLUSIONPASSESMESAXPROC)(GLsizei n, const GLuint *passes);
+typedef GLboolean (APIENTRYP PFNGLISOCCLUSIONPASSMESAXPROC)(GLuint pass);
+typedef void (APIENTRYP PFNGLBEGINOCCLUSIONPASSMESAXPROC)(GLenum mode, GLuint pass);
+typedef void (APIENTRYP PFNGLENDOCCLUSIONPASSMESAXPROC)(void);
+typedef void (APIENTRYP PFNGLGETOCCLUSIONPASSIVMESAXPROC)(GLuint pass, GLenum pname, GLint *params);
+typedef void (APIENTRYP PFNGLBEGINCONDITIONALRENDEROCCLUSIONTILEMESAXPROC)(GLuint pass, GLuint tile,
+                                                                          GLuint minNohc, GLfloat minRatio,
+                                                                          GLenum mode);
+typedef void (APIENTRYP PFNGLENDCONDITIONALRENDEROCCLUSIONTILEMESAXPROC)(void);
+
+#endif
