@@ -15,6 +15,12 @@
 //            LP_NUM_THREADS values for the throughput table)
 //   render   GL_RENDER frame time of a draw-heavy scene (no occlusion at
 //            all): run it once per Mesa build to compare patched/unpatched
+//   async:N  a frame of N batches, each a brief pass of 16 tiles over 16
+//            boxes followed by drawing the mesh (the work a culling frame
+//            does between tests): passes read by RenderMode (each waits for
+//            its rasterization) vs pass objects read after the drawing
+//            (GL_MESAX_occlusion_unit_async) vs no read at all, the boxes
+//            drawn under conditional rendering on their tiles
 //
 // Each measurement alternates the variants it compares, repeats them and
 // reports medians, because these machines are shared and noisy.
@@ -285,6 +291,108 @@ void case_shaded(const Options &o)
     std::printf("shaded,%s,%d,1,%.4f,%.4f,%.3f\n", occu::gl::driver_name(o.driver), o.size, t[0], t[1], t[0] / t[1]);
 }
 
+// async:N (see the top of the file).
+void case_async(const Options &o, int batches)
+{
+    if (!occu::gl::has_extension("GL_MESAX_occlusion_unit_async")) {
+        std::fprintf(stderr, "occu-bench-ou: async:%d: the context lacks GL_MESAX_occlusion_unit_async\n", batches);
+        std::exit(1);
+    }
+    auto Scissors = reinterpret_cast<PFNGLSCISSORSMESAXPROC>(get_proc_address("glScissorsMESAX"));
+    auto Buffers = reinterpret_cast<PFNGLOCCLUSIONBUFFERSMESAXPROC>(get_proc_address("glOcclusionBuffersMESAX"));
+    auto GenPasses = reinterpret_cast<PFNGLGENOCCLUSIONPASSESMESAXPROC>(get_proc_address("glGenOcclusionPassesMESAX"));
+    auto BeginPass = reinterpret_cast<PFNGLBEGINOCCLUSIONPASSMESAXPROC>(get_proc_address("glBeginOcclusionPassMESAX"));
+    auto EndPass = reinterpret_cast<PFNGLENDOCCLUSIONPASSMESAXPROC>(get_proc_address("glEndOcclusionPassMESAX"));
+    auto GetPass = reinterpret_cast<PFNGLGETOCCLUSIONPASSIVMESAXPROC>(get_proc_address("glGetOcclusionPassivMESAX"));
+    auto BeginTile = reinterpret_cast<PFNGLBEGINCONDITIONALRENDEROCCLUSIONTILEMESAXPROC>(
+        get_proc_address("glBeginConditionalRenderOcclusionTileMESAX"));
+    auto EndTile = reinterpret_cast<PFNGLENDCONDITIONALRENDEROCCLUSIONTILEMESAXPROC>(
+        get_proc_address("glEndConditionalRenderOcclusionTileMESAX"));
+
+    setup_frame(o.size);
+    constexpr int n = 16;
+    const std::vector<occu::PixelRect> tiles = grid_tiles(n, o.size);
+    std::vector<GLint> tile_words;
+    for (const occu::PixelRect &t : tiles)
+        tile_words.insert(tile_words.end(), {t.x0, t.y0, t.width(), t.height()});
+    std::vector<std::vector<GLuint>> records(std::size_t(batches), std::vector<GLuint>(8 * n));
+    const auto count = std::size_t(batches);
+    std::vector<GLuint> passes(count);
+    GenPasses(batches, passes.data());
+    const float cell = float(o.size) / 4;
+    auto draw_box_of = [&](int i) {
+        const float cx = (i % 4) * cell, cy = (i / 4) * cell;
+        draw_box(cx + 0.1f * cell, cy + 0.1f * cell, cx + 0.9f * cell, cy + 0.9f * cell, 0.4f, 0.6f);
+    };
+    auto set_state = [&](std::vector<GLuint> &words) {
+        GLuint *buffers[n];
+        GLsizei sizes[n];
+        for (int i = 0; i < n; ++i) {
+            buffers[i] = words.data() + 8 * i;
+            sizes[i] = 8;
+        }
+        Buffers(n, sizes, buffers);
+        Scissors(n, tile_words.data());
+    };
+    std::vector<int> visible_sync(count), visible_async(count);
+    auto count_visible = [&](const std::vector<GLuint> &words) {
+        int v = 0;
+        for (int i = 0; i < n; ++i)
+            v += words[std::size_t(8 * i)] > 0;
+        return v;
+    };
+    auto sync = [&] {
+        for (int b = 0; b < batches; ++b) {
+            set_state(records[std::size_t(b)]);
+            glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+            for (int i = 0; i < n; ++i)
+                draw_box_of(i);
+            glRenderMode(GL_RENDER);   // waits for the pass's rasterization
+            visible_sync[std::size_t(b)] = count_visible(records[std::size_t(b)]);
+            draw_mesh(o.size);
+        }
+        Scissors(0, nullptr);
+    };
+    auto async = [&] {
+        for (int b = 0; b < batches; ++b) {
+            set_state(records[std::size_t(b)]);
+            BeginPass(GL_BRIEF_OCCLUSION_MESAX, passes[std::size_t(b)]);
+            for (int i = 0; i < n; ++i)
+                draw_box_of(i);
+            EndPass();                 // returns at once
+            draw_mesh(o.size);         // binned while the pass rasterizes
+            GLint overflowed = 0;
+            GetPass(passes[std::size_t(b)], GL_OCCLUSION_PASS_RESULT_MESAX, &overflowed);
+            visible_async[std::size_t(b)] = count_visible(records[std::size_t(b)]);
+        }
+        Scissors(0, nullptr);
+    };
+    auto conditional = [&] {
+        for (int b = 0; b < batches; ++b) {
+            set_state(records[std::size_t(b)]);
+            BeginPass(GL_BRIEF_OCCLUSION_MESAX, passes[std::size_t(b)]);
+            for (int i = 0; i < n; ++i)
+                draw_box_of(i);
+            EndPass();
+            draw_mesh(o.size);
+            for (int i = 0; i < n; ++i) {   // the GL decides; nothing read back
+                BeginTile(passes[std::size_t(b)], GLuint(i), 0, 0.0f, GL_QUERY_WAIT);
+                draw_box_of(i);
+                EndTile();
+            }
+        }
+        Scissors(0, nullptr);
+    };
+    const auto t = compare({sync, async, conditional}, o.repeat, 1);
+    for (int b = 0; b < batches; ++b)
+        if (visible_sync[std::size_t(b)] != visible_async[std::size_t(b)])
+            std::fprintf(stderr, "occu-bench-ou: async:%d batch %d: %d visible synchronously, %d asynchronously\n",
+                         batches, b, visible_sync[std::size_t(b)], visible_async[std::size_t(b)]);
+    const char *threads = std::getenv("LP_NUM_THREADS");
+    std::printf("async,%s,%d,%s,%d,%.4f,%.4f,%.4f,%.3f,%.3f\n", occu::gl::driver_name(o.driver), o.size,
+                threads ? threads : "default", batches, t[0], t[1], t[2], t[1] / t[0], t[2] / t[0]);
+}
+
 // Brief passes per second: 16 tiles over the mesh.
 void case_passes(const Options &o)
 {
@@ -375,9 +483,11 @@ void case_render(const Options &o)
         std::fprintf(stderr, "occu-bench-ou: %s\n", error);
     std::fprintf(error ? stderr : stdout,
                  "usage: occu-bench-ou [--driver softpipe|llvmpipe] [--size PIXELS] [--repeat N] [--only 0|1] CASE...\n"
-                 "cases: box, tiles:N, mesh:N, vmesh:N (N = 1..64), shaded, passes, render\n"
+                 "cases: box, tiles:N, mesh:N, vmesh:N (N = 1..64), shaded, passes, render, async:N\n"
                  "prints CSV: case,driver,size,n,ms_occlusion_unit,ms_other,ratio\n"
-                 "  (passes: case,driver,size,threads,ms,passes_per_s; render: case,driver,size,boxes,ms)\n");
+                 "  (passes: case,driver,size,threads,ms,passes_per_s; render: case,driver,size,boxes,ms;\n"
+                 "   async: case,driver,size,threads,batches,sync_ms,async_ms,conditional_ms,async/sync,\n"
+                 "   conditional/sync)\n");
     std::exit(error ? 2 : 0);
 }
 
@@ -415,6 +525,7 @@ int main(int argc, char **argv)
         else if (a == "--only")
             g_only = parse_int(argv[++i], "--only", 0, 1);
         else if (a == "box" || a == "render" || a == "shaded" || a == "passes" || a.rfind("tiles:", 0) == 0 ||
+                 a.rfind("async:", 0) == 0 ||
                  a.rfind("mesh:", 0) == 0 || a.rfind("vmesh:", 0) == 0)
             o.cases.push_back(a);
         else
@@ -445,6 +556,8 @@ int main(int argc, char **argv)
             case_shaded(o);
         else if (c == "passes")
             case_passes(o);
+        else if (c.rfind("async:", 0) == 0)
+            case_async(o, parse_int(c.c_str() + 6, "async:N", 1, 64));
         else if (c.rfind("mesh:", 0) == 0)
             case_mesh(o, parse_int(c.c_str() + 5, "mesh:N", 1, 64));
         else if (c.rfind("vmesh:", 0) == 0)
