@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <set>
 #include <utility>
 
@@ -122,4 +123,150 @@ TEST(OcclusionUnit, MoreTilesThanTheUnitHasAreRefused)
     GLint mode = 0;
     glGetIntegerv(GL_RENDER_MODE, &mode);
     EXPECT_EQ(mode, GL_RENDER);
+}
+
+// --- asynchronous passes (GL_MESAX_occlusion_unit_async, issue 14) -----------
+
+namespace {
+
+// A 32 x 16 frame whose left half holds a near rectangle (window z 0.5);
+// a pass draws a far quad (window z 0.75) over all of it, so the left tile
+// (0..16) is occluded and the right one (16..32) sees 256 fragments.
+void near_rectangle_on_the_left()
+{
+    pixel_exact_projection(32, 16);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glColor3f(0, 0, 1);
+    rectangle(0, 0, 16, 16);
+}
+
+void far_quad()
+{
+    glBegin(GL_QUADS);
+    glVertex3f(0, 0, -0.5f);
+    glVertex3f(32, 0, -0.5f);
+    glVertex3f(32, 16, -0.5f);
+    glVertex3f(0, 16, -0.5f);
+    glEnd();
+}
+
+const std::vector<PixelRect> left_and_right = {{0, 0, 16, 16}, {16, 0, 32, 16}};
+
+// What every backend must do: records as the synchronous pass's, RENDER_MODE
+// back to GL_RENDER at end(), nothing drawn by the pass, and conditional
+// rendering on a tile drawing only behind a tile that saw fragments.
+void check_async_backend(gl::OffscreenContext &ctx, const gl::OcclusionUnit &unit)
+{
+    near_rectangle_on_the_left();
+    std::vector<gl::OcclusionRecord> sync;
+    {
+        gl::OcclusionPass pass(unit, gl::OcclusionMode::brief, left_and_right);
+        far_quad();
+        sync = pass.end();
+    }
+    glFinish();
+    const std::vector<std::uint8_t> before(ctx.pixels(), ctx.pixels() + 32 * 16 * 4);
+
+    gl::AsyncOcclusionPass pass(unit);
+    EXPECT_EQ(pass.native(), unit.native_async());
+    EXPECT_FALSE(pass.available()) << "no records before a pass";
+    for (int round = 0; round < 2; ++round) {   // a pass object serves pass after pass
+        pass.begin(gl::OcclusionMode::brief, left_and_right);
+        GLint mode = 0;
+        glGetIntegerv(GL_RENDER_MODE, &mode);
+        EXPECT_EQ(mode, GL_BRIEF_OCCLUSION_MESAX);
+        far_quad();
+        pass.end();
+        glGetIntegerv(GL_RENDER_MODE, &mode);
+        EXPECT_EQ(mode, GL_RENDER);
+        const auto &records = pass.records();
+        EXPECT_TRUE(pass.available()) << "records read, yet not available";
+        ASSERT_EQ(records.size(), 2u);
+        for (std::size_t i = 0; i < 2; ++i) {
+            EXPECT_EQ(records[i].nohc, sync[i].nohc) << "tile " << i;
+            EXPECT_EQ(records[i].phc, sync[i].phc) << "tile " << i;
+            EXPECT_EQ(records[i].x_min, sync[i].x_min) << "tile " << i;
+            EXPECT_EQ(records[i].z_max, sync[i].z_max) << "tile " << i;
+        }
+        EXPECT_EQ(records[0].nohc, 0u);
+        EXPECT_EQ(records[1].nohc, 256u);
+    }
+    glFinish();
+    EXPECT_TRUE(std::equal(before.begin(), before.end(), ctx.pixels())) << "a pass drew into the framebuffer";
+
+    // Conditional rendering: a red rectangle in front of everything, drawn
+    // under tile 0 (occluded: skipped) and tile 1 (seen: drawn).
+    glColor3f(1, 0, 0);
+    glDepthFunc(GL_ALWAYS);
+    for (std::size_t tile = 0; tile < 2; ++tile) {
+        const gl::ConditionalTileRender c(pass, tile, 0, 0.0f, true);
+        if (c.draws())
+            rectangle(int(tile) * 16, 0, int(tile) * 16 + 16, 16);
+    }
+    // A ratio the right tile does not reach (NOHC = PHC): nothing drawn.
+    glColor3f(0, 1, 0);
+    {
+        const gl::ConditionalTileRender c(pass, 1, 0, 1.0f, false);
+        if (c.draws())
+            rectangle(16, 0, 32, 16);
+    }
+    glDepthFunc(GL_LESS);
+    glFinish();
+    const std::uint8_t *left = ctx.pixels() + (8 * 32 + 8) * 4, *right = ctx.pixels() + (8 * 32 + 24) * 4;
+    EXPECT_EQ(left[0], 0) << "drawn under an occluded tile";
+    EXPECT_EQ(left[2], 255) << "the near rectangle is gone";
+    EXPECT_EQ(right[0], 255) << "not drawn under a tile that saw fragments";
+    EXPECT_EQ(right[1], 0) << "drawn although NOHC is not above 1.0 * PHC";
+    glDisable(GL_DEPTH_TEST);
+}
+
+}  // namespace
+
+// The emulation on the synchronous RenderMode path, which the library uses
+// where the context lacks the extension: always tested, whatever the driver has.
+TEST(AsyncOcclusionPass, EmulationOnRenderModeBehavesAsTheExtension)
+{
+    gl::OffscreenContext ctx(32, 16);
+    const gl::OcclusionUnit unit(false);
+    ASSERT_FALSE(unit.native_async());
+    check_async_backend(ctx, unit);
+    gl::AsyncOcclusionPass pass(unit);
+    pass.begin(gl::OcclusionMode::brief, {});
+    pass.end();
+    EXPECT_TRUE(pass.available()) << "an emulated pass is read at its end";
+    EXPECT_EQ(pass.name(), 0u);
+}
+
+// The backend a unit chooses for this context: the extension's entry points
+// when the context advertises GL_MESAX_occlusion_unit_async, else the
+// emulation. Never skipped: it says which path ran (test output and the
+// "async_backend" property in the XML report).
+TEST(AsyncOcclusionPass, ChosenBackendForThisContext)
+{
+    gl::OffscreenContext ctx(32, 16);
+    const gl::OcclusionUnit unit;
+    const bool advertised = gl::OcclusionUnit::async_available();
+    EXPECT_EQ(unit.native_async(), advertised);
+    const char *backend = unit.native_async() ? "native GL_MESAX_occlusion_unit_async"
+                                              : "emulated on glRenderMode (the context lacks GL_MESAX_occlusion_unit_async)";
+    std::printf("asynchronous occlusion passes: %s\n", backend);
+    ::testing::Test::RecordProperty("async_backend", unit.native_async() ? "native" : "emulated");
+    check_async_backend(ctx, unit);
+    if (!unit.native_async())
+        return;
+    // The extension's own promises: a pass has a name, it is a pass
+    // object, and its records become available without a Get of RESULT.
+    gl::AsyncOcclusionPass pass(unit);
+    EXPECT_NE(pass.name(), 0u);
+    auto is_pass = reinterpret_cast<PFNGLISOCCLUSIONPASSMESAXPROC>(gl::get_proc_address("glIsOcclusionPassMESAX"));
+    ASSERT_NE(is_pass, nullptr);
+    pass.begin(gl::OcclusionMode::brief, left_and_right);
+    far_quad();
+    pass.end();
+    EXPECT_TRUE(is_pass(pass.name()));
+    glFinish();   // the pass's scene is done after a finish
+    EXPECT_TRUE(pass.available()) << "records not available after glFinish";
 }
