@@ -83,6 +83,21 @@ struct CullerStats {
     std::uint32_t passes = 0;   // occlusion passes (or map builds) since begin_frame
 };
 
+// What a strategy that orders the frame itself (Culler::orders_frame) tells
+// the traversal, which draws and counts for it.
+class FrameSink {
+public:
+    // Draws leaf `node` now (found visible, or taken as visible untested).
+    virtual void draw_leaf(std::uint32_t node) = 0;
+    // `node`'s subtree is not drawn this frame: `why` is view_culled or occluded.
+    virtual void cull(std::uint32_t node, Visibility why) = 0;
+    // `count` more nodes had their occlusion tested.
+    virtual void tested(std::uint32_t count) = 0;
+
+protected:
+    ~FrameSink() = default;
+};
+
 class Culler {
 public:
     virtual ~Culler() = default;
@@ -95,6 +110,16 @@ public:
     // A sentence for the run's summary about what the figures do not show
     // (frames it could not cull as it claims to, work done on the way); empty: none.
     virtual std::string note() const { return {}; }
+
+    // Strategies whose tests run alongside drawing (coherent hierarchical
+    // culling: a pass's results are read when they are ready, and drawing
+    // goes on meanwhile) walk the hierarchy themselves. For them the
+    // traversal (traversal/traversal.h) calls begin_frame, then traverse,
+    // which draws through `sink`; its batches and its policies across
+    // frames do not apply (such a strategy has its own temporal coherence).
+    // test() must still answer callers that test nodes themselves.
+    virtual bool orders_frame() const { return false; }
+    virtual void traverse(FrameSink &sink) { (void)sink; }
 };
 
 }  // namespace occu

@@ -5,6 +5,7 @@
 
 #include "strategies/bartz_occlusion_unit/family.h"
 #include "strategies/baselines/family.h"
+#include "strategies/bittner_coherent_hierarchical_culling/family.h"
 #include "strategies/leone_occluder_skins/family.h"
 #include "strategies/moller_haines_occlusion_culling/family.h"
 #include "strategies/poon_wang_opacity_maps/family.h"
@@ -19,6 +20,7 @@ const std::vector<StrategyFamily> &strategy_families()
         strategies::frustum_culling_family(),   // vfc
         strategies::ideal_family(),             // ideal: the oracle's visible leaves, the floor
         strategies::occlusion_unit_family(),    // ou: Bartz, Meissner and Huettner 1998
+        strategies::coherent_hierarchical_culling_family(),  // chc: Bittner et al. 2004, Mattausch et al. 2008
         strategies::hp_occlusion_test_family(), // hp: Moeller and Haines, the HP occlusion test
         strategies::hierarchical_z_buffer_family(),       // hzb: Moeller and Haines (Greene)
         strategies::hierarchical_occlusion_map_family(),  // hom: Moeller and Haines (Zhang)

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <queue>
+#include <stdexcept>
+#include <string>
 
 namespace occu {
 
@@ -36,6 +38,8 @@ public:
 
     FrameStats run()
     {
+        if (culler_.orders_frame())
+            return run_ordered();
         VisibleNodeList *coherence = options_.coherence;
         if (coherence)
             coherence->begin_frame(nodes_.size());
@@ -76,6 +80,40 @@ public:
     }
 
 private:
+    // A strategy that orders the frame itself (Culler::orders_frame): it
+    // traverses and tests, this draws and counts. Its test time is the
+    // traversal's time less the drawing's.
+    class Sink final : public FrameSink {
+    public:
+        explicit Sink(FrameTraversal &t) : t_(t) {}
+        void draw_leaf(std::uint32_t node) override
+        {
+            if (!t_.nodes_.at(node).leaf())
+                throw std::logic_error("a strategy drew inner node " + std::to_string(node) + " as a leaf");
+            const auto start = std::chrono::steady_clock::now();
+            t_.settle(node, Visibility::visible, true);
+            draw_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        }
+        void cull(std::uint32_t node, Visibility why) override { t_.settle(node, why, true); }
+        void tested(std::uint32_t count) override { t_.stats_.nodes_tested += count; }
+        double draw_ms = 0.0;
+
+    private:
+        FrameTraversal &t_;
+    };
+
+    FrameStats run_ordered()
+    {
+        ordered_ = true;
+        watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(frame_); });
+        Sink sink(*this);
+        double traverse_ms = 0.0;
+        watch_.time(traverse_ms, [&] { culler_.traverse(sink); });
+        stats_.test_ms = std::max(0.0, traverse_ms - sink.draw_ms);
+        stats_.passes = culler_.stats().passes;
+        return std::move(stats_);
+    }
+
     void push(std::uint32_t node) { front_.push({distance_to(nodes_[node].bounds, frame_.camera.position), node}); }
 
     bool untested(std::uint32_t node) const { return !untested_.empty() && untested_[node]; }
@@ -124,7 +162,7 @@ private:
             stats_.triangles_occluded += n.subtree_triangles;
             return;
         }
-        if (options_.coherence)
+        if (options_.coherence && !ordered_)
             options_.coherence->mark_visible(node);
         if (n.leaf()) {
             stats_.triangles += renderer_.draw_leaf(node);
@@ -154,6 +192,7 @@ private:
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front_;
     std::vector<std::uint8_t> untested_;   // below a "do not test below" answer
     bool testing_ = true, cut_ = false;
+    bool ordered_ = false;   // the culler orders the frame (run_ordered)
     std::uint64_t judged_triangles_ = 0, judged_occluded_ = 0;
     Stopwatch watch_;
     FrameStats stats_;

@@ -2,7 +2,10 @@
 // algorithm of Moeller and Haines (figure 2) over the hierarchy, front to
 // back (Bartz et al. 1998, section 3: test a node's box, draw it if it is a
 // visible leaf, else open it), a batch of nodes at a time, with the
-// policies of traversal/policies.h where the caller gives them.
+// policies of traversal/policies.h where the caller gives them. A culler
+// that orders the frame itself (Culler::orders_frame: chc) walks the
+// hierarchy in its own way; this then only draws and counts for it, and
+// its batch and policies do not apply.
 #pragma once
 
 #include <cstdint>

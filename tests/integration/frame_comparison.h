@@ -36,6 +36,37 @@ inline DrawnFrame draw_frame(const gl::OffscreenContext &ctx, const SceneRendere
     return {std::vector<std::uint8_t>(ctx.pixels(), ctx.pixels() + n), s.triangles, std::move(s.drawn)};
 }
 
+// The unculled frame in the order a strategy that orders the frame itself
+// (Culler::orders_frame, e.g. chc) drew: its leaves `first` in its order,
+// then every other leaf. Where faces tie in depth the leaf drawn first
+// keeps the pixel (GL_LESS), and such a strategy draws in an order of its
+// own (results handled as they come), so the common traversal's unculled
+// frame differs from it in tied pixels however well it culls. In this
+// reference a leaf it culled changes a pixel only where it is strictly in
+// front of what it drew there: where it was visible.
+inline DrawnFrame draw_unculled_after(const gl::OffscreenContext &ctx, const SceneRenderer &renderer, const Hierarchy &h,
+                                      const Frame &frame, const std::vector<std::uint32_t> &first)
+{
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl::load_camera(frame.camera);
+    DrawnFrame d;
+    std::vector<std::uint8_t> done(h.nodes().size(), 0);
+    for (std::uint32_t leaf : first) {
+        d.triangles += renderer.draw_leaf(leaf);
+        done[leaf] = 1;
+        d.leaves.push_back(leaf);
+    }
+    for (std::uint32_t n = 0; n < h.nodes().size(); ++n)
+        if (h.nodes()[n].leaf() && !done[n]) {
+            d.triangles += renderer.draw_leaf(n);
+            d.leaves.push_back(n);
+        }
+    glFinish();
+    const std::size_t bytes = std::size_t(ctx.width()) * std::size_t(ctx.height()) * 4;
+    d.pixels.assign(ctx.pixels(), ctx.pixels() + bytes);
+    return d;
+}
+
 // Pixels (4 bytes each) in which frames of the same size differ.
 inline std::size_t differing_pixels(const std::vector<std::uint8_t> &a, const std::vector<std::uint8_t> &b)
 {

@@ -1,0 +1,164 @@
+// chc's own behaviour across frames (strategies/bittner_coherent_hierarchical_culling):
+// a leaf hidden in one frame and seen in the next is drawn in the next
+// (nodes invisible last frame are tested every frame), and a leaf that
+// stays visible is re-tested once every `period` frames, not every frame
+// (its ancestors stay visible through pull-up and are not tested either).
+// Its frames against unculled ones on routes and hard cases: the
+// registry-wide tests (conservative_frames_test.cpp, hard_cases_test.cpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <optional>
+
+#include "culling/registry.h"
+#include "gl/offscreen_context.h"
+#include "gl/state.h"
+#include "scene/scene.h"
+#include "traversal/traversal.h"
+
+#include "frame_comparison.h"
+
+using namespace occu;
+using occu::integration::draw_frame;
+using occu::integration::DrawnFrame;
+
+namespace {
+
+// A wall at z = -5 (x, y in [-3, 3]) and behind it, at z = -15, a cluster of
+// small boxes around the origin: from (0, 0, 0) the wall hides them all;
+// from (12, 0, 0), looking at them, they are in plain view beside the wall.
+// Leaves of at most 12 triangles (a box's, or part of one).
+struct WallAndCluster {
+    WallAndCluster()
+    {
+        scene.meshes.emplace_back();
+        append_box(scene.meshes[0], Aabb::of({-3, -3, -5.5f}, {3, 3, -5}));
+        for (int i = 0; i < 4; ++i)
+            append_box(scene.meshes[0], Aabb::of({float(i) * 0.6f - 1.2f, -0.25f, -15.25f},
+                                                 {float(i) * 0.6f - 0.8f, 0.25f, -14.75f}));
+        scene.update_bounds();
+        HierarchyOptions ho;
+        ho.max_leaf_triangles = 12;
+        h.emplace(Hierarchy::build(scene, ho));
+        renderer.emplace(scene, *h);
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_CULL_FACE);
+        glClearColor(0, 0, 0, 0);
+    }
+    // The leaves behind the wall.
+    std::vector<std::uint32_t> cluster_leaves() const
+    {
+        std::vector<std::uint32_t> leaves;
+        for (std::uint32_t n = 0; n < h->nodes().size(); ++n)
+            if (h->nodes()[n].leaf() && h->nodes()[n].bounds.max.z < -10.0f)
+                leaves.push_back(n);
+        return leaves;
+    }
+    gl::OffscreenContext ctx{64, 64};
+    Scene scene;
+    std::optional<Hierarchy> h;
+    std::optional<SceneRenderer> renderer;
+};
+
+Camera looking(glm::vec3 from, glm::vec3 at)
+{
+    Camera c;
+    c.position = from;
+    c.target = at;
+    return c;
+}
+
+bool drew(const DrawnFrame &f, std::uint32_t leaf)
+{
+    return std::find(f.leaves.begin(), f.leaves.end(), leaf) != f.leaves.end();
+}
+
+}  // namespace
+
+TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIntoView)
+{
+    const WallAndCluster s;
+    const StrategyContext context{s.scene, *s.h, *s.renderer};
+    const Strategy none = make_strategy("none", context);
+    // period=1: visible leaves are re-tested every frame, so that the
+    // cluster, which the first frame finds visible (its nodes are tested
+    // in the pass that tests the wall, before the wall is drawn) and the
+    // second draws untested, is hidden from the third frame on.
+    Strategy chc = make_strategy("chc:max-test-area=1:period=1", context);
+    const std::vector<std::uint32_t> cluster = s.cluster_leaves();
+    ASSERT_FALSE(cluster.empty());
+
+    const Frame behind(looking({0, 0, 0}, {0, 0, -15}), 64, 64);
+    const Frame beside(looking({12, 0, 0}, {0, 0, -15}), 64, 64);
+    // Hidden for a few frames, so that nothing of the cluster is visible
+    // in the frame before it comes into view.
+    for (int f = 0; f < 4; ++f) {
+        const DrawnFrame culled = draw_frame(s.ctx, *s.renderer, *s.h, *chc.culler, behind, {});
+        EXPECT_TRUE(culled.pixels == draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, behind, {}).pixels);
+        for (std::uint32_t leaf : cluster)
+            EXPECT_TRUE(f < 2 || !drew(culled, leaf)) << "frame " << f << ": hidden leaf " << leaf << " drawn";
+    }
+    const DrawnFrame seen = draw_frame(s.ctx, *s.renderer, *s.h, *chc.culler, beside, {});
+    const DrawnFrame reference = draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, beside, {});
+    for (std::uint32_t leaf : cluster)
+        EXPECT_TRUE(drew(seen, leaf)) << "leaf " << leaf << ", hidden last frame, not drawn in the frame that sees it";
+    EXPECT_EQ(integration::differing_pixels(seen.pixels, reference.pixels), 0u);
+    // And back behind the wall: the cluster, visible last frame, is drawn
+    // untested (or re-tested); the frame is still the unculled one.
+    const DrawnFrame back = draw_frame(s.ctx, *s.renderer, *s.h, *chc.culler, behind, {});
+    EXPECT_EQ(integration::differing_pixels(back.pixels, draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, behind, {}).pixels), 0u);
+}
+
+// A row of boxes all in view from a still camera: after the first frame,
+// which tests down to the leaves, each leaf is re-tested once in every
+// `period` frames (staggered by node), and no inner node is tested again.
+TEST(CoherentHierarchicalCulling, VisibleLeavesAreRetestedOncePerPeriod)
+{
+    gl::OffscreenContext ctx(128, 128);
+    Scene scene;
+    scene.meshes.emplace_back();
+    for (int i = 0; i < 12; ++i)
+        append_box(scene.meshes[0], Aabb::of({float(i) * 1.2f - 7.0f, 0, -20}, {float(i) * 1.2f - 6.4f, 1, -19}));
+    scene.update_bounds();
+    HierarchyOptions ho;
+    ho.max_leaf_triangles = 12;
+    const Hierarchy h = Hierarchy::build(scene, ho);
+    const SceneRenderer renderer(scene, h);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_CULL_FACE);
+    const StrategyContext context{scene, h, renderer};
+    const Frame frame(looking({0, 0.5f, 0}, {0, 0.5f, -20}), 128, 128);
+
+    for (const char *passes : {"disjoint", "shared"})
+    for (std::uint32_t period : {1u, 4u, 7u}) {
+        SCOPED_TRACE(std::string(passes) + " passes, period " + std::to_string(period));
+        const bool shared = std::string(passes) == "shared";
+        Strategy chc = make_strategy("chc:max-test-area=1:passes=" + std::string(passes) + ":period=" + std::to_string(period), context);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        gl::load_camera(frame.camera);
+        const FrameStats first = render_hierarchy(renderer, h, *chc.culler, frame);
+        const std::uint32_t leaves = std::uint32_t(h.leaf_count());
+        ASSERT_EQ(first.leaves_drawn, leaves) << "every box is in view";
+        ASSERT_GT(first.nodes_tested, 0u);
+        std::uint32_t tested = 0, passes = 0;
+        for (std::uint32_t f = 0; f < 2 * period; ++f) {
+            glClear(GL_DEPTH_BUFFER_BIT);
+            const FrameStats s = render_hierarchy(renderer, h, *chc.culler, frame);
+            EXPECT_EQ(s.leaves_drawn, leaves);
+            tested += s.nodes_tested;
+            passes += s.passes;
+            if (period > 1)
+                EXPECT_LT(s.nodes_tested, leaves) << "frame " << f + 1 << " re-tested every leaf";
+        }
+        EXPECT_EQ(tested, 2u * leaves) << "each visible leaf re-tested once per period, nothing else tested";
+        if (shared)
+            EXPECT_LE(passes, 2u * period) << "at most one pass a frame: the re-tests share passes";
+    }
+}
+
+TEST(CoherentHierarchicalCulling, ConservativeOnlyAtThresholdZero)
+{
+    EXPECT_TRUE(choose_strategy("chc").conservative());
+    EXPECT_TRUE(choose_strategy("chc:period=1:batch=1:bounds=1").conservative());
+    EXPECT_FALSE(choose_strategy("chc:threshold=0.05").conservative());
+}
