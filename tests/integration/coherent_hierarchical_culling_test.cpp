@@ -160,5 +160,5 @@ TEST(CoherentHierarchicalCulling, ConservativeOnlyAtThresholdZero)
 {
     EXPECT_TRUE(choose_strategy("chc").conservative());
     EXPECT_TRUE(choose_strategy("chc:period=1:batch=1:bounds=1").conservative());
-    EXPECT_FALSE(choose_strategy("chc:threshold=0.05").conservative());
+    EXPECT_FALSE(choose_strategy("chc:tolerance=0.05").conservative());
 }

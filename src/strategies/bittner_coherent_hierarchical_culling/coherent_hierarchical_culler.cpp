@@ -47,7 +47,7 @@ class CoherentHierarchicalCuller final : public Culler {
 public:
     CoherentHierarchicalCuller(const StrategyContext &context, const Settings &settings)
         : nodes_(context.hierarchy.nodes()), period_(std::uint32_t(settings.integer("period"))),
-          max_bounds_(std::size_t(settings.integer("bounds"))), threshold_(settings.number("threshold")),
+          max_bounds_(std::size_t(settings.integer("bounds"))), threshold_(settings.number("tolerance")),
           max_test_area_(settings.number("max-test-area")), shared_passes_(settings.text("passes") == "shared")
     {
         // The unit holds at most max_tiles tiles; a batch is one pass.
@@ -414,8 +414,8 @@ StrategyFamily coherent_hierarchical_culling_family()
                         "previously invisible nodes tested together in one pass (one tile each; at most the unit's tiles)"),
         integer_setting("period", 8, 1, 1000, Role::cost,
                         "a previously visible leaf is re-tested every this many frames (from a random offset per node)", "1"),
-        number_setting("threshold", 0.0, 0.0, 0.999, Role::approximation,
-                       "visibility threshold: occluded when NOHC <= threshold * PHC"),
+        number_setting("tolerance", 0.0, 0.0, 0.999, Role::approximation,
+                       "visibility threshold (CHC++): occluded when NOHC <= tolerance * PHC"),
         integer_setting("bounds", 8, 1, 64, Role::cost,
                         "tight bounds: an inner node is tested by its descendants' boxes, level by level while they are at most this many", "1"),
         choice_setting("passes", {"disjoint", "shared"},

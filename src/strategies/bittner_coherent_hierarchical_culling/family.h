@@ -37,13 +37,14 @@
 // ou's passes=shared). A node's tight bounds are drawn in its tile, whose
 // rectangle is the union of their footprints.
 //
-// Conservative at threshold 0: a node is culled only by its own test
+// Conservative at tolerance 0: a node is culled only by its own test
 // against depth that belongs to the final frame; nodes taken as visible
 // untested (previously visible, too large to test, without a footprint or
 // a proxy) are drawn or opened, which costs time, never pixels; and every
 // node that was not visible in the previous frame is tested in this one.
-// With threshold t > 0 a node is occluded when NOHC <= t * PHC (Bartz et
-// al. 1998, section 5, as ou's tolerance).
+// With tolerance t > 0 (CHC++'s visibility threshold; every approximation
+// knob of the registry is called tolerance) a node is occluded when
+// NOHC <= t * PHC (Bartz et al. 1998, section 5, as ou's tolerance).
 #pragma once
 
 #include "culling/registry.h"
