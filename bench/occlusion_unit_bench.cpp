@@ -21,6 +21,10 @@
 //            its rasterization) vs pass objects read after the drawing
 //            (GL_MESAX_occlusion_unit_async) vs no read at all, the boxes
 //            drawn under conditional rendering on their tiles
+//   passcost:N  what a brief pass of N tiles over N boxes costs the
+//            application's thread: glRenderMode's pass (begin, draw, end
+//            and its wait) vs a pass object's begin, draw and end, its
+//            records read after the timed region
 //
 // Each measurement alternates the variants it compares, repeats them and
 // reports medians, because these machines are shared and noisy.
@@ -393,6 +397,46 @@ void case_async(const Options &o, int batches)
                 threads ? threads : "default", batches, t[0], t[1], t[2], t[1] / t[0], t[2] / t[0]);
 }
 
+// passcost:N (see the top of the file).
+void case_pass_cost(const Options &o, int n)
+{
+    if (!occu::gl::has_extension("GL_MESAX_occlusion_unit_async")) {
+        std::fprintf(stderr, "occu-bench-ou: passcost:%d: the context lacks GL_MESAX_occlusion_unit_async\n", n);
+        std::exit(1);
+    }
+    setup_frame(o.size);
+    const std::vector<occu::PixelRect> tiles = grid_tiles(n, o.size);
+    occu::gl::AsyncOcclusionPass async_pass(*unit);
+    std::vector<double> sync_ms, async_ms;
+    std::uint64_t sync_visible = 0, async_visible = 0;
+    for (int r = 0; r < 4 * o.repeat; ++r) {
+        glFinish();
+        auto start = Clock::now();
+        {
+            occu::gl::OcclusionPass pass(*unit, occu::gl::OcclusionMode::brief, tiles);
+            draw_grid(n, o.size);
+            for (const auto &record : pass.end())
+                sync_visible += record.nohc > 0;
+        }
+        sync_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+        glFinish();
+        start = Clock::now();
+        async_pass.begin(occu::gl::OcclusionMode::brief, tiles);
+        draw_grid(n, o.size);
+        async_pass.end();
+        async_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+        for (const auto &record : async_pass.records())   // outside the timed region
+            async_visible += record.nohc > 0;
+    }
+    if (sync_visible != async_visible)
+        std::fprintf(stderr, "occu-bench-ou: passcost:%d: %llu visible tiles synchronously, %llu asynchronously\n", n,
+                     (unsigned long long)sync_visible, (unsigned long long)async_visible);
+    const char *threads = std::getenv("LP_NUM_THREADS");
+    const double s = median(sync_ms), a = median(async_ms);
+    std::printf("passcost,%s,%d,%s,%d,%.4f,%.4f,%.3f\n", occu::gl::driver_name(o.driver), o.size,
+                threads ? threads : "default", n, s, a, a / s);
+}
+
 // Brief passes per second: 16 tiles over the mesh.
 void case_passes(const Options &o)
 {
@@ -483,11 +527,12 @@ void case_render(const Options &o)
         std::fprintf(stderr, "occu-bench-ou: %s\n", error);
     std::fprintf(error ? stderr : stdout,
                  "usage: occu-bench-ou [--driver softpipe|llvmpipe] [--size PIXELS] [--repeat N] [--only 0|1] CASE...\n"
-                 "cases: box, tiles:N, mesh:N, vmesh:N (N = 1..64), shaded, passes, render, async:N\n"
+                 "cases: box, tiles:N, mesh:N, vmesh:N (N = 1..64), shaded, passes, render, async:N, passcost:N\n"
                  "prints CSV: case,driver,size,n,ms_occlusion_unit,ms_other,ratio\n"
                  "  (passes: case,driver,size,threads,ms,passes_per_s; render: case,driver,size,boxes,ms;\n"
                  "   async: case,driver,size,threads,batches,sync_ms,async_ms,conditional_ms,async/sync,\n"
-                 "   conditional/sync)\n");
+                 "   conditional/sync; passcost: case,driver,size,threads,tiles,render_mode_ms,pass_object_ms,\n"
+                 "   pass_object/render_mode)\n");
     std::exit(error ? 2 : 0);
 }
 
@@ -525,7 +570,7 @@ int main(int argc, char **argv)
         else if (a == "--only")
             g_only = parse_int(argv[++i], "--only", 0, 1);
         else if (a == "box" || a == "render" || a == "shaded" || a == "passes" || a.rfind("tiles:", 0) == 0 ||
-                 a.rfind("async:", 0) == 0 ||
+                 a.rfind("async:", 0) == 0 || a.rfind("passcost:", 0) == 0 ||
                  a.rfind("mesh:", 0) == 0 || a.rfind("vmesh:", 0) == 0)
             o.cases.push_back(a);
         else
@@ -556,6 +601,8 @@ int main(int argc, char **argv)
             case_shaded(o);
         else if (c == "passes")
             case_passes(o);
+        else if (c.rfind("passcost:", 0) == 0)
+            case_pass_cost(o, parse_int(c.c_str() + 9, "passcost:N", 1, 64));
         else if (c.rfind("async:", 0) == 0)
             case_async(o, parse_int(c.c_str() + 6, "async:N", 1, 64));
         else if (c.rfind("mesh:", 0) == 0)
