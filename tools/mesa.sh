@@ -2,9 +2,12 @@
 # Fetches Debian's Mesa source, applies patches/mesa/series, builds and installs it
 # into a cache outside the work tree; prints the install prefix on stdout.
 #
-# Usage: tools/mesa.sh [--unpatched]
+# Usage: tools/mesa.sh [--unpatched | --sanitize]
 #   --unpatched   build the same Mesa with the same options but an empty series
 #                 (the reference for patched-vs-unpatched measurements)
+#   --sanitize    the patched Mesa built with AddressSanitizer and
+#                 UndefinedBehaviorSanitizer (its own options key; programs run
+#                 on it with the sanitizers' runtimes in LD_PRELOAD, as tools/test does)
 #
 # Cache layout under $OCCU_CACHE/mesa/<debian version>/:
 #   source/                  the unpacked source package, a git repository whose first
@@ -19,16 +22,22 @@ set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
 variant=patched
+options=("${MESA_OPTIONS[@]}")
 case ${1:-} in
     "") ;;
     --unpatched) variant=unpatched ;;
-    *) die "tools/mesa.sh: unknown option '$1' (expected --unpatched or nothing)" ;;
+    --sanitize)
+        variant=sanitized
+        # Shared libraries with sanitizers: their runtime comes from the program
+        # (LD_PRELOAD), so undefined symbols are allowed at link time.
+        options+=(-Db_sanitize=address,undefined -Db_lundef=false) ;;
+    *) die "tools/mesa.sh: unknown option '$1' (expected --unpatched, --sanitize or nothing)" ;;
 esac
 
 
 series_file=$OCCU_ROOT/patches/mesa/series
 patches=()
-if [ $variant = patched ] && [ -f "$series_file" ]; then
+if [ $variant != unpatched ] && [ -f "$series_file" ]; then
     while IFS= read -r line || [ -n "$line" ]; do
         line=${line%%#*}; line=$(echo "$line" | xargs)
         [ -n "$line" ] || continue
@@ -37,7 +46,7 @@ if [ $variant = patched ] && [ -f "$series_file" ]; then
     done < "$series_file"
 fi
 
-options_hash=$(printf '%s\n' "${MESA_OPTIONS[@]}" | sha256sum | cut -c1-12)
+options_hash=$(printf '%s\n' "${options[@]}" | sha256sum | cut -c1-12)
 patches_hash=$( { printf '%s\n' "${patches[@]##*/}"; for p in "${patches[@]}"; do cat "$p"; done; } | sha256sum | cut -c1-12)
 
 top=$OCCU_CACHE/mesa/$MESA_DEBIAN_VERSION
@@ -113,7 +122,7 @@ export CCACHE_DIR=${CCACHE_DIR:-$OCCU_CACHE/ccache}
 if [ ! -f "$build/build.ninja" ]; then
     say "configuring Mesa (options $options_hash, $variant)"
     rm -rf "$build"
-    meson setup "$build" "$src" --prefix="$prefix" --libdir=lib "${MESA_OPTIONS[@]}" >"$top/configure-$variant.log" 2>&1 \
+    meson setup "$build" "$src" --prefix="$prefix" --libdir=lib "${options[@]}" >"$top/configure-$variant.log" 2>&1 \
         || { tail -n 30 "$top/configure-$variant.log" >&2; die "Mesa's meson setup failed (log: $top/configure-$variant.log)"; }
 else
     meson configure "$build" --prefix="$prefix" >/dev/null
