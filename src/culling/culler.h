@@ -89,6 +89,11 @@ class FrameSink {
 public:
     // Draws leaf `node` now (found visible, or taken as visible untested).
     virtual void draw_leaf(std::uint32_t node) = 0;
+    // Draws leaf `node` now under the conditional rendering the strategy
+    // has begun (GL_MESAX_occlusion_unit_async's conditional rendering on a
+    // tile): the GL draws it only if its test found it visible, and the
+    // strategy does not know yet which. Counted as drawn (what was issued).
+    virtual void draw_leaf_conditionally(std::uint32_t node) = 0;
     // `node`'s subtree is not drawn this frame: `why` is view_culled or occluded.
     virtual void cull(std::uint32_t node, Visibility why) = 0;
     // `count` more nodes had their occlusion tested.

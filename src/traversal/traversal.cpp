@@ -94,6 +94,11 @@ private:
             t_.settle(node, Visibility::visible, true);
             draw_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         }
+        void draw_leaf_conditionally(std::uint32_t node) override
+        {
+            draw_leaf(node);
+            ++t_.stats_.leaves_conditional;
+        }
         void cull(std::uint32_t node, Visibility why) override { t_.settle(node, why, true); }
         void tested(std::uint32_t count) override { t_.stats_.nodes_tested += count; }
         double draw_ms = 0.0;

@@ -29,6 +29,10 @@ struct TraversalOptions {
 struct FrameStats {
     std::uint64_t triangles = 0;
     std::uint32_t leaves_drawn = 0;
+    // Of leaves_drawn, those issued under conditional rendering on a tile
+    // (FrameSink::draw_leaf_conditionally): the GL drew only those its test
+    // found visible. They count as drawn here and in `drawn`.
+    std::uint32_t leaves_conditional = 0;
     std::uint32_t nodes_tested = 0;
     std::uint32_t nodes_view_culled = 0;
     std::uint32_t nodes_occluded = 0;

@@ -3,12 +3,18 @@
 // (nodes invisible last frame are tested every frame), and a leaf that
 // stays visible is re-tested once every `period` frames, not every frame
 // (its ancestors stay visible through pull-up and are not tested either).
+// With conditional=on (the default) a previously invisible leaf is drawn
+// under conditional rendering on its tile, and the GL, not the CPU, decides
+// whether it is drawn: a hidden one draws nothing, a visible one is drawn.
 // Its frames against unculled ones on routes and hard cases: the
 // registry-wide tests (conservative_frames_test.cpp, hard_cases_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <optional>
+#include <string>
+
+#include "gl/occlusion_unit.h"
 
 #include "culling/registry.h"
 #include "gl/offscreen_context.h"
@@ -75,6 +81,9 @@ bool drew(const DrawnFrame &f, std::uint32_t leaf)
 
 }  // namespace
 
+// conditional=off: the CPU reads each result before it draws, so a hidden
+// leaf is not drawn at all (with conditional=on it is issued under a
+// condition that the GL finds false: the next test).
 TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIntoView)
 {
     const WallAndCluster s;
@@ -84,7 +93,7 @@ TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIn
     // cluster, which the first frame finds visible (its nodes are tested
     // in the pass that tests the wall, before the wall is drawn) and the
     // second draws untested, is hidden from the third frame on.
-    Strategy chc = make_strategy("chc:max-test-area=1:period=1", context);
+    Strategy chc = make_strategy("chc:max-test-area=1:period=1:conditional=off", context);
     const std::vector<std::uint32_t> cluster = s.cluster_leaves();
     ASSERT_FALSE(cluster.empty());
 
@@ -107,6 +116,157 @@ TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIn
     // untested (or re-tested); the frame is still the unculled one.
     const DrawnFrame back = draw_frame(s.ctx, *s.renderer, *s.h, *chc.culler, behind, {});
     EXPECT_EQ(integration::differing_pixels(back.pixels, draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, behind, {}).pixels), 0u);
+}
+
+namespace {
+
+// Draws what chc asks for, and beside each leaf drawn conditionally a
+// marker under the same condition: one stencil pixel (colour, depth and
+// every other pixel untouched), so that the stencil buffer says which
+// conditional draws the GL executed.
+class MarkingSink final : public FrameSink {
+public:
+    explicit MarkingSink(const SceneRenderer &renderer) : renderer_(renderer) {}
+    void draw_leaf(std::uint32_t node) override
+    {
+        renderer_.draw_leaf(node);
+        plain.push_back(node);
+    }
+    void draw_leaf_conditionally(std::uint32_t node) override
+    {
+        renderer_.draw_leaf(node);
+        mark(node);
+        conditional.push_back(node);
+    }
+    void cull(std::uint32_t node, Visibility) override { culled.push_back(node); }
+    void tested(std::uint32_t) override {}
+
+    // The marker of leaf n: window pixel (2n + 1, 1).
+    static int marker_x(std::uint32_t node) { return 2 * int(node) + 1; }
+
+    std::vector<std::uint32_t> plain, conditional, culled;
+
+private:
+    static void mark(std::uint32_t node)
+    {
+        glPushAttrib(GL_ALL_ATTRIB_BITS);
+        glMatrixMode(GL_PROJECTION);
+        glPushMatrix();
+        glLoadIdentity();
+        GLint viewport[4];
+        glGetIntegerv(GL_VIEWPORT, viewport);
+        glOrtho(0, viewport[2], 0, viewport[3], -1, 1);
+        glMatrixMode(GL_MODELVIEW);
+        glPushMatrix();
+        glLoadIdentity();
+        glDisable(GL_CULL_FACE);
+        glDepthFunc(GL_ALWAYS);
+        glDepthMask(GL_FALSE);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_ALWAYS, 1, 0xFF);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+        glBegin(GL_QUADS);
+        const float x = float(marker_x(node));
+        glVertex2f(x, 1);
+        glVertex2f(x + 1, 1);
+        glVertex2f(x + 1, 2);
+        glVertex2f(x, 2);
+        glEnd();
+        glPopMatrix();
+        glMatrixMode(GL_PROJECTION);
+        glPopMatrix();
+        glMatrixMode(GL_MODELVIEW);
+        glPopAttrib();
+    }
+
+    const SceneRenderer &renderer_;
+};
+
+struct MarkedFrame {
+    std::vector<std::uint8_t> pixels;
+    MarkingSink sink;
+    std::vector<std::uint8_t> stencil;   // one row: y = 1
+
+    bool marked(std::uint32_t node) const { return stencil.at(std::size_t(MarkingSink::marker_x(node))) != 0; }
+    bool conditional(std::uint32_t node) const
+    {
+        return std::find(sink.conditional.begin(), sink.conditional.end(), node) != sink.conditional.end();
+    }
+};
+
+MarkedFrame draw_marked(const WallAndCluster &s, Culler &culler, const Frame &frame)
+{
+    MarkedFrame m{{}, MarkingSink(*s.renderer), {}};
+    glClearStencil(0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    gl::load_camera(frame.camera);
+    culler.begin_frame(frame);
+    culler.traverse(m.sink);
+    glFinish();
+    const std::size_t n = std::size_t(s.ctx.width()) * std::size_t(s.ctx.height()) * 4;
+    m.pixels.assign(s.ctx.pixels(), s.ctx.pixels() + n);
+    m.stencil.resize(std::size_t(s.ctx.width()));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 1, s.ctx.width(), 1, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, m.stencil.data());
+    return m;
+}
+
+}  // namespace
+
+// conditional=on: the cluster, hidden behind the wall, is tested every
+// frame and its leaves are issued under conditional rendering on their
+// tiles; the GL draws none of them (their markers stay unset). When the
+// cluster comes into view the same conditional draws are executed, and the
+// frame is the unculled one. Where the context lacks the extension the
+// emulation decides on the CPU and nothing is issued conditionally.
+TEST(CoherentHierarchicalCulling, ConditionalDrawsOfPreviouslyHiddenLeavesAreDecidedByTheGL)
+{
+    const WallAndCluster s;
+    if (!gl::OcclusionUnit::async_available())
+        GTEST_SKIP() << "GL_MESAX_occlusion_unit_async is absent: chc's conditional draws are emulated on the CPU";
+    GLint stencil_bits = 0;
+    glGetIntegerv(GL_STENCIL_BITS, &stencil_bits);
+    ASSERT_GT(stencil_bits, 0);
+    const StrategyContext context{s.scene, *s.h, *s.renderer};
+    const Strategy none = make_strategy("none", context);
+    Strategy chc = make_strategy("chc:max-test-area=1:period=1", context);   // conditional=on by default
+    const std::vector<std::uint32_t> cluster = s.cluster_leaves();
+    ASSERT_FALSE(cluster.empty());
+    for (std::uint32_t leaf : cluster)
+        ASSERT_LT(MarkingSink::marker_x(leaf), s.ctx.width());
+
+    const Frame behind(looking({0, 0, 0}, {0, 0, -15}), 64, 64);
+    const Frame beside(looking({12, 0, 0}, {0, 0, -15}), 64, 64);
+    // As in the test above: visible in frame 0, drawn untested and found
+    // hidden in frame 1, tested from frame 2 on.
+    for (int f = 0; f < 5; ++f) {
+        SCOPED_TRACE("frame " + std::to_string(f) + " behind the wall");
+        const MarkedFrame m = draw_marked(s, *chc.culler, behind);
+        EXPECT_EQ(integration::differing_pixels(m.pixels, draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, behind, {}).pixels), 0u);
+        if (f < 2)
+            continue;
+        std::size_t issued = 0;
+        for (std::uint32_t leaf : cluster) {
+            EXPECT_EQ(std::count(m.sink.plain.begin(), m.sink.plain.end(), leaf), 0) << "hidden leaf " << leaf << " drawn unconditionally";
+            if (!m.conditional(leaf))
+                continue;   // under an inner node tested (and culled) as a whole
+            ++issued;
+            EXPECT_FALSE(m.marked(leaf)) << "hidden leaf " << leaf << ": its conditional draw was executed";
+        }
+        EXPECT_GT(issued, 0u) << "no leaf of the hidden cluster was drawn conditionally: the test shows nothing";
+    }
+    const MarkedFrame seen = draw_marked(s, *chc.culler, beside);
+    const DrawnFrame reference = draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, beside, {});
+    EXPECT_EQ(integration::differing_pixels(seen.pixels, reference.pixels), 0u);
+    std::size_t issued = 0;
+    for (std::uint32_t leaf : cluster) {
+        if (!seen.conditional(leaf))
+            continue;
+        ++issued;
+        EXPECT_TRUE(seen.marked(leaf)) << "leaf " << leaf << ", hidden last frame and in view now: its conditional draw was not executed";
+    }
+    EXPECT_GT(issued, 0u) << "no leaf of the cluster was drawn conditionally in the frame that sees it";
 }
 
 // A row of boxes all in view from a still camera: after the first frame,

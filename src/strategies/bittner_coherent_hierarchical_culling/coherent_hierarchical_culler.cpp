@@ -7,6 +7,7 @@
 #include <optional>
 #include <queue>
 #include <random>
+#include <stdexcept>
 
 #include "gl/occlusion_unit.h"
 #include "render/occlusion_proxy.h"
@@ -32,15 +33,25 @@ struct Probe {
 
 // One node in a pass. `retest`: a previously visible leaf, already drawn
 // this frame, whose result only classifies it for the next frame.
+// `conditional`: a previously invisible leaf drawn under conditional
+// rendering on its tile right after the pass ended (the GL decides); its
+// result, too, only classifies it for the next frame (and pulls it up).
 struct Query {
     std::uint32_t node;
     bool retest;
     Probe probe;
+    bool conditional = false;
 };
 
 struct InFlight {
     std::unique_ptr<gl::AsyncOcclusionPass> pass;
     std::vector<Query> queries;   // tile k is queries[k]
+    std::int64_t frame = 0;       // the frame it was issued in
+    // Some result decides this frame's drawing (an inner node to open or
+    // cull, a leaf drawn only once found visible): read before the frame
+    // ends. Otherwise the pass may be carried over and read at the start of
+    // the next frame.
+    bool needed = false;
 };
 
 class CoherentHierarchicalCuller final : public Culler {
@@ -48,7 +59,8 @@ public:
     CoherentHierarchicalCuller(const StrategyContext &context, const Settings &settings)
         : nodes_(context.hierarchy.nodes()), period_(std::uint32_t(settings.integer("period"))),
           max_bounds_(std::size_t(settings.integer("bounds"))), threshold_(settings.number("tolerance")),
-          max_test_area_(settings.number("max-test-area")), shared_passes_(settings.text("passes") == "shared")
+          max_test_area_(settings.number("max-test-area")), shared_passes_(settings.text("passes") == "shared"),
+          conditional_(settings.on("conditional"))
     {
         // The unit holds at most max_tiles tiles; a batch is one pass.
         tiles_per_pass_ = std::size_t(std::clamp<long>(settings.integer("batch"), 1, std::min(unit_.max_tiles(), 64)));
@@ -75,6 +87,15 @@ public:
         origin_y_ = viewport[1];
         stats_ = {};
         ++frame_number_;
+        // The passes the previous frame did not wait for: their results
+        // classify nodes for this frame (they were tested against that
+        // frame's depth, after everything drawn before them: a node found
+        // visible there is drawn untested here, one found hidden is tested
+        // here). Its rasterizer has long finished them.
+        std::deque<InFlight> carried;
+        carried.swap(flight_);
+        for (InFlight &f : carried)
+            handle(f);
     }
 
     // Callers that test nodes themselves get plain answers: one pass per
@@ -127,18 +148,26 @@ public:
         for (;;) {
             // Results that are ready, or that the traversal has to wait for
             // because nothing else is left to do.
+            // Passes end in order and the rasterizer finishes them in
+            // order, so the front one is asked first.
             while (!flight_.empty()) {
-                if (!flight_.front().pass->available()) {
+                auto next = flight_.begin();
+                if (!next->pass->available()) {
                     if (!distance_.empty() || !iqueue_.empty())
                         break;   // traverse (or issue the batch) first
                     if (!vqueue_.empty()) {
                         issue_batch();   // fill the wait with re-tests
                         continue;
                     }
+                    // Wait only for a result this frame needs; the others
+                    // are carried over to the next frame's start.
+                    next = std::find_if(flight_.begin(), flight_.end(), [](const InFlight &f) { return f.needed; });
+                    if (next == flight_.end())
+                        break;
                     ++waits_;   // records() below waits
                 }
-                InFlight f = std::move(flight_.front());
-                flight_.pop_front();
+                InFlight f = std::move(*next);
+                flight_.erase(next);
                 handle(f);
             }
             if (!distance_.empty()) {
@@ -151,7 +180,7 @@ public:
                 issue_batch();
                 continue;
             }
-            if (flight_.empty())
+            if (std::none_of(flight_.begin(), flight_.end(), [](const InFlight &f) { return f.needed; }))
                 break;
         }
         sink_ = nullptr;
@@ -172,11 +201,15 @@ private:
 
     bool was_visible(std::uint32_t n) const { return visible_frame_[n] == frame_number_ - 1; }
 
-    // Pull-up: n and its ancestors are visible in this frame.
-    void mark_visible(std::uint32_t n)
+    // Pull-up: n and its ancestors are visible in frame `frame` (this one,
+    // or the previous one for a pass carried over). A node is never marked
+    // with an earlier frame than it has, and an ancestor's frame is never
+    // earlier than its descendants'.
+    void mark_visible(std::uint32_t n) { mark_visible(n, frame_number_); }
+    void mark_visible(std::uint32_t n, std::int64_t frame)
     {
-        for (; n != none && visible_frame_[n] != frame_number_; n = parent_[n])
-            visible_frame_[n] = frame_number_;
+        for (; n != none && visible_frame_[n] < frame; n = parent_[n])
+            visible_frame_[n] = frame;
     }
 
     bool retest_due(std::uint32_t n) const
@@ -256,7 +289,30 @@ private:
         if (queries.empty())
             return;
         sink_->tested(std::uint32_t(queries.size()));
-        flight_.push_back(issue(std::move(queries)));
+        InFlight f = issue(std::move(queries));
+        f.frame = frame_number_;
+        // Previously invisible leaves are drawn now, each under conditional
+        // rendering on its own tile: the GL draws it only if the pass found
+        // it visible (GL_QUERY_WAIT: llvmpipe bins the draw with the
+        // predicate and its rasterizer decides once the pass is done; the
+        // CPU does not wait). Emulated, the records are there and the CPU
+        // decides (draws() false: culled as the records say).
+        for (std::size_t k = 0; k < f.queries.size(); ++k) {
+            Query &q = f.queries[k];
+            if (q.retest)
+                continue;
+            if (conditional_ && nodes_[q.node].leaf()) {
+                q.conditional = true;
+                gl::ConditionalTileRender c(*f.pass, k, 0, float(threshold_), true);
+                if (c.draws())
+                    sink_->draw_leaf_conditionally(q.node);
+                else
+                    sink_->cull(q.node, Visibility::occluded);
+                continue;
+            }
+            f.needed = true;
+        }
+        flight_.push_back(std::move(f));
     }
 
     InFlight issue(std::vector<Query> queries)
@@ -284,17 +340,27 @@ private:
         return f;
     }
 
+    // A pass's results. Carried over from the previous frame (sink_ null),
+    // a pass holds only re-tests and conditional draws.
     void handle(InFlight &f)
     {
         const std::vector<gl::OcclusionRecord> &records = f.pass->records();
         for (std::size_t k = 0; k < f.queries.size(); ++k) {
             const Query &q = f.queries[k];
+            if (q.conditional) {
+                // The GL's decision, made again on the record.
+                if (gl::ConditionalTileRender::passes(records[k], 0, float(threshold_)))
+                    mark_visible(q.node, f.frame);
+                continue;
+            }
             const bool occluded = adaptive_culling_occludes(records[k].nohc, records[k].phc, threshold_);
             if (q.retest) {
                 if (!occluded)
-                    mark_visible(q.node);   // else hidden: tested before it is drawn next frame
+                    mark_visible(q.node, f.frame);   // else hidden: tested before it is drawn next frame
                 continue;
             }
+            if (!sink_)
+                throw std::logic_error("chc: a pass whose results the frame needed was carried over");
             if (occluded) {
                 sink_->cull(q.node, Visibility::occluded);
                 continue;
@@ -376,7 +442,7 @@ private:
     std::uint32_t period_;
     std::size_t max_bounds_;
     double threshold_, max_test_area_;
-    bool shared_passes_;
+    bool shared_passes_, conditional_;
     std::size_t tiles_per_pass_ = 32;
     std::vector<std::uint32_t> parent_, offset_;
     std::vector<std::int64_t> visible_frame_;   // the last frame a node was visible in
@@ -391,7 +457,7 @@ private:
     using Entry = std::pair<float, std::uint32_t>;   // distance, node
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> distance_;
     std::deque<Query> iqueue_, vqueue_;
-    std::deque<InFlight> flight_;
+    std::deque<InFlight> flight_;   // in flight; at a frame's end, those carried over
     std::vector<std::unique_ptr<gl::AsyncOcclusionPass>> free_;   // pass objects to reuse
 };
 
@@ -422,6 +488,9 @@ StrategyFamily coherent_hierarchical_culling_family()
                        "nodes share a pass only where their tiles are disjoint, or always (fewer passes, less culling)"),
         number_setting("max-test-area", 0.25, 0.0001, 1.0, Role::cost,
                        "boxes covering more of the viewport are taken as visible untested", "1"),
+        on_off_setting("conditional", true, Role::cost,
+                       "previously invisible leaves drawn under conditional rendering on their tiles (the GL decides, "
+                       "nobody waits) instead of once their results are read"),
     };
     f.presets = {{"chc-shared", "passes=shared"}};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
