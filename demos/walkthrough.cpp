@@ -330,7 +330,9 @@ double culled_percent(std::uint64_t triangles, std::size_t scene_triangles)
     return 100.0 * (1.0 - double(triangles) / double(std::max<std::size_t>(1, scene_triangles)));
 }
 
-// One row per strategy and frame.
+// One row per strategy and frame. leaves_conditional: of leaves_drawn, those
+// issued under conditional rendering on a tile (chc), which the GL drew only
+// where its test found them visible; every other column counts them as drawn.
 class FramesCsv {
 public:
     explicit FramesCsv(const std::string &path) : path_(path), out_(path)
@@ -339,7 +341,7 @@ public:
             throw std::runtime_error("cannot write '" + path + "'");
         out_ << "strategy,route,frame,ms,triangles,leaves_drawn,nodes_tested,passes,view_culled,occluded,"
                 "culled_percent,oracle_visible_leaves,oracle_occluded_leaves,occluded_leaves_culled,"
-                "visible_leaves_culled,wrong_pixels,setup_ms,test_ms\n";
+                "visible_leaves_culled,wrong_pixels,setup_ms,test_ms,leaves_conditional\n";
     }
     void row(const Run &run, const std::string &route, std::size_t frame, const Drawn &d, std::size_t scene_triangles,
              const VisibilityTruth *truth, const CullingQuality &q, std::uint64_t wrong)
@@ -349,7 +351,8 @@ public:
              << st.leaves_drawn << ',' << st.nodes_tested << ',' << st.passes << ',' << st.nodes_view_culled << ','
              << st.nodes_occluded << ',' << culled_percent(st.triangles, scene_triangles) << ','
              << (truth ? truth->visible.size() : 0) << ',' << q.occluded << ',' << q.occluded_culled << ','
-             << q.visible_culled << ',' << wrong << ',' << st.setup_ms << ',' << st.test_ms << '\n';
+             << q.visible_culled << ',' << wrong << ',' << st.setup_ms << ',' << st.test_ms << ','
+             << st.leaves_conditional << '\n';
     }
     void close()
     {

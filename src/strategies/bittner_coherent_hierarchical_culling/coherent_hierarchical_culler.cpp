@@ -60,7 +60,9 @@ public:
         : nodes_(context.hierarchy.nodes()), period_(std::uint32_t(settings.integer("period"))),
           max_bounds_(std::size_t(settings.integer("bounds"))), threshold_(settings.number("tolerance")),
           max_test_area_(settings.number("max-test-area")), shared_passes_(settings.text("passes") == "shared"),
-          conditional_(settings.on("conditional"))
+          conditional_(settings.text("conditional") == "off"      ? Conditional::off
+                       : settings.text("conditional") == "always" ? Conditional::always
+                                                                  : Conditional::waits)
     {
         // The unit holds at most max_tiles tiles; a batch is one pass.
         tiles_per_pass_ = std::size_t(std::clamp<long>(settings.integer("batch"), 1, std::min(unit_.max_tiles(), 64)));
@@ -159,6 +161,13 @@ public:
                         issue_batch();   // fill the wait with re-tests
                         continue;
                     }
+                    // Nothing to do but wait: leaves whose results are all
+                    // that is left go to the GL under conditions instead.
+                    if (conditional_ == Conditional::waits && std::none_of(flight_.begin(), flight_.end(), [&](const InFlight &f) {
+                            return opens_nodes(f);
+                        }))
+                        for (InFlight &f : flight_)
+                            draw_conditionally(f);
                     // Wait only for a result this frame needs; the others
                     // are carried over to the next frame's start.
                     next = std::find_if(flight_.begin(), flight_.end(), [](const InFlight &f) { return f.needed; });
@@ -291,28 +300,41 @@ private:
         sink_->tested(std::uint32_t(queries.size()));
         InFlight f = issue(std::move(queries));
         f.frame = frame_number_;
-        // Previously invisible leaves are drawn now, each under conditional
-        // rendering on its own tile: the GL draws it only if the pass found
-        // it visible (GL_QUERY_WAIT: llvmpipe bins the draw with the
-        // predicate and its rasterizer decides once the pass is done; the
-        // CPU does not wait). Emulated, the records are there and the CPU
-        // decides (draws() false: culled as the records say).
+        f.needed = std::any_of(f.queries.begin(), f.queries.end(), [](const Query &q) { return !q.retest; });
+        if (conditional_ == Conditional::always)
+            draw_conditionally(f);
+        flight_.push_back(std::move(f));
+    }
+
+    // Whether a pass in flight holds an inner node, whose result the
+    // traversal needs to go on (to open it or cull it).
+    bool opens_nodes(const InFlight &f) const
+    {
+        return std::any_of(f.queries.begin(), f.queries.end(),
+                           [&](const Query &q) { return !q.retest && !nodes_[q.node].leaf(); });
+    }
+
+    // The previously invisible leaves of pass f drawn now, each under
+    // conditional rendering on its own tile: the GL draws it only if the
+    // pass found it visible (GL_QUERY_WAIT: llvmpipe bins the draw with the
+    // predicate and its rasterizer decides once the pass is done; the CPU
+    // does not wait). Emulated, the records are there and the CPU decides
+    // (draws() false: culled as the records say). The pass is then needed
+    // this frame only if it holds inner nodes.
+    void draw_conditionally(InFlight &f)
+    {
         for (std::size_t k = 0; k < f.queries.size(); ++k) {
             Query &q = f.queries[k];
-            if (q.retest)
+            if (q.retest || q.conditional || !nodes_[q.node].leaf())
                 continue;
-            if (conditional_ && nodes_[q.node].leaf()) {
-                q.conditional = true;
-                gl::ConditionalTileRender c(*f.pass, k, 0, float(threshold_), true);
-                if (c.draws())
-                    sink_->draw_leaf_conditionally(q.node);
-                else
-                    sink_->cull(q.node, Visibility::occluded);
-                continue;
-            }
-            f.needed = true;
+            q.conditional = true;
+            gl::ConditionalTileRender c(*f.pass, k, 0, float(threshold_), true);
+            if (c.draws())
+                sink_->draw_leaf_conditionally(q.node);
+            else
+                sink_->cull(q.node, Visibility::occluded);
         }
-        flight_.push_back(std::move(f));
+        f.needed = opens_nodes(f);
     }
 
     InFlight issue(std::vector<Query> queries)
@@ -442,7 +464,12 @@ private:
     std::uint32_t period_;
     std::size_t max_bounds_;
     double threshold_, max_test_area_;
-    bool shared_passes_, conditional_;
+    bool shared_passes_;
+    // Where previously invisible leaves are drawn under conditional
+    // rendering instead of once their results are read: nowhere, in place
+    // of a wait (when nothing is left but results, none of them an inner
+    // node's), or always, right after their pass ends.
+    enum class Conditional { off, waits, always } conditional_;
     std::size_t tiles_per_pass_ = 32;
     std::vector<std::uint32_t> parent_, offset_;
     std::vector<std::int64_t> visible_frame_;   // the last frame a node was visible in
@@ -488,9 +515,10 @@ StrategyFamily coherent_hierarchical_culling_family()
                        "nodes share a pass only where their tiles are disjoint, or always (fewer passes, less culling)"),
         number_setting("max-test-area", 0.25, 0.0001, 1.0, Role::cost,
                        "boxes covering more of the viewport are taken as visible untested", "1"),
-        on_off_setting("conditional", true, Role::cost,
+        choice_setting("conditional", {"waits", "always", "off"},
                        "previously invisible leaves drawn under conditional rendering on their tiles (the GL decides, "
-                       "nobody waits) instead of once their results are read"),
+                       "nobody waits) instead of once their results are read: in place of a wait at the end of the "
+                       "traversal, always (right after their pass), or never"),
     };
     f.presets = {{"chc-shared", "passes=shared"}};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
