@@ -470,7 +470,7 @@ private:
     // of a wait (when nothing is left but results, none of them an inner
     // node's), or always, right after their pass ends.
     enum class Conditional { off, waits, always } conditional_;
-    std::size_t tiles_per_pass_ = 32;
+    std::size_t tiles_per_pass_ = 64;
     std::vector<std::uint32_t> parent_, offset_;
     std::vector<std::int64_t> visible_frame_;   // the last frame a node was visible in
     std::int64_t frame_number_ = 0;
@@ -503,13 +503,13 @@ StrategyFamily coherent_hierarchical_culling_family()
     // through the common traversal) do not apply.
     f.queries_rasterizer = false;
     f.settings = {
-        integer_setting("batch", 32, 1, 64, Role::cost,
+        integer_setting("batch", 64, 1, 64, Role::cost,
                         "previously invisible nodes tested together in one pass (one tile each; at most the unit's tiles)"),
-        integer_setting("period", 8, 1, 1000, Role::cost,
+        integer_setting("period", 16, 1, 1000, Role::cost,
                         "a previously visible leaf is re-tested every this many frames (from a random offset per node)", "1"),
         number_setting("tolerance", 0.0, 0.0, 0.999, Role::approximation,
                        "visibility threshold (CHC++): occluded when NOHC <= tolerance * PHC"),
-        integer_setting("bounds", 8, 1, 64, Role::cost,
+        integer_setting("bounds", 1, 1, 64, Role::cost,
                         "tight bounds: an inner node is tested by its descendants' boxes, level by level while they are at most this many", "1"),
         choice_setting("passes", {"disjoint", "shared"},
                        "nodes share a pass only where their tiles are disjoint, or always (fewer passes, less culling)"),
