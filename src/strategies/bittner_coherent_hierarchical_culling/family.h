@@ -29,6 +29,17 @@
 // (its multiqueries); and tighter bounds: an inner node is tested
 // by the boxes of its descendants instead of its own box.
 //
+// Conditional rendering on a tile (GL_MESAX_occlusion_unit_async; the
+// setting `conditional`): a previously invisible leaf may be drawn under the
+// condition that its tile of its pass was visible, so that the GL decides
+// and nobody waits for the record (CHC++ draws such nodes only once their
+// query returns). By default (`waits`) only in place of a wait: when the
+// traversal has nothing left but results, none of them an inner node's
+// (`always`: right after the pass; `off`: never). The records of passes
+// whose results only classify nodes for the next frame (re-tests,
+// conditional draws) are not waited for at the frame's end: they are read
+// at the next frame's start, which is where they are used.
+//
 // The Occlusion Unit changes two things. A batch is one pass with one tile
 // per node (the node's footprint), so every node gets its own count from
 // the one pass and nothing is re-tested after a failed multiquery. Tiles
