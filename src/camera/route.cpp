@@ -174,4 +174,18 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
     return route;
 }
 
+std::vector<Camera> random_views(const Aabb &bounds, long count, unsigned long seed, float aspect, float fov_min,
+                                 float fov_max)
+{
+    if (!(fov_min >= 1.0f && fov_max <= 170.0f && fov_min <= fov_max))
+        throw std::invalid_argument("fields of view must lie in 1..170 degrees, the least first");
+    std::vector<Camera> views = make_route("random:" + std::to_string(count) + ":" + std::to_string(seed), bounds,
+                                           CityOptions{}, 1, aspect);
+    std::mt19937 random(std::uint32_t(seed & 0xffffffffu) ^ 0x9e3779b9u);
+    std::uniform_real_distribution<float> fov(fov_min, fov_max);
+    for (Camera &c : views)
+        c.fovy_degrees = fov_min == fov_max ? fov_min : fov(random);
+    return views;
+}
+
 }  // namespace occu

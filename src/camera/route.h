@@ -39,4 +39,13 @@ Camera street_level_lens(const Aabb &bounds, float aspect);
 std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds, const CityOptions &city,
                                int frames, float aspect);
 
+// The cameras of the route random:COUNT:SEED (eyes uniformly inside the
+// bounds, buildings and streets alike; random headings; pitch within 60
+// degrees of the horizon), each with a vertical field of view drawn
+// uniformly from [fov_min, fov_max] degrees by a generator of its own, so
+// that eyes and directions are the route's. Throws as make_route does, and
+// std::invalid_argument for a field of view outside [1, 170] or fov_min > fov_max.
+std::vector<Camera> random_views(const Aabb &scene_bounds, long count, unsigned long seed, float aspect, float fov_min,
+                                 float fov_max);
+
 }  // namespace occu

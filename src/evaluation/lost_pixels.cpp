@@ -1,0 +1,37 @@
+#include "evaluation/lost_pixels.h"
+
+#include <cstring>
+
+#include "gl/gl_headers.h"
+#include "gl/state.h"
+#include "render/scene_renderer.h"
+#include "spatial/hierarchy.h"
+
+namespace occu {
+
+std::uint64_t lost_pixels(const std::uint8_t *unculled, const std::uint8_t *culled, std::size_t pixel_count)
+{
+    std::uint64_t lost = 0;
+    for (std::size_t i = 0; i < pixel_count; ++i)
+        lost += std::memcmp(unculled + 4 * i, culled + 4 * i, 4) != 0;
+    return lost;
+}
+
+void draw_unculled_after(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Camera &camera,
+                         const std::vector<std::uint32_t> &first)
+{
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl::load_camera(camera);
+    const auto &nodes = hierarchy.nodes();
+    std::vector<std::uint8_t> done(nodes.size(), 0);
+    for (std::uint32_t leaf : first) {
+        renderer.draw_leaf(leaf);
+        done[leaf] = 1;
+    }
+    for (std::uint32_t n = 0; n < nodes.size(); ++n)
+        if (nodes[n].leaf() && !done[n])
+            renderer.draw_leaf(n);
+    glFinish();
+}
+
+}  // namespace occu
