@@ -22,6 +22,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -36,6 +37,7 @@
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
+#include "preprocessing/view_preprocessing.h"
 #include "scene/city.h"
 #include "scene/scene_file.h"
 #include "traversal/traversal.h"
@@ -64,6 +66,8 @@ struct Options {
     bool coherence = false;
     double switch_off = 0.0;
     float fov_min = 20.0f, fov_max = 120.0f;
+    glm::ivec3 mos_grid{4, 2, 4};   // the databases made at start: cells of the bounds
+    int mos_headings = 4;
     std::string out = "random-views-out";
 };
 
@@ -76,14 +80,17 @@ struct Options {
                  "usage: occu-random-views [--scene city|FILE[,city|FILE...]]... [--views N] [--seed S]\n"
                  "                         [--size PIXELS] [--strategies NAME[:key=value...],...]\n"
                  "                         [--driver llvmpipe|softpipe] [--fov MIN,MAX] [--leaf-triangles N]\n"
-                 "                         [--batch N] [--coherence on|off] [--switch-off F] [--out DIR]\n"
+                 "                         [--batch N] [--coherence on|off] [--switch-off F]\n"
+                 "                         [--mos-grid NX,NY,NZ/HEADINGS] [--out DIR]\n"
                  "Renders --views random cameras (300; shared evenly among the scenes) with every strategy and\n"
                  "counts the visible pixels each frame lost against the unculled frame of the same camera.\n"
                  "Scenes (default: city,%s,%s):\n"
                  "'city' is the procedural city; a FILE is read through assimp. Strategies (default: every\n"
-                 "conservative strategy of the registry, presets included, but om-mos and pc-mos, which need an\n"
-                 "occluder database preprocessed for the scene; pvs runs only on the city, the one scene with\n"
-                 "2.5D occluders). --fov: vertical fields of view in degrees (20,120). --coherence (off) and\n"
+                 "conservative strategy of the registry, presets included; pvs runs only on the city, the one\n"
+                 "scene with 2.5D occluders). om-mos and pc-mos without database=FILE take an occluder database\n"
+                 "made at start for each scene: a view of each heading at the centre of each cell of the\n"
+                 "scene's bounds (--mos-grid, 4,2,4/4). --fov: vertical fields of view in degrees (20,120).\n"
+                 "--coherence (off) and\n"
                  "--switch-off (0: never) are walkthrough's traversal policies. Exit status 1 when a pixel\n"
                  "was lost, 2 on a bad option.\n\nstrategies:\n%s",
                  default_models[0], default_models[1], strategies_help().c_str());
@@ -100,23 +107,21 @@ std::vector<std::string> split(const std::string &list, char by)
     return items;
 }
 
-// Every conservative strategy the registry names (families and presets),
-// but those that need an occluder database (`needing_database` gets them).
-std::vector<std::string> default_strategies(std::vector<std::string> *needing_database = nullptr)
+// Every conservative strategy the registry names (families and presets).
+std::vector<std::string> default_strategies()
 {
     std::vector<std::string> names;
-    for (const std::string &name : strategy_names()) {
-        const StrategyChoice c = choose_strategy(name);
-        if (!c.conservative())
-            continue;
-        if (c.settings.knows("selection") && c.settings.text("selection") == "mos") {
-            if (needing_database)
-                needing_database->push_back(name);
-        } else {
+    for (const std::string &name : strategy_names())
+        if (choose_strategy(name).conservative())
             names.push_back(name);
-        }
-    }
     return names;
+}
+
+// A strategy that takes its occluders from a minimum-occluder-set database
+// and was given none: the run makes one at start, per scene.
+bool needs_database(const StrategyChoice &c)
+{
+    return c.settings.knows("selection") && c.settings.text("selection") == "mos" && c.settings.text("database").empty();
 }
 
 Options parse(int argc, char **argv)
@@ -158,6 +163,17 @@ Options parse(int argc, char **argv)
                 if (o.fov_min > o.fov_max)
                     usage("--fov is MIN,MAX: " + f[0] + " > " + f[1]);
             }
+            else if (a == "--mos-grid") {
+                std::istringstream in(v);
+                char c1 = 0, c2 = 0, slash = 0;
+                glm::ivec3 g;
+                int h = 0;
+                if (!(in >> g.x >> c1 >> g.y >> c2 >> g.z >> slash >> h) || c1 != ',' || c2 != ',' || slash != '/' ||
+                    !in.eof() || g.x < 1 || g.y < 1 || g.z < 1 || h < 1 || h > 64 || g.x * g.y * g.z > 4096)
+                    usage("--mos-grid is NX,NY,NZ/HEADINGS (at most 4096 points, 64 headings), got '" + v + "'");
+                o.mos_grid = g;
+                o.mos_headings = h;
+            }
             else if (a == "--out") o.out = v;
             else
                 usage("unknown argument '" + a + "'");
@@ -193,7 +209,7 @@ struct Run {
     std::optional<VisibleNodeList> coherence;
     std::optional<SwitchOff> switch_off;
     double ms = 0, triangles = 0;
-    std::uint64_t views = 0, occluded = 0, occluded_culled = 0, visible_culled = 0, lost = 0;
+    std::uint64_t views = 0, occluded = 0, occluded_culled = 0, visible_culled = 0, lost = 0, tied = 0;
     double mean_ms() const { return views ? ms / double(views) : 0.0; }
     std::string label() const { return strategy.choice.label(); }
 };
@@ -222,8 +238,8 @@ std::string csv_field(const std::string &text)
 }
 
 // One scene: its cameras through every strategy.
-void run_scene(const Options &o, const std::string &scene_name, const Scene &scene, long views, unsigned long seed,
-               std::ofstream &csv, std::ofstream &summary, Totals &totals)
+void run_scene(const Options &o, std::size_t scene_index, const std::string &scene_name, const Scene &scene,
+               long views, unsigned long seed, std::ofstream &csv, std::ofstream &summary, Totals &totals)
 {
     HierarchyOptions ho;
     ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
@@ -231,11 +247,41 @@ void run_scene(const Options &o, const std::string &scene_name, const Scene &sce
     const std::vector<Camera> cameras = random_views(scene.bounds, views, seed, 1.0f, o.fov_min, o.fov_max);
 
     gl::OffscreenContext ctx(o.size, o.size);
+    SceneRenderer renderer(scene, hierarchy);
+    const StrategyContext context{scene, hierarchy, renderer};
+    // Occluder databases for the strategies that need one, one per map
+    // resolution (the frame's size / the strategy's map divisor).
+    std::map<int, std::string> databases;
+    for (const std::string &spec : o.strategies) {
+        const StrategyChoice c = choose_strategy(spec);
+        if (!needs_database(c))
+            continue;
+        const int resolution = o.size / int(c.settings.integer("map-divisor"));
+        if (databases.count(resolution))
+            continue;
+        const auto start = std::chrono::steady_clock::now();
+        PreprocessOptions pre;
+        pre.stacks.resolution = resolution;
+        pre.stacks.map_divisor = int(c.settings.integer("map-divisor"));
+        Camera lens;
+        lens.near_plane = 1e-3f * std::max(glm::length(scene.bounds.extent()), 1e-3f);
+        lens.far_plane = 2.0f * std::max(glm::length(scene.bounds.extent()), 1e-3f);
+        const OccluderDatabase db =
+            preprocess_database(renderer, hierarchy, scene.bounds, o.mos_grid, o.mos_headings, lens, pre);
+        const std::string path = o.out + "/occluders-" + std::to_string(scene_index) + "-" +
+                                 std::to_string(resolution) + ".db";
+        db.save(path);
+        databases[resolution] = path;
+        std::printf("occluder database at start (for %s and the other mos strategies of its maps): %u views (%dx%dx%d points, %d headings), %dx%d maps, %.1f s: %s\n",
+                    spec.c_str(), db.grid.view_count(), o.mos_grid.x, o.mos_grid.y, o.mos_grid.z, o.mos_headings,
+                    resolution, resolution,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), path.c_str());
+    }
+    // The frames' state, set after the preprocessing, which draws with its own.
+    glViewport(0, 0, o.size, o.size);
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
     glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
-    SceneRenderer renderer(scene, hierarchy);
-    const StrategyContext context{scene, hierarchy, renderer};
     std::vector<Run> runs;
     std::vector<std::string> left_out;
     for (const std::string &spec : o.strategies) {
@@ -244,7 +290,11 @@ void run_scene(const Options &o, const std::string &scene_name, const Scene &sce
             left_out.push_back(spec);
             continue;
         }
-        Run r{make_strategy(spec, context), {}, {}};
+        const StrategyChoice c = choose_strategy(spec);
+        std::vector<std::string> common;
+        if (needs_database(c))
+            common.push_back("database=" + databases.at(o.size / int(c.settings.integer("map-divisor"))));
+        Run r{make_strategy(spec, context, common), {}, {}};
         const StrategyFamily &family = *r.strategy.choice.family;
         if (family.queries_rasterizer && o.coherence)
             r.coherence.emplace();
@@ -265,7 +315,7 @@ void run_scene(const Options &o, const std::string &scene_name, const Scene &sce
     std::fflush(stdout);
 
     const std::size_t pixels = std::size_t(o.size) * std::size_t(o.size);
-    std::vector<std::uint8_t> unculled(pixels * 4), culled(pixels * 4);
+    std::vector<std::uint8_t> unculled(pixels * 4);
     TraversalOptions plain;
     plain.batch = std::size_t(o.batch);
     for (long v = 0; v < views; ++v) {
@@ -291,14 +341,12 @@ void run_scene(const Options &o, const std::string &scene_name, const Scene &sce
             const FrameStats stats = render_hierarchy(renderer, hierarchy, *run.strategy.culler, frame, traversal);
             glFinish();
             const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-            std::uint64_t lost;
-            if (run.strategy.culler->orders_frame()) {
-                std::memcpy(culled.data(), ctx.pixels(), pixels * 4);
-                draw_unculled_after(renderer, hierarchy, camera, stats.drawn);
-                lost = lost_pixels(ctx.pixels(), culled.data(), pixels);
-            } else {
-                lost = lost_pixels(unculled.data(), ctx.pixels(), pixels);
-            }
+            // A strategy that orders the frame itself is always compared with
+            // its reference; the others first with the common unculled frame.
+            const PixelLoss loss =
+                count_lost_pixels(renderer, hierarchy, camera, stats.drawn,
+                                  run.strategy.culler->orders_frame() ? nullptr : unculled.data(), ctx.pixels(), pixels);
+            const std::uint64_t lost = loss.lost;
             const CullingQuality q = compare_with_truth(truth, stats.drawn);
             run.views += 1;
             run.ms += ms;
@@ -307,6 +355,7 @@ void run_scene(const Options &o, const std::string &scene_name, const Scene &sce
             run.occluded_culled += q.occluded_culled;
             run.visible_culled += q.visible_culled;
             run.lost += lost;
+            run.tied += loss.tied;
             totals.frames += 1;
             totals.lost += lost;
             if (lost && !totals.first)
@@ -315,7 +364,7 @@ void run_scene(const Options &o, const std::string &scene_name, const Scene &sce
                 << camera.position.y << ',' << camera.position.z << ',' << camera.target.x << ',' << camera.target.y
                 << ',' << camera.target.z << ',' << camera.fovy_degrees << ',' << ms << ',' << stats.triangles << ','
                 << stats.leaves_drawn << ',' << truth.visible.size() << ',' << q.occluded << ',' << q.occluded_culled
-                << ',' << q.visible_culled << ',' << lost << '\n';
+                << ',' << q.visible_culled << ',' << lost << ',' << loss.tied << '\n';
         }
         totals.views += 1;
         progress("views of " + scene_name, v + 1, views);
@@ -329,8 +378,8 @@ void run_scene(const Options &o, const std::string &scene_name, const Scene &sce
     };
     const double vfc_ms = mean_of("vfc"), ideal_ms = mean_of("ideal");
     std::uint64_t scene_lost = 0;
-    std::printf("%-16s %6s %9s %7s %8s %10s %10s %8s %11s\n", "strategy", "views", "mean ms", "vs vfc", "x ideal",
-                "triangles", "efficiency", "vis cull", "lost pixels");
+    std::printf("%-20s %6s %9s %7s %8s %10s %10s %8s %11s %9s\n", "strategy", "views", "mean ms", "vs vfc", "x ideal",
+                "triangles", "efficiency", "vis cull", "lost pixels", "tied px");
     for (const Run &r : runs) {
         const double n = double(std::max<std::uint64_t>(1, r.views)), mean = r.mean_ms();
         char vs_vfc[32] = "-", x_ideal[32] = "-", efficiency[32] = "-";
@@ -340,14 +389,14 @@ void run_scene(const Options &o, const std::string &scene_name, const Scene &sce
             std::snprintf(x_ideal, sizeof(x_ideal), "%.2fx", mean / ideal_ms);
         if (r.occluded)
             std::snprintf(efficiency, sizeof(efficiency), "%.1f%%", 100.0 * double(r.occluded_culled) / double(r.occluded));
-        std::printf("%-16s %6llu %9.2f %7s %8s %10.0f %10s %8llu %11llu\n", r.label().c_str(),
+        std::printf("%-20s %6llu %9.2f %7s %8s %10.0f %10s %8llu %11llu %9llu\n", r.label().c_str(),
                     (unsigned long long)r.views, mean, vs_vfc, x_ideal, r.triangles / n, efficiency,
-                    (unsigned long long)r.visible_culled, (unsigned long long)r.lost);
+                    (unsigned long long)r.visible_culled, (unsigned long long)r.lost, (unsigned long long)r.tied);
         summary << csv_field(scene_name) << ',' << csv_field(r.label()) << ',' << r.views << ',' << mean << ','
                 << (vfc_ms > 0 && mean > 0 ? vfc_ms / mean : 0.0) << ',' << (ideal_ms > 0 ? mean / ideal_ms : 0.0)
                 << ',' << r.triangles / n << ',' << r.occluded << ',' << r.occluded_culled << ','
                 << (r.occluded ? 100.0 * double(r.occluded_culled) / double(r.occluded) : 0.0) << ','
-                << r.visible_culled << ',' << r.lost << '\n';
+                << r.visible_culled << ',' << r.lost << ',' << r.tied << '\n';
         scene_lost += r.lost;
     }
     for (const Run &r : runs)
@@ -379,31 +428,25 @@ int main(int argc, char **argv)
         if (!csv || !summary)
             throw std::runtime_error("cannot write '" + views_path + "' and '" + summary_path + "'");
         csv << "scene,view,strategy,px,py,pz,tx,ty,tz,fovy,ms,triangles,leaves_drawn,oracle_visible_leaves,"
-               "oracle_occluded_leaves,occluded_leaves_culled,visible_leaves_culled,lost_pixels\n";
+               "oracle_occluded_leaves,occluded_leaves_culled,visible_leaves_culled,lost_pixels,tied_pixels\n";
         summary << "scene,strategy,views,mean_ms,vs_vfc,x_ideal,triangles,occluded_leaves,occluded_leaves_culled,"
-                   "efficiency_percent,visible_leaves_culled,lost_pixels\n";
+                   "efficiency_percent,visible_leaves_culled,lost_pixels,tied_pixels\n";
         std::printf("random views: %ld over %zu scenes, %zu strategies, %dx%d; views.csv and summary.csv in %s\n",
                     o.views, o.scenes.size(), o.strategies.size(), o.size, o.size, o.out.c_str());
-        std::vector<std::string> needing_database;
-        if (default_strategies(&needing_database) == o.strategies && !needing_database.empty()) {
-            std::string names;
-            for (const std::string &n : needing_database)
-                names += (names.empty() ? "" : ", ") + n;
-            std::printf("left out: %s (they need an occluder database preprocessed for each scene: occu-preprocess\n"
-                        "build; name them with :database=FILE in --strategies to run them)\n", names.c_str());
-        }
         Totals totals;
         const auto start = std::chrono::steady_clock::now();
         for (std::size_t i = 0; i < o.scenes.size(); ++i) {
             const long share = o.views / long(o.scenes.size()) + (long(i) < o.views % long(o.scenes.size()) ? 1 : 0);
-            run_scene(o, o.scenes[i], scenes[i], share, o.seed + i, csv, summary, totals);
+            run_scene(o, i, o.scenes[i], scenes[i], share, o.seed + i, csv, summary, totals);
         }
         if (!csv.flush() || !summary.flush())
             throw std::runtime_error("cannot write '" + views_path + "' and '" + summary_path + "'");
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf("\nefficiency: occluded leaves culled / occluded leaves (the oracle's); vs vfc: vfc's mean ms /\n"
-                    "the strategy's; x ideal: the strategy's mean ms / ideal's; lost pixels: pixels where the frame\n"
-                    "differs from the unculled frame of the same camera and drawing order.\n");
+                    "the strategy's; x ideal: the strategy's mean ms / ideal's; vis cull: leaves the oracle sees that\n"
+                    "were not drawn; lost pixels: pixels where a leaf the strategy culled is strictly nearer than\n"
+                    "what it drew (the frame differs from its leaves drawn in its order, then the culled ones);\n"
+                    "tied px: pixels that differ from the common unculled frame through depth ties alone (not lost).\n");
         std::printf("total: %ld views, %ld frames, %llu visible pixels lost, %.1f s (%.1f ms per view)\n", totals.views,
                     totals.frames, (unsigned long long)totals.lost, seconds, 1000.0 * seconds / double(totals.views));
         if (totals.first) {

@@ -9,11 +9,11 @@
 
 namespace occu {
 
-std::uint64_t lost_pixels(const std::uint8_t *unculled, const std::uint8_t *culled, std::size_t pixel_count)
+std::uint64_t lost_pixels(const std::uint8_t *reference, const std::uint8_t *culled, std::size_t pixel_count)
 {
     std::uint64_t lost = 0;
     for (std::size_t i = 0; i < pixel_count; ++i)
-        lost += std::memcmp(unculled + 4 * i, culled + 4 * i, 4) != 0;
+        lost += std::memcmp(reference + 4 * i, culled + 4 * i, 4) != 0;
     return lost;
 }
 
@@ -32,6 +32,21 @@ void draw_unculled_after(const SceneRenderer &renderer, const Hierarchy &hierarc
         if (nodes[n].leaf() && !done[n])
             renderer.draw_leaf(n);
     glFinish();
+}
+
+PixelLoss count_lost_pixels(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Camera &camera,
+                            const std::vector<std::uint32_t> &drawn, const std::uint8_t *unculled,
+                            const std::uint8_t *frame, std::size_t pixel_count)
+{
+    const std::uint64_t differing = unculled ? lost_pixels(unculled, frame, pixel_count) : 0;
+    if (unculled && differing == 0)
+        return {};
+    const std::vector<std::uint8_t> culled(frame, frame + 4 * pixel_count);
+    draw_unculled_after(renderer, hierarchy, camera, drawn);
+    PixelLoss loss;
+    loss.lost = lost_pixels(frame, culled.data(), pixel_count);
+    loss.tied = differing > loss.lost ? differing - loss.lost : 0;
+    return loss;
 }
 
 }  // namespace occu

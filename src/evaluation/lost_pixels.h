@@ -2,25 +2,24 @@
 // same camera: what says a conservative strategy kept every visible pixel
 // (occu-random-views, demos/random_views.cpp).
 //
-// Definition. Both frames are drawn into the same context with the same
-// camera, viewport, GL state and clear colour, and with the same drawing
-// order for the leaves both draw: the unculled frame is the culled one plus
-// the leaves it did not draw. A pixel is lost where the two frames differ
-// (any of its four RGBA8 bytes). A culled frame only leaves leaves out, so
-// such a pixel is one where a leaf it left out passes the depth test in the
-// unculled frame: geometry the viewer sees that the culled frame shows
-// wrongly (background, or what lies behind).
+// Definition. A pixel is lost where the culled frame differs (any of its
+// four RGBA8 bytes) from its reference: the same camera, viewport, GL state
+// and clear colour, the leaves the culled frame drew in the order it drew
+// them, then every leaf it left out. A leaf drawn later changes a pixel
+// only where it is strictly in front of what is there (GL_LESS), so a lost
+// pixel is one where a leaf the strategy culled is strictly nearer than
+// everything it drew there: geometry the viewer sees that the culled frame
+// shows wrongly (background, or what lies behind).
 //
-// Depth ties. Where faces tie in depth the leaf drawn first keeps the pixel
-// (GL_LESS), so the order matters: for a strategy drawn by the common
-// traversal (traversal/traversal.h) the unculled frame is the traversal's
-// with the strategy `none` and the same batches (it draws the leaves in the
-// same order, front to back); a strategy that orders the frame itself
-// (Culler::orders_frame, e.g. chc) draws in an order of its own, so its
-// unculled frame is draw_unculled_after(its leaves): its leaves in its
-// order, then the others. In that reference a leaf it culled changes a
-// pixel only where it is strictly in front of what it drew there: where it
-// was visible (as tests/integration/frame_comparison.h does).
+// Depth ties. Where faces tie in depth (coplanar faces of two leaves) the
+// leaf drawn first keeps the pixel, so a frame that left out one of the two
+// may differ from the unculled frame of another drawing order there
+// without hiding anything nearer: which face shows is z-fighting, not
+// visibility. The reference above puts what the strategy drew first, so
+// such pixels are not lost; they are counted apart (`tied`) when the
+// common traversal's unculled frame is given: pixels that differ from it
+// but not from the reference. This is how tests/integration/frame_comparison.h
+// compares a strategy that orders the frame itself (chc), applied to all.
 #pragma once
 
 #include <cstddef>
@@ -34,15 +33,30 @@ namespace occu {
 class Hierarchy;
 class SceneRenderer;
 
-// Pixels in which two RGBA8 frames of `pixel_count` pixels differ: the
-// visible pixels `culled` lost when `unculled` is its reference (above).
-std::uint64_t lost_pixels(const std::uint8_t *unculled, const std::uint8_t *culled, std::size_t pixel_count);
+// Pixels in which two RGBA8 frames of `pixel_count` pixels differ.
+std::uint64_t lost_pixels(const std::uint8_t *reference, const std::uint8_t *culled, std::size_t pixel_count);
 
-// The reference of a frame a strategy ordered itself: clears colour and
-// depth, loads `camera` and draws every leaf of `hierarchy`, those of
-// `first` in their order, then the others in index order; waits for it
-// (glFinish). Draws into the current context with its state.
+// The reference above: clears colour and depth, loads `camera` and draws
+// every leaf of `hierarchy`, those of `first` in their order, then the
+// others in index order; waits for it (glFinish). Draws into the current
+// context with its state.
 void draw_unculled_after(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Camera &camera,
                          const std::vector<std::uint32_t> &first);
+
+struct PixelLoss {
+    std::uint64_t lost = 0;   // visible pixels lost (above)
+    std::uint64_t tied = 0;   // pixels that differ from `unculled` through depth ties alone
+};
+
+// The pixels the culled frame in `frame` (the current context's pixels,
+// `pixel_count` of them, just drawn with `camera`; `drawn`: its leaves in
+// drawing order) lost. `unculled`, when given, is the frame the common
+// traversal draws without culling: where the culled frame equals it
+// nothing is lost and no reference is drawn (a pixel lost against the
+// reference differs from it too, unless two leaves' colours coincide);
+// otherwise the reference is drawn into the context, overwriting `frame`.
+PixelLoss count_lost_pixels(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Camera &camera,
+                            const std::vector<std::uint32_t> &drawn, const std::uint8_t *unculled,
+                            const std::uint8_t *frame, std::size_t pixel_count);
 
 }  // namespace occu

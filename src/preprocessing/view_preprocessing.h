@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "camera/camera.h"
+#include "geometry/aabb.h"
+#include "preprocessing/occluder_database.h"
 #include "preprocessing/occluder_stacks.h"
 #include "render/scene_renderer.h"
 #include "spatial/hierarchy.h"
@@ -48,5 +50,15 @@ struct PreprocessStats {
 std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &renderer, const Hierarchy &hierarchy,
                                                      const Camera &camera, const PreprocessOptions &options,
                                                      PreprocessStats *stats = nullptr);
+
+// A whole database made here, for programs that need one at start (e.g.
+// occu-random-views for om-mos on any scene): a grid point at the centre
+// of each of points.x * points.y * points.z equal cells of `bounds`, `directions`
+// headings each, every view with the lens `lens` and selected by
+// select_occluders_for_view with `options` (options.stacks.resolution: the
+// run-time maps' resolution). Needs what select_occluders_for_view needs.
+OccluderDatabase preprocess_database(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Aabb &bounds,
+                                     const glm::ivec3 &points, int directions, const Camera &lens,
+                                     const PreprocessOptions &options);
 
 }  // namespace occu
