@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -136,6 +137,29 @@ TEST(Route, FileNumbersThatAreNotFiniteAreRefusedNamingFileLineAndNumber)
         EXPECT_NE(message.find("tx is '" + bad + "'"), std::string::npos) << message;
         EXPECT_NE(message.find("not a finite number"), std::string::npos) << message;
     }
+}
+
+TEST(Route, RandomViewsAreTheRandomRoutesWithFieldsOfViewInTheirRange)
+{
+    const Aabb box = Aabb::of({-10, 0, -4}, {30, 8, 16});
+    const auto route = make_route("random:40:7", box, CityOptions{}, 3, 1.0f);
+    const auto views = random_views(box, 40, 7, 1.0f, 20.0f, 120.0f);
+    ASSERT_EQ(views.size(), route.size());
+    float least = 180.0f, most = 0.0f;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        EXPECT_EQ(views[i].position, route[i].position);
+        EXPECT_EQ(views[i].target, route[i].target);
+        EXPECT_GE(views[i].fovy_degrees, 20.0f);
+        EXPECT_LE(views[i].fovy_degrees, 120.0f);
+        least = std::min(least, views[i].fovy_degrees);
+        most = std::max(most, views[i].fovy_degrees);
+    }
+    EXPECT_GT(most - least, 50.0f) << "40 draws should spread over most of the range";
+    EXPECT_EQ(random_views(box, 3, 7, 1.0f, 45.0f, 45.0f)[2].fovy_degrees, 45.0f);
+    EXPECT_THROW(random_views(box, 3, 7, 1.0f, 0.5f, 60.0f), std::invalid_argument);
+    EXPECT_THROW(random_views(box, 3, 7, 1.0f, 60.0f, 171.0f), std::invalid_argument);
+    EXPECT_THROW(random_views(box, 3, 7, 1.0f, 90.0f, 30.0f), std::invalid_argument);
+    EXPECT_THROW(random_views(box, 0, 7, 1.0f, 30.0f, 90.0f), std::invalid_argument);
 }
 
 TEST(Route, FileCameraWhoseViewDirectionOverflowsIsRefused)
