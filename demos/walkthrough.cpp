@@ -29,6 +29,7 @@
 #include "cli/progress.h"
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
+#include "evaluation/side_by_side.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
 #include "image/png.h"
@@ -162,8 +163,7 @@ Options parse(int argc, char **argv)
 // Per strategy: its culler, its traversal policies and what it measured.
 struct Run {
     Strategy strategy;
-    std::optional<VisibleNodeList> coherence;
-    std::optional<SwitchOff> switch_off;
+    TraversalPolicies policies;
     std::vector<double> ms;
     double triangles = 0, passes = 0, setup_ms = 0, test_ms = 0;
     std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0, wrong_pixels = 0;
@@ -184,22 +184,7 @@ struct Run {
     std::string label() const { return strategy.choice.label(); }
 };
 
-// The frame of `culler`, timed from clear to finish.
-struct Drawn {
-    FrameStats stats;
-    double ms;
-};
-
-Drawn draw_frame(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler, const Frame &frame,
-                 const TraversalOptions &traversal)
-{
-    const auto start = std::chrono::steady_clock::now();
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    gl::load_camera(frame.camera);
-    FrameStats stats = render_hierarchy(renderer, hierarchy, culler, frame, traversal);
-    glFinish();
-    return {std::move(stats), std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()};
-}
+using Drawn = TimedFrame;
 
 std::string file_name(const std::string &label)
 {
@@ -310,15 +295,8 @@ std::vector<Run> make_runs(const Options &o, const StrategyContext &context)
 {
     std::vector<Run> runs;
     for (const std::string &spec : o.strategies) {
-        Run r{make_strategy(spec, context, o.common), {}, {}, {}};
-        if (r.strategy.choice.family->queries_rasterizer && o.coherence)
-            r.coherence.emplace();
-        const StrategyFamily &family = *r.strategy.choice.family;
-        if ((family.queries_rasterizer || family.costs_per_frame) && o.switch_off > 0.0) {
-            SwitchOff::Settings s;
-            s.min_gain = o.switch_off;
-            r.switch_off.emplace(s);
-        }
+        Run r{make_strategy(spec, context, o.common), {}, {}};
+        r.policies = TraversalPolicies(*r.strategy.choice.family, o.coherence, o.switch_off);
         runs.push_back(std::move(r));
     }
     return runs;
@@ -378,11 +356,8 @@ struct Walk {
     // Strategy `run` draws frame f; what it did joins its totals, frames.csv and the images.
     void draw(Run &run, std::size_t f, const Frame &frame)
     {
-        TraversalOptions traversal;
-        traversal.batch = std::size_t(o.batch);
-        traversal.coherence = run.coherence ? &*run.coherence : nullptr;
-        traversal.switch_off = run.switch_off ? &*run.switch_off : nullptr;
-        const Drawn d = draw_frame(renderer, hierarchy, *run.strategy.culler, frame, traversal);
+        const TraversalOptions traversal = run.policies.options(std::size_t(o.batch));
+        const Drawn d = draw_timed_frame(renderer, hierarchy, *run.strategy.culler, frame, traversal);
         run.ms.push_back(d.ms);
         run.triangles += double(d.stats.triangles);
         run.passes += d.stats.passes;
@@ -408,7 +383,7 @@ struct Walk {
     {
         const std::size_t bytes = std::size_t(o.size) * std::size_t(o.size) * 4;
         const std::vector<std::uint8_t> culled(ctx.pixels(), ctx.pixels() + bytes);
-        draw_frame(renderer, hierarchy, *reference.culler, frame, TraversalOptions{});
+        draw_timed_frame(renderer, hierarchy, *reference.culler, frame, TraversalOptions{});
         std::uint64_t wrong = 0;
         for (std::size_t i = 0; i < bytes; i += 4)
             wrong += std::memcmp(&culled[i], ctx.pixels() + i, 4) != 0;
