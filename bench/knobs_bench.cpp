@@ -188,6 +188,7 @@ struct Variant {
     std::string spec;       // strategy[:setting=value]
     int leaf = default_leaf, batch = default_batch;
     bool baseline = false;  // vfc or ideal
+    std::string refused;    // why the strategy refused these settings when built (settings that must agree)
     // What it measured, per route.
     struct Measured {
         std::vector<double> ms;
@@ -382,9 +383,17 @@ void walk(const Options &o, std::size_t route_index, int leaf, Sweep &sweep, con
     std::vector<Live> live;
     for (std::size_t i = 0; i < sweep.variants.size(); ++i) {
         const Variant &v = sweep.variants[i];
-        if (v.leaf != leaf && !(v.baseline && leaf == default_leaf))
+        if (v.leaf != leaf || !v.refused.empty())
             continue;
-        Live l{i, make_strategy(v.spec, context), {}};
+        std::optional<Strategy> made;
+        try {
+            made.emplace(make_strategy(v.spec, context));
+        } catch (const std::exception &e) {
+            // Settings that must agree with each other (pvs: epsilon and pixel).
+            sweep.variants[i].refused = e.what();
+            continue;
+        }
+        Live l{i, std::move(*made), {}};
         l.policies = TraversalPolicies(*l.strategy.choice.family, true, 0.5);
         live.push_back(std::move(l));
     }
@@ -645,6 +654,12 @@ int main(int argc, char **argv)
             for (std::size_t r = 0; r <= o.routes.size(); ++r)
                 csv_row(sweep.variants[b].spec, "-", "-", true, "baseline", sweep.variants[b],
                         r < o.routes.size() ? std::optional<std::size_t>(r) : std::nullopt);
+        for (const Variant &v : sweep.variants)
+            if (!v.refused.empty())
+                std::printf("left out: %s: %s\n", v.spec.c_str(), v.refused.c_str());
+        sweep.rows.erase(std::remove_if(sweep.rows.begin(), sweep.rows.end(),
+                                        [&sweep](const Row &r) { return !sweep.variants[r.variant].refused.empty(); }),
+                         sweep.rows.end());
         for (const Row &row : sweep.rows)
             for (std::size_t r = 0; r <= o.routes.size(); ++r)
                 csv_row(row.strategy, row.setting, row.value, row.is_default, row.role, sweep.variants[row.variant],
