@@ -9,6 +9,9 @@
 #   bench/sweep.sh om-ps tolerance 0,1,2,4,8,16,32,64 dense 30                  (Poon and Wang, section 5.2)
 #   bench/sweep.sh om-ps coverage-ratio 0,0.1,0.2,0.4,0.8 dense 30
 # Prints a markdown table.
+# Superseded by build/bench/occu-bench-knobs (docs/knobs.md), which sweeps every
+# knob of every strategy at once on the routes as one program; kept because
+# the tables of docs/cpu-depth-culling.md and docs/shadow-culling.md name it.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 [ $# -ge 3 ] || { sed -n '2,12p' "$0" >&2; exit 2; }
