@@ -366,7 +366,7 @@ Options parse(int argc, char **argv)
 // One side-by-side run over a route: the variants of `leaf` triangles per
 // leaf, frame by frame, their order rotating, as walkthrough runs them.
 void walk(const Options &o, std::size_t route_index, int leaf, Sweep &sweep, const Scene &scene,
-          const CityOptions &city, gl::OffscreenContext &ctx, std::vector<std::string> &notes)
+          const CityOptions &city, gl::OffscreenContext &ctx, std::set<std::string> &notes)
 {
     const std::string &route_name = o.routes[route_index];
     HierarchyOptions ho;
@@ -436,7 +436,7 @@ void walk(const Options &o, std::size_t route_index, int leaf, Sweep &sweep, con
     }
     for (const Live &l : live)
         if (l.strategy.culler->orders_frame() && sweep.variants[l.variant].batch != default_batch)
-            notes.push_back(sweep.variants[l.variant].spec + " at batch " +
+            notes.insert(sweep.variants[l.variant].spec + " at batch " +
                             std::to_string(sweep.variants[l.variant].batch) +
                             ": orders its frame itself, the traversal's batch does not apply (its own `batch` setting does)");
 }
@@ -550,7 +550,12 @@ bool plot(const Options &o, const std::string &strategy, const Sweep &sweep, dou
     write_front(base + "-front-efficiency.dat", front_e, false);
     {
         std::ofstream out(base + "-default.dat");
-        const Figures f = figures(sweep.variants[ids.front()], std::nullopt);
+        std::size_t def = ids.front();
+        for (std::size_t id : ids)
+            if (sweep.variants[id].spec == strategy && sweep.variants[id].leaf == default_leaf &&
+                sweep.variants[id].batch == default_batch)
+                def = id;
+        const Figures f = figures(sweep.variants[def], std::nullopt);
         out << f.wrong + 1.0 << ' ' << f.efficiency << ' ' << f.ms << '\n';
     }
     for (std::size_t s = 0; s < settings.size(); ++s) {
@@ -629,7 +634,7 @@ int main(int argc, char **argv)
         std::printf(", %d frames, %dx%d, %s\n", o.frames, o.size, o.size, ctx.renderer().c_str());
         for (const std::string &l : sweep.left_out)
             std::printf("left out: %s\n", l.c_str());
-        std::vector<std::string> notes;
+        std::set<std::string> notes;
         for (std::size_t r = 0; r < o.routes.size(); ++r)
             for (int leaf : leaves)
                 walk(o, r, leaf, sweep, scene, city, ctx, notes);
