@@ -95,16 +95,6 @@ struct Options {
     std::exit(error.empty() ? 0 : 2);
 }
 
-std::vector<std::string> split(const std::string &list, char by)
-{
-    std::vector<std::string> items;
-    std::stringstream in(list);
-    for (std::string s; std::getline(in, s, by);)
-        if (!s.empty())
-            items.push_back(s);
-    return items;
-}
-
 bool sweeps(const SettingSpec &s)
 {
     return s.role != SettingSpec::Role::choice &&
@@ -321,18 +311,18 @@ Options parse(int argc, char **argv)
         const std::string v = argv[++i];
         try {
             if (a == "--routes") {
-                o.routes = split(v, ',');
+                o.routes = list_items(v, ',');
                 if (o.routes.empty())
                     usage("--routes is empty");
             } else if (a == "--strategies") {
-                o.strategies = split(v, ',');
+                o.strategies = list_items(v, ',');
                 if (o.strategies.empty())
                     usage("--strategies is empty");
             } else if (a == "--knob") {
                 const std::size_t eq = v.find('=');
-                if (eq == std::string::npos || eq == 0 || split(v.substr(eq + 1), ',').empty())
+                if (eq == std::string::npos || eq == 0 || list_items(v.substr(eq + 1), ',').empty())
                     usage("--knob wants SETTING=V1,V2,..., got '" + v + "'");
-                o.knobs[v.substr(0, eq)] = split(v.substr(eq + 1), ',');
+                o.knobs[v.substr(0, eq)] = list_items(v.substr(eq + 1), ',');
             } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
             else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
             else if (a == "--driver") o.driver = v;

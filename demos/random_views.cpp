@@ -97,16 +97,6 @@ struct Options {
     std::exit(error.empty() ? 0 : 2);
 }
 
-std::vector<std::string> split(const std::string &list, char by)
-{
-    std::vector<std::string> items;
-    std::stringstream in(list);
-    for (std::string s; std::getline(in, s, by);)
-        if (!s.empty())
-            items.push_back(s);
-    return items;
-}
-
 // Every conservative strategy the registry names (families and presets).
 std::vector<std::string> default_strategies()
 {
@@ -136,7 +126,7 @@ Options parse(int argc, char **argv)
         const std::string v = argv[++i];
         try {
             if (a == "--scene") {
-                const std::vector<std::string> s = split(v, ',');
+                const std::vector<std::string> s = list_items(v, ',');
                 if (s.empty())
                     usage("--scene is empty");
                 o.scenes.insert(o.scenes.end(), s.begin(), s.end());
@@ -145,7 +135,7 @@ Options parse(int argc, char **argv)
             else if (a == "--seed") o.seed = (unsigned long)integer_option(a, v, 0, 0xffffffffL);
             else if (a == "--size") o.size = int(integer_option(a, v, 16, 4096));
             else if (a == "--strategies") {
-                o.strategies = split(v, ',');
+                o.strategies = list_items(v, ',');
                 if (o.strategies.empty())
                     usage("--strategies is empty");
             }
@@ -155,7 +145,7 @@ Options parse(int argc, char **argv)
             else if (a == "--coherence") o.coherence = switch_option(a, v);
             else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
             else if (a == "--fov") {
-                const std::vector<std::string> f = split(v, ',');
+                const std::vector<std::string> f = list_items(v, ',');
                 if (f.size() != 2)
                     usage("--fov is MIN,MAX in degrees, got '" + v + "'");
                 o.fov_min = float(number_option(a, f[0], 1.0, 170.0));

@@ -87,16 +87,6 @@ struct Options {
     std::exit(error.empty() ? 0 : 2);
 }
 
-std::vector<std::string> split(const std::string &list, char by)
-{
-    std::vector<std::string> items;
-    std::stringstream in(list);
-    for (std::string s; std::getline(in, s, by);)
-        if (!s.empty())
-            items.push_back(s);
-    return items;
-}
-
 Options parse(int argc, char **argv)
 {
     Options o;
@@ -111,7 +101,7 @@ Options parse(int argc, char **argv)
             if (a == "--route") o.route = v;
             else if (a == "--scene") o.scene = v;
             else if (a == "--strategies") {
-                o.strategies = split(v, ',');
+                o.strategies = list_items(v, ',');
                 if (o.strategies.empty())
                     usage("--strategies is empty");
             }
@@ -130,7 +120,7 @@ Options parse(int argc, char **argv)
             else if (a == "--oracle") o.oracle = switch_option(a, v);
             else if (a == "--report") o.report = switch_option(a, v);
             else if (a == "--video") {
-                o.video = split(v, ',');
+                o.video = list_items(v, ',');
                 if (o.video.empty())
                     usage("--video is empty");
             }

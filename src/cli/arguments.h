@@ -5,8 +5,10 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace occu {
 
@@ -34,6 +36,17 @@ inline double number_option(const std::string &option, const std::string &text, 
         throw std::invalid_argument(option + " wants a number in " + range + ", got '" + text + "'");
     }
     return x;
+}
+
+// The non-empty items of a list such as "a,b,,c" split at `by`.
+inline std::vector<std::string> list_items(const std::string &list, char by)
+{
+    std::vector<std::string> items;
+    std::stringstream in(list);
+    for (std::string s; std::getline(in, s, by);)
+        if (!s.empty())
+            items.push_back(s);
+    return items;
 }
 
 // "on" or "off".
