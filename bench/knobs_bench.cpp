@@ -184,19 +184,8 @@ struct Variant {
         std::vector<double> ms;
         double triangles = 0;
         std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0, wrong = 0, max_wrong = 0;
-        double mean_ms() const
-        {
-            double t = 0;
-            for (double x : ms)
-                t += x;
-            return ms.empty() ? 0.0 : t / double(ms.size());
-        }
-        double median_ms() const
-        {
-            std::vector<double> s = ms;
-            std::sort(s.begin(), s.end());
-            return s.empty() ? 0.0 : s[s.size() / 2];
-        }
+        double mean_ms() const { return occu::mean_ms(ms); }
+        double median_ms() const { return occu::median_ms(ms); }
         double wrong_per_frame() const { return ms.empty() ? 0.0 : double(wrong) / double(ms.size()); }
         double efficiency() const { return occluded ? 100.0 * double(occluded_culled) / double(occluded) : 100.0; }
     };

@@ -158,19 +158,8 @@ struct Run {
     double triangles = 0, passes = 0, setup_ms = 0, test_ms = 0;
     std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0, wrong_pixels = 0;
 
-    double mean_ms() const
-    {
-        double t = 0;
-        for (double x : ms)
-            t += x;
-        return ms.empty() ? 0.0 : t / double(ms.size());
-    }
-    double median_ms() const
-    {
-        std::vector<double> s = ms;
-        std::sort(s.begin(), s.end());
-        return s.empty() ? 0.0 : s[s.size() / 2];
-    }
+    double mean_ms() const { return occu::mean_ms(ms); }
+    double median_ms() const { return occu::median_ms(ms); }
     std::string label() const { return strategy.choice.label(); }
 };
 

@@ -3,7 +3,9 @@
 // policies a family's frames run with.
 #pragma once
 
+#include <algorithm>
 #include <optional>
+#include <vector>
 
 #include "culling/registry.h"
 #include "traversal/policies.h"
@@ -36,5 +38,20 @@ struct TraversalPolicies {
     // The options of one frame: `batch` nodes at a time, with these policies.
     TraversalOptions options(std::size_t batch);
 };
+
+// The mean and the median of a strategy's frame times (0 without frames).
+inline double mean_ms(const std::vector<double> &ms)
+{
+    double t = 0;
+    for (double x : ms)
+        t += x;
+    return ms.empty() ? 0.0 : t / double(ms.size());
+}
+
+inline double median_ms(std::vector<double> ms)
+{
+    std::sort(ms.begin(), ms.end());
+    return ms.empty() ? 0.0 : ms[ms.size() / 2];
+}
 
 }  // namespace occu
