@@ -2,16 +2,26 @@
  * GL_MESAX_occlusion_unit in a multisampled framebuffer counts fragments,
  * not samples (section 5.X): a fragment with at least one covered sample
  * counts in PHC, with at least one sample passing the tests in NOHC. A 4x
- * framebuffer object, a 16 x 16 rectangle, and an occluder in front of the
- * left half of the window. The fragments the rectangle has are measured,
- * not assumed: the pixels whose resolved colour it changes when drawn
- * in GL_RENDER (a pixel with any covered sample changes), as the
- * driver's sample positions and edge rules place them.
+ * framebuffer object, a 16 x 16 rectangle drawn as two triangles, and an
+ * occluder in front of the left half of the window.
+ *
+ * Each primitive has its own fragments (GL 4.6 section 14.3.1): where the
+ * two triangles' shared diagonal crosses a pixel, each covers some of its
+ * samples and each produces a fragment, so in a multisampled framebuffer
+ * the rectangle has more fragments than it changes pixels (with one sample
+ * per pixel the pixel's centre belongs to one triangle only). The
+ * fragments are therefore measured per triangle, not assumed: the pixels
+ * whose resolved colour each triangle alone changes when drawn in
+ * GL_RENDER (a pixel with any covered sample changes), summed over the
+ * two, as the driver's sample positions and edge rules place them.
  *
  * Subtests:
- *   whole-rectangle-counts-fragments    NOHC = PHC = the pixels it changes
+ *   whole-rectangle-counts-fragments    NOHC = PHC = the fragments measured
  *   depth-test-applies-per-fragment     behind the occluder: PHC as before,
- *                                       NOHC the changed pixels right of it
+ *                                       NOHC the fragments right of it
+ *   samples-passed-counts-samples       a GL_SAMPLES_PASSED query inside
+ *                                       the pass counts what it counts in
+ *                                       GL_RENDER (samples, not fragments)
  *
  * softpipe has no multisampling (GL_MAX_SAMPLES below 4): there the test
  * skips, the one driver property it cannot have.
@@ -20,18 +30,39 @@
 
 #define S 32
 
-static GLuint
-pass(float z)
+static const float corners[4][2] = {{8, 8}, {24, 8}, {24, 24}, {8, 24}};
+
+/* Triangle t of the rectangle: (0, 1, 2) or (0, 2, 3). */
+static void
+triangle(int t, float z)
 {
-    GLuint record[8];
+    glBegin(GL_TRIANGLES);
+    glVertex3f(corners[0][0], corners[0][1], z);
+    glVertex3f(corners[1 + t][0], corners[1 + t][1], z);
+    glVertex3f(corners[2 + t][0], corners[2 + t][1], z);
+    glEnd();
+}
+
+static void
+rectangle(float z)
+{
+    triangle(0, z);
+    triangle(1, z);
+}
+
+static GLuint
+pass(float z, GLuint *phc)
+{
+    GLuint record[OU_BRIEF_SIZE];
     GLuint *buffers[1] = {record};
-    GLsizei sizes[1] = {8};
+    GLsizei sizes[1] = {OU_BRIEF_SIZE};
     OcclusionBuffersMESAX(1, sizes, buffers);
     glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
-    ou_rect(8, 8, 24, 24, z);
+    rectangle(z);
     glRenderMode(GL_RENDER);
     printf("NOHC %u PHC %u\n", record[OU_NOHC], record[OU_PHC]);
-    return record[OU_NOHC] | (GLuint)record[OU_PHC] << 16;
+    *phc = record[OU_PHC];
+    return record[OU_NOHC];
 }
 
 int main(int argc, char **argv)
@@ -46,38 +77,74 @@ int main(int argc, char **argv)
     const struct ou_fbo_functions f = ou_fbo_functions();
     GLuint rb[2];
     const GLuint fbo = ou_make_fbo(&f, S, S, 4, true, rb);
-    /* The rectangle's fragments: drawn in GL_RENDER over black, resolved
-     * into a single-sample framebuffer, read back. */
-    glClearColor(0, 0, 0, 0);
-    glClear(GL_COLOR_BUFFER_BIT);
-    glColor3f(1, 1, 1);
-    ou_rect(8, 8, 24, 24, 0.5f);
-    f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    f.BlitFramebuffer(0, 0, S, S, 0, 0, S, S, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    f.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    static GLubyte pixels[S * S * 4];
-    glReadPixels(0, 0, S, S, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+
+    /* Each triangle's fragments: drawn alone in GL_RENDER over black,
+     * resolved into the single-sample window, read back. */
     GLuint fragments = 0, right_of_occluder = 0;
-    for (int i = 0; i < S * S; ++i)
-        if (pixels[4 * i]) {
-            ++fragments;
-            right_of_occluder += i % S >= 16;
-        }
+    glColor3f(1, 1, 1);
+    for (int t = 0; t < 2; ++t) {
+        f.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glClearColor(0, 0, 0, 0);
+        glClear(GL_COLOR_BUFFER_BIT);
+        triangle(t, 0.5f);
+        f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        f.BlitFramebuffer(0, 0, S, S, 0, 0, S, S, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        f.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        static GLubyte pixels[S * S * 4];
+        glReadPixels(0, 0, S, S, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+        for (int i = 0; i < S * S; ++i)
+            if (pixels[4 * i]) {
+                ++fragments;
+                right_of_occluder += i % S >= 16;
+            }
+    }
     f.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    printf("the rectangle changes %u pixels, %u right of x = 16\n", fragments, right_of_occluder);
+    printf("the two triangles have %u fragments, %u right of x = 16\n", fragments, right_of_occluder);
     if (fragments < 256) {
-        printf("fewer pixels than the rectangle's 256\n");
+        printf("fewer fragments than the rectangle's 256 pixels\n");
         piglit_report_result(PIGLIT_FAIL);
     }
 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glClear(GL_DEPTH_BUFFER_BIT);
-    GLuint r = pass(0.5f);
-    subtest((r & 0xffff) == fragments && (r >> 16) == fragments, "whole-rectangle-counts-fragments");
+    GLuint phc;
+    GLuint nohc = pass(0.5f, &phc);
+    subtest(nohc == fragments && phc == fragments, "whole-rectangle-counts-fragments");
 
     ou_rect(0, 0, 16, S, 0.25f);   /* the occluder, drawn into depth */
-    r = pass(0.5f);
-    subtest((r & 0xffff) == right_of_occluder && (r >> 16) == fragments, "depth-test-applies-per-fragment");
+    nohc = pass(0.5f, &phc);
+    subtest(nohc == right_of_occluder && phc == fragments, "depth-test-applies-per-fragment");
+
+    /* Spec 4.1.7 edit: occlusion queries count as in RENDER mode. The
+     * same draw against the same depth buffer, once in GL_RENDER and once
+     * in a pass; every sample of the rectangle right of the occluder
+     * passes, so both must be 4 * 128 at least, and equal. */
+    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
+        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    GLuint query, samples[2];
+    GenQueries(1, &query);
+    GLuint record[OU_BRIEF_SIZE];
+    GLuint *buffers[1] = {record};
+    GLsizei sizes[1] = {OU_BRIEF_SIZE};
+    for (int in_pass = 0; in_pass < 2; ++in_pass) {
+        glClear(GL_DEPTH_BUFFER_BIT);
+        ou_rect(0, 0, 16, S, 0.25f);
+        if (in_pass) {
+            OcclusionBuffersMESAX(1, sizes, buffers);
+            glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+        }
+        BeginQuery(GL_SAMPLES_PASSED, query);
+        rectangle(0.5f);
+        EndQuery(GL_SAMPLES_PASSED);
+        if (in_pass)
+            glRenderMode(GL_RENDER);
+        GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples[in_pass]);
+    }
+    printf("GL_SAMPLES_PASSED: %u in GL_RENDER, %u in a pass\n", samples[0], samples[1]);
+    subtest(samples[0] >= 4 * 128 && samples[1] == samples[0], "samples-passed-counts-samples");
     piglit_report_result(result);
 }
