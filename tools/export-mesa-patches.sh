@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
-# Developer tool: after editing Mesa in the cache's source tree (the tree
-# tools/mesa.sh patched), writes the changes back into patches/mesa/.
-# Each patch keeps its header and the files it already touches; a changed
-# file that no patch touches is reported, not guessed.
+# Developer tool: writes the cache's Mesa tree back into patches/mesa/.
+# tools/mesa.sh commits each patch of the series on the pristine source
+# (git am); change a patch by changing its commit (git commit --amend for
+# the last one, git commit --fixup=<commit> and git rebase -i --autosquash
+# for the others, a new commit for a new patch), then run this: it writes
+# `git format-patch` of every commit after the pristine one, under the
+# file names patches/mesa/series gives them in order; commits beyond the
+# series keep format-patch's names and are appended to it.
 # Usage: tools/export-mesa-patches.sh
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -10,23 +14,34 @@ source "$(dirname "$0")/lib.sh"
 src=$OCCU_CACHE/mesa/$MESA_DEBIAN_VERSION/source
 [ -d "$src/.git" ] || die "no Mesa source tree at $src (run tools/mesa.sh first)"
 cd "$src"
-git add -N src docs include 2>/dev/null || true
+uncommitted=$(git status --porcelain | grep -v -E '^\?\? \.occu-(pristine|applied)$' || true)
+[ -z "$uncommitted" ] || die "$src has changes in no commit; commit them into the patch they belong to first:
+$uncommitted"
+pristine=$(git rev-list --max-parents=0 HEAD)
 
-claimed=()
+names=()
+series=$OCCU_ROOT/patches/mesa/series
 while IFS= read -r name || [ -n "$name" ]; do
     name=${name%%#*}; name=$(echo "$name" | xargs)
-    [ -n "$name" ] || continue
-    patch=$OCCU_ROOT/patches/mesa/$name
-    mapfile -t files < <(sed -n 's|^diff --git a/\([^ ]*\) b/.*|\1|p' "$patch")
-    [ ${#files[@]} -gt 0 ] || die "$name touches no file; edit it by hand"
-    header=$(sed -n '/^diff --git /q;p' "$patch")
-    { printf '%s\n\n' "$header"; git diff -- "${files[@]}"; } > "$patch.new"
-    mv "$patch.new" "$patch"
-    claimed+=("${files[@]}")
-    say "wrote $name (${#files[@]} files)"
-done < "$OCCU_ROOT/patches/mesa/series"
+    [ -n "$name" ] && names+=("$name")
+done < "$series"
+commits=$(git rev-list --count "$pristine..HEAD")
+[ "$commits" -ge "${#names[@]}" ] ||
+    die "the tree has $commits commits after pristine but the series names ${#names[@]} patches (run tools/mesa.sh?)"
 
-mapfile -t changed < <(git diff --name-only)
-for f in "${changed[@]}"; do
-    printf '%s\n' "${claimed[@]}" | grep -qxF "$f" || say "warning: $f changed but no patch touches it"
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+git format-patch -q --zero-commit --no-signature --no-stat -o "$out" "$pristine..HEAD"
+k=0
+for f in "$out"/*.patch; do
+    if [ $k -lt ${#names[@]} ]; then
+        name=${names[k]}
+    else
+        name=${f##*/}
+        echo "$name" >> "$series"
+        say "new patch $name appended to the series"
+    fi
+    mv "$f" "$OCCU_ROOT/patches/mesa/$name"
+    say "wrote $name"
+    k=$((k + 1))
 done

@@ -11,7 +11,8 @@
 #
 # Cache layout under $OCCU_CACHE/mesa/<debian version>/:
 #   source/                  the unpacked source package, a git repository whose first
-#                            commit is pristine; patches are applied to its work tree
+#                            commit is pristine; each patch of the series is one commit
+#                            on it (git am), as in a merge request's branch
 #   source-unpatched/        a second work tree of that commit, for --unpatched
 #   build-<options>-<variant>/   meson build dir, reused so that a patch change
 #                            rebuilds only what it touches
@@ -103,14 +104,20 @@ if [ $variant = unpatched ]; then
     src=$top/source-unpatched
 fi
 
-# --- patch: reset the tree to pristine, apply the series in order ---------------------
+# --- patch: reset the tree to pristine, commit the series on it in order ---------------
+# One commit per patch, author, date and message taken from the patch (git am), so
+# that tools/export-mesa-patches.sh gets the series back with git format-patch.
 applied=$(cat "$src/.occu-applied" 2>/dev/null || true)
 if [ "$applied" != "$patches_hash" ]; then
     say "applying patches/mesa/series (${#patches[@]} patches)"
-    (cd "$src" && git reset -q --hard && git clean -q -fd -e .occu-pristine -e .occu-applied)
+    pristine=$(git -C "$src" rev-list --max-parents=0 HEAD)
+    (cd "$src" && { git am --abort >/dev/null 2>&1 || true; } && git reset -q --hard "$pristine" &&
+        git clean -q -fd -e .occu-pristine -e .occu-applied)
     rm -f "$src/.occu-applied"
     for p in "${patches[@]}"; do
-        if ! (cd "$src" && git apply --whitespace=nowarn "$p" 2>&1 >&2); then
+        if ! (cd "$src" && GIT_COMMITTER_NAME=occu GIT_COMMITTER_EMAIL=occu@localhost \
+                git am -q --whitespace=nowarn --committer-date-is-author-date "$p" 2>&1 >&2); then
+            (cd "$src" && git am --abort >/dev/null 2>&1 || true)
             die "patch ${p#$OCCU_ROOT/} does not apply to mesa $MESA_DEBIAN_VERSION"
         fi
     done
