@@ -5,10 +5,12 @@
 #include <assimp/scene.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
 #include "scene/palette.h"
+#include "scene/scene_file_guard.h"
 
 namespace occu {
 
@@ -41,37 +43,87 @@ glm::vec3 file_colour(const aiScene &in, const aiMesh &m, std::size_t mesh_numbe
     return usable_colour(diffuse, own);
 }
 
-void add_node(const aiScene &in, const aiNode &node, const aiMatrix4x4 &parent, Scene &out)
+// Where warnings go: `warnings` when given, standard error otherwise.
+struct Warnings {
+    std::vector<std::string> *list;
+    void operator()(const std::string &w) const
+    {
+        if (list)
+            list->push_back(w);
+        else
+            std::fprintf(stderr, "occu: warning: %s\n", w.c_str());
+    }
+};
+
+std::string mesh_name(const aiMesh &m, unsigned number)
+{
+    return m.mName.length ? "'" + std::string(m.mName.C_Str()) + "'" : std::to_string(number) + " (unnamed)";
+}
+
+void add_node(const aiScene &in, const aiNode &node, const aiMatrix4x4 &parent, Scene &out, const std::string &source,
+              const Warnings &warn)
 {
     const aiMatrix4x4 transform = parent * node.mTransformation;
     aiMatrix3x3 normal_matrix(transform);
     normal_matrix.Inverse().Transpose();
     for (unsigned i = 0; i < node.mNumMeshes; ++i) {
         const aiMesh &m = *in.mMeshes[node.mMeshes[i]];
-        if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+        const std::string what = source + ": mesh " + mesh_name(m, node.mMeshes[i]);
+        if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) {
+            warn(what + " holds " + std::to_string(m.mNumFaces) + " points or lines and no triangles; dropped");
             continue;
+        }
         Mesh mesh;
         mesh.name = m.mName.C_Str();
+        std::size_t bad_normals = 0;
         for (unsigned v = 0; v < m.mNumVertices; ++v) {
             const aiVector3D p = transform * m.mVertices[v];
             aiVector3D n = m.mNormals ? normal_matrix * m.mNormals[v] : aiVector3D(0, 1, 0);
             n.Normalize();
+            // A zero or non-finite normal of the file, or a transform
+            // that flattens the mesh: none to light with.
+            if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) {
+                n = aiVector3D(0, 1, 0);
+                ++bad_normals;
+            }
             mesh.positions.emplace_back(p.x, p.y, p.z);
             mesh.normals.emplace_back(n.x, n.y, n.z);
         }
-        for (unsigned f = 0; f < m.mNumFaces; ++f)
-            if (m.mFaces[f].mNumIndices == 3)
-                mesh.indices.insert(mesh.indices.end(),
-                                    {m.mFaces[f].mIndices[0], m.mFaces[f].mIndices[1], m.mFaces[f].mIndices[2]});
+        std::size_t not_triangles = 0, outside = 0;
+        for (unsigned f = 0; f < m.mNumFaces; ++f) {
+            const aiFace &face = m.mFaces[f];
+            if (face.mNumIndices != 3) {
+                ++not_triangles;
+                continue;
+            }
+            if (face.mIndices[0] >= m.mNumVertices || face.mIndices[1] >= m.mNumVertices ||
+                face.mIndices[2] >= m.mNumVertices) {
+                ++outside;
+                continue;
+            }
+            mesh.indices.insert(mesh.indices.end(), {face.mIndices[0], face.mIndices[1], face.mIndices[2]});
+        }
+        if (bad_normals)
+            warn(what + ": " + std::to_string(bad_normals) + " of its " + std::to_string(m.mNumVertices) +
+                 " normals are zero or not finite; (0, 1, 0) instead");
+        if (not_triangles)
+            warn(what + ": " + std::to_string(not_triangles) + " of its " + std::to_string(m.mNumFaces) +
+                 " faces are not triangles; dropped");
+        if (outside)
+            warn(what + ": " + std::to_string(outside) + " of its " + std::to_string(m.mNumFaces) +
+                 " faces have indices beyond its " + std::to_string(m.mNumVertices) + " vertices; dropped");
         mesh.color = file_colour(in, m, out.meshes.size());
         if (m.HasVertexColors(0))
             for (unsigned v = 0; v < m.mNumVertices; ++v)
                 mesh.colors.push_back(usable_colour(m.mColors[0][v], mesh.color));
-        if (!mesh.indices.empty())
+        if (mesh.indices.empty())
+            warn(what + " holds no triangles (" + std::to_string(m.mNumVertices) + " vertices, " +
+                 std::to_string(m.mNumFaces) + " faces); dropped");
+        else
             out.meshes.push_back(std::move(mesh));
     }
     for (unsigned c = 0; c < node.mNumChildren; ++c)
-        add_node(in, *node.mChildren[c], transform, out);
+        add_node(in, *node.mChildren[c], transform, out, source, warn);
 }
 
 // The file's own vertices, before post-processing: joining identical
@@ -95,21 +147,44 @@ void require_finite_file_vertices(const aiScene &in, const std::string &source)
     }
 }
 
+// Faces of the file that index beyond their mesh, before post-processing
+// uses them (assimp 5.2.5's PLY importer does not check a face's indices;
+// its normal generation read far past the vertices: a crash).
+void require_faces_inside(const aiScene &in, const std::string &source)
+{
+    for (unsigned m = 0; m < in.mNumMeshes; ++m) {
+        const aiMesh &mesh = *in.mMeshes[m];
+        std::size_t outside = 0;
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f)
+            for (unsigned k = 0; k < mesh.mFaces[f].mNumIndices; ++k)
+                if (mesh.mFaces[f].mIndices[k] >= mesh.mNumVertices) {
+                    ++outside;
+                    break;
+                }
+        if (outside)
+            throw std::runtime_error(source + ": mesh " + mesh_name(mesh, m) + ": " + std::to_string(outside) +
+                                     " of its " + std::to_string(mesh.mNumFaces) + " faces index beyond its " +
+                                     std::to_string(mesh.mNumVertices) + " vertices");
+    }
+}
+
 }  // namespace
 
-Scene load_scene(const std::string &path)
+Scene load_scene(const std::string &path, std::vector<std::string> *warnings)
 {
+    guard_scene_file(path);
     Assimp::Importer importer;
     const aiScene *in = importer.ReadFile(path, 0);
     if (in && !(in->mFlags & AI_SCENE_FLAGS_INCOMPLETE) && in->mRootNode) {
         require_finite_file_vertices(*in, "scene '" + path + "'");
+        require_faces_inside(*in, "scene '" + path + "'");
         in = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_GenSmoothNormals |
                                           aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
     }
     if (!in || (in->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !in->mRootNode)
         throw std::runtime_error("cannot read scene '" + path + "': " + importer.GetErrorString());
     Scene out;
-    add_node(*in, *in->mRootNode, aiMatrix4x4(), out);
+    add_node(*in, *in->mRootNode, aiMatrix4x4(), out, "scene '" + path + "'", Warnings{warnings});
     if (out.triangle_count() == 0)
         throw std::runtime_error("scene '" + path + "' holds no triangles");
     // Node transforms can take finite vertices beyond float range.

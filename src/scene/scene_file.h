@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -11,7 +12,14 @@ namespace occu {
 // generated where missing; node transforms applied). Throws
 // std::runtime_error naming the file and assimp's reason when it cannot
 // read it or it holds no triangles, and naming the file, mesh and vertex
-// when a vertex coordinate is not finite (require_finite_vertices).
-Scene load_scene(const std::string &path);
+// when a vertex coordinate is not finite (require_finite_vertices), and
+// before assimp reads a file that would crash or hang it
+// (scene/scene_file_guard.h). What it drops it says in a warning naming
+// the file, the mesh and how many: meshes of points or lines, faces that
+// are not triangles or index beyond their mesh, meshes left with no
+// triangles; and normals that are zero or not finite, replaced by
+// (0, 1, 0). Warnings go to `warnings` when given, standard error
+// ("occu: warning: ...") otherwise.
+Scene load_scene(const std::string &path, std::vector<std::string> *warnings = nullptr);
 
 }  // namespace occu

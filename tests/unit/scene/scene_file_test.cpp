@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 using namespace occu;
 
@@ -146,4 +148,176 @@ TEST(LoadScene, MaterialColoursArePaletteHuesWhereTheFileHasNone)
                                                                           : glm::vec3(0, 0, 1);
         EXPECT_EQ(m.colors[i], expected) << "vertex " << i;
     }
+}
+
+// The scene-file fuzzer's findings (tests/fuzz/scene_file_fuzz.cpp), each
+// refused or dropped with a message naming the file.
+
+namespace {
+void write(const std::string &path, const std::string &text)
+{
+    std::ofstream f(path, std::ios::binary);
+    f << text;
+}
+
+// A glTF file of one triangle (three VEC3 floats in a data URI) with
+// `accessor` for its positions accessor and `primitive` for its primitive.
+std::string gltf(const std::string &accessor, const std::string &primitive)
+{
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+           R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],)"
+           R"("bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[)" +
+           accessor + R"(],"meshes":[{"name":"tri","primitives":[)" + primitive + "]}]}";
+}
+const std::string triangle_accessor = R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"})";
+}  // namespace
+
+TEST(LoadScene, GltfTriangleLoads)
+{
+    const std::string path = temp("triangle.gltf");
+    write(path, gltf(triangle_accessor, R"({"attributes":{"POSITION":0}})"));
+    std::vector<std::string> warnings;
+    const Scene s = load_scene(path, &warnings);
+    std::remove(path.c_str());
+    ASSERT_EQ(s.triangle_count(), 1u);
+    EXPECT_FLOAT_EQ(s.bounds.max.x, 1.0f);
+    EXPECT_TRUE(warnings.empty());
+}
+
+// assimp 5.2.5 checks an accessor's count against its view's length but
+// not its offset: it read 12 bytes past the buffer (ASan: heap overflow).
+TEST(LoadScene, GltfAccessorPastItsBufferViewIsRefused)
+{
+    const std::string path = temp("overflow.gltf");
+    write(path, gltf(R"({"bufferView":0,"byteOffset":12,"componentType":5126,"count":3,"type":"VEC3"})",
+                     R"({"attributes":{"POSITION":0}})"));
+    const std::string message = refusal_of(path);
+    std::remove(path.c_str());
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("accessor 0"), std::string::npos) << message;
+    EXPECT_NE(message.find("runs past the end of buffer view 0"), std::string::npos) << message;
+}
+
+// assimp 5.2.5 makes count - 2 faces of a triangle fan or strip: for a fan
+// of no vertices it asked for 2^32 - 2 faces (64 GB; ASan: out of memory).
+TEST(LoadScene, GltfFanOfTooFewVerticesIsRefused)
+{
+    for (const char *mode : {"5", "6"}) {
+        const std::string path = temp("fan.gltf");
+        write(path, gltf(triangle_accessor, std::string(R"({"attributes":{},"mode":)") + mode + "}"));
+        const std::string message = refusal_of(path);
+        std::remove(path.c_str());
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+        EXPECT_NE(message.find("mesh 0 primitive 0 (mode " + std::string(mode) + ") has 0 vertices; it needs 3"),
+                  std::string::npos)
+            << message;
+    }
+}
+
+TEST(LoadScene, GltfOneOnlyAndBrokenJsonAreRefused)
+{
+    const std::string path = temp("old.gltf");
+    for (const std::string &text : {std::string(R"({"asset":{"version":"1.0"}})"), std::string("{\"asset\":"),
+                                    std::string(200, '[')}) {
+        write(path, text);
+        const std::string message = refusal_of(path);
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+        EXPECT_NE(message.find("glTF"), std::string::npos) << message;
+    }
+    std::remove(path.c_str());
+}
+
+// assimp 5.2.5's PLY header parser loops forever at the end of a file
+// without an end_header line (the fuzzer: a timeout).
+TEST(LoadScene, PlyHeaderWithoutEndIsRefused)
+{
+    const std::string path = temp("truncated.ply");
+    write(path, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n");
+    const std::string message = refusal_of(path);
+    std::remove(path.c_str());
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("end_header"), std::string::npos) << message;
+}
+
+TEST(LoadScene, PlyTriangleLoads)
+{
+    const std::string path = temp("triangle.ply");
+    write(path, "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\nproperty float y\r\n"
+                "property float z\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\nend_header\r\n"
+                "0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
+    const Scene s = load_scene(path);
+    std::remove(path.c_str());
+    EXPECT_EQ(s.triangle_count(), 1u);
+}
+
+// A node that scales by zero has no inverse for its normals: they were
+// NaN, and used.
+TEST(LoadScene, NormalsNotFiniteAreReplacedWithAWarning)
+{
+    const std::string path = temp("flattened.gltf");
+    std::string text = gltf(triangle_accessor, R"({"attributes":{"POSITION":0}})");
+    const std::string node = R"("nodes":[{"mesh":0})";
+    text.replace(text.find(node), node.size(), R"("nodes":[{"mesh":0,"scale":[0,0,0]})");
+    write(path, text);
+    std::vector<std::string> warnings;
+    const Scene s = load_scene(path, &warnings);
+    std::remove(path.c_str());
+    ASSERT_EQ(s.meshes.size(), 1u);
+    for (const glm::vec3 &n : s.meshes[0].normals)
+        EXPECT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find(path), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("'tri'"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("3 of its 3 normals"), std::string::npos) << warnings[0];
+}
+
+// Points and lines were dropped without a word.
+TEST(LoadScene, LinesAreDroppedWithAWarning)
+{
+    const std::string path = temp("lines.obj");
+    write(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\no tri\nf 1 2 3\no wire\nl 1 2\nl 2 3\n");
+    std::vector<std::string> warnings;
+    const Scene s = load_scene(path, &warnings);
+    std::remove(path.c_str());
+    EXPECT_EQ(s.meshes.size(), 1u);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find(path), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("'wire'"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("holds 2 points or lines"), std::string::npos) << warnings[0];
+}
+
+namespace {
+std::string ply_triangle(const std::string &vertices, const std::string &face)
+{
+    return "ply\nformat ascii 1.0\nelement vertex " + vertices +
+           "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+           "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n" + face + "\n";
+}
+}  // namespace
+
+// assimp 5.2.5's PLY importer keeps a face's indices unchecked; its normal
+// generation then read far past the vertices (the fuzzer: a SEGV).
+TEST(LoadScene, PlyFaceBeyondItsVerticesIsRefused)
+{
+    const std::string path = temp("beyond.ply");
+    write(path, ply_triangle("3", "3 0 1 7"));
+    const std::string message = refusal_of(path);
+    std::remove(path.c_str());
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("1 of its 1 faces index beyond its 3 vertices"), std::string::npos) << message;
+}
+
+// "element vertex 4294967295": assimp allocates that many vertices (48 GB)
+// and loops as many times, whatever the file holds.
+TEST(LoadScene, PlyCountsBeyondTheFileAreRefused)
+{
+    const std::string path = temp("huge.ply");
+    for (const char *count : {"4294967295", "99999999999"}) {
+        write(path, ply_triangle(count, "3 0 1 2"));
+        const std::string message = refusal_of(path);
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+        EXPECT_NE(message.find("PLY"), std::string::npos) << message;
+    }
+    std::remove(path.c_str());
 }
