@@ -154,13 +154,19 @@ void require_faces_inside(const aiScene &in, const std::string &source)
 {
     for (unsigned m = 0; m < in.mNumMeshes; ++m) {
         const aiMesh &mesh = *in.mMeshes[m];
-        std::size_t outside = 0;
-        for (unsigned f = 0; f < mesh.mNumFaces; ++f)
+        std::size_t outside = 0, empty = 0;
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            if (mesh.mFaces[f].mNumIndices == 0 || !mesh.mFaces[f].mIndices)
+                ++empty;
             for (unsigned k = 0; k < mesh.mFaces[f].mNumIndices; ++k)
                 if (mesh.mFaces[f].mIndices[k] >= mesh.mNumVertices) {
                     ++outside;
                     break;
                 }
+        }
+        if (empty)
+            throw std::runtime_error(source + ": mesh " + mesh_name(mesh, m) + ": " + std::to_string(empty) +
+                                     " of its " + std::to_string(mesh.mNumFaces) + " faces have no indices");
         if (outside)
             throw std::runtime_error(source + ": mesh " + mesh_name(mesh, m) + ": " + std::to_string(outside) +
                                      " of its " + std::to_string(mesh.mNumFaces) + " faces index beyond its " +
@@ -178,7 +184,11 @@ Scene load_scene(const std::string &path, std::vector<std::string> *warnings)
     if (in && !(in->mFlags & AI_SCENE_FLAGS_INCOMPLETE) && in->mRootNode) {
         require_finite_file_vertices(*in, "scene '" + path + "'");
         require_faces_inside(*in, "scene '" + path + "'");
-        in = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_GenSmoothNormals |
+        // The validation first: assimp's own check of what its importer
+        // made (array lengths, face sizes, primitive types), which its
+        // later steps take for granted (the fuzzer: PLY files whose faces
+        // or vertices the importer left inconsistent crashed them).
+        in = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_GenSmoothNormals |
                                           aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
     }
     if (!in || (in->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !in->mRootNode)

@@ -321,3 +321,15 @@ TEST(LoadScene, PlyCountsBeyondTheFileAreRefused)
     }
     std::remove(path.c_str());
 }
+
+// A face of no indices (PLY "0"): assimp 5.2.5's later steps took the
+// importer's faces for granted (the fuzzer: aborts and SIGBUS in them).
+TEST(LoadScene, PlyFaceOfNoIndicesIsRefused)
+{
+    const std::string path = temp("empty-face.ply");
+    write(path, ply_triangle("3", "0"));
+    const std::string message = refusal_of(path);
+    std::remove(path.c_str());
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("1 of its 1 faces have no indices"), std::string::npos) << message;
+}
