@@ -522,6 +522,97 @@ void guard_gltf(const std::string &path, const std::vector<char> &bytes, bool bi
 
 // --- PLY ------------------------------------------------------------------
 
+// The bytes of a PLY type as assimp names it; 0 for a name it does not know.
+unsigned ply_type_size(const std::string &t)
+{
+    static const std::pair<const char *, unsigned> sizes[] = {
+        {"char", 1},  {"int8", 1},    {"uchar", 1},  {"uint8", 1},   {"short", 2},    {"int16", 2},
+        {"ushort", 2}, {"uint16", 2}, {"int", 4},    {"int32", 4},   {"uint", 4},     {"uint32", 4},
+        {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}, {"double64", 8}};
+    for (const auto &s : sizes)
+        if (t == s.first)
+            return s.second;
+    return 0;
+}
+
+// A binary PLY file's data walked as its header lays it out (list lengths
+// read from the data): assimp 5.2.5 reads it without bounds (the fuzzer:
+// a SEGV in its binary reader). The header may hold only comment,
+// obj_info, element and property lines, so that assimp reads the same
+// layout.
+void check_ply_binary_layout(const std::string &path, const std::vector<std::string> &lines,
+                             const std::vector<char> &bytes, std::size_t at, bool big_endian)
+{
+    struct Property {
+        unsigned count_size, size;  // count_size 0: not a list
+    };
+    struct Element {
+        std::uint64_t count;
+        std::vector<Property> properties;
+    };
+    std::vector<Element> elements;
+    for (const std::string &line : lines) {
+        std::vector<std::string> words;
+        for (std::size_t k = line.find_first_not_of(" \t"); k != std::string::npos;) {
+            const std::size_t e = line.find_first_of(" \t", k);
+            words.push_back(line.substr(k, e == std::string::npos ? std::string::npos : e - k));
+            k = e == std::string::npos ? e : line.find_first_not_of(" \t", e);
+        }
+        auto bad = [&]() { refuse(path, "PLY: a binary header line occu does not read: '" + line.substr(0, 60) + "'"); };
+        if (words.empty() || words[0] == "comment" || words[0] == "obj_info")
+            continue;
+        if (words[0] == "end_header")
+            break;
+        if (words[0] == "element") {
+            if (words.size() != 3 || words[2].find_first_not_of("0123456789") != std::string::npos ||
+                words[2].size() > 10)
+                bad();
+            elements.push_back({std::stoull(words[2]), {}});
+        } else if (words[0] == "property" && !elements.empty()) {
+            if (words.size() == 3 && ply_type_size(words[1]))
+                elements.back().properties.push_back({0, ply_type_size(words[1])});
+            else if (words.size() == 5 && words[1] == "list" && ply_type_size(words[2]) && ply_type_size(words[3]))
+                elements.back().properties.push_back({ply_type_size(words[2]), ply_type_size(words[3])});
+            else
+                bad();
+        } else {
+            bad();
+        }
+    }
+    const std::size_t n = bytes.size();
+    auto count_at = [&](std::size_t p, unsigned size) {
+        std::uint64_t v = 0;
+        for (unsigned k = 0; k < size; ++k) {
+            const std::uint8_t b = std::uint8_t(bytes[p + (big_endian ? k : size - 1 - k)]);
+            v = v << 8 | b;
+        }
+        return v;  // signed types read as unsigned: a negative length is huge, and refused
+    };
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const Element &el = elements[e];
+        if (el.properties.empty() ? el.count > n - at : false)
+            refuse(path, "PLY: element " + std::to_string(e) + " declares " + std::to_string(el.count) +
+                             " instances of no properties");
+        for (std::uint64_t i = 0; i < el.count && !el.properties.empty(); ++i)
+            for (const Property &p : el.properties) {
+                std::uint64_t need = p.count_size ? p.count_size : p.size;
+                if (at + need > n)
+                    refuse(path, "PLY: the binary data ends inside instance " + std::to_string(i) + " of element " +
+                                     std::to_string(e) + " (" + std::to_string(el.count) + " declared)");
+                if (p.count_size) {
+                    const std::uint64_t items = count_at(at, p.count_size);
+                    at += p.count_size;
+                    if (items > (n - at) / p.size)
+                        refuse(path, "PLY: a list of " + std::to_string(items) + " items in instance " +
+                                         std::to_string(i) + " of element " + std::to_string(e) +
+                                         " runs past the end of the file");
+                    need = items * p.size;
+                }
+                at += std::size_t(need);
+            }
+    }
+}
+
 void guard_ply(const std::string &path, const std::vector<char> &bytes)
 {
     // assimp's IOStreamBuffer::getNextLine, emulated: a line ends at \r,
@@ -532,8 +623,10 @@ void guard_ply(const std::string &path, const std::vector<char> &bytes)
     auto line_end = [](char c) { return c == '\r' || c == '\n' || c == '\0' || c == '\f'; };
     const std::size_t n = bytes.size();
     bool header = true, binary = false;
+    bool big_endian = false;
     std::uint64_t instances = 0, data_lines = 0;
     std::size_t data_start = n;
+    std::vector<std::string> header_lines;
     for (std::size_t i = 0, line = 0; i < n; ++line) {
         if (line_end(bytes[i])) {
             while (i < n && bytes[i] != '\n')
@@ -555,8 +648,12 @@ void guard_ply(const std::string &path, const std::vector<char> &bytes)
         }
         std::string text(bytes.data() + start, i - 1 - start);
         text.erase(0, text.find_first_not_of(" \t"));
-        if (line == 1)
+        if (line == 1) {
             binary = text.find("binary") != std::string::npos;
+            big_endian = text.find("big") != std::string::npos;
+        }
+        if (line >= 2)
+            header_lines.push_back(text);
         if (text.compare(0, 8, "element ") == 0 || text.compare(0, 8, "element\t") == 0) {
             // "element <name> <count>": the count as assimp's strtoul10
             // reads it (digits, up to the first other character).
@@ -579,6 +676,8 @@ void guard_ply(const std::string &path, const std::vector<char> &bytes)
     }
     if (header)
         refuse(path, "PLY: the header has no end_header line");
+    if (binary)
+        check_ply_binary_layout(path, header_lines, bytes, data_start, big_endian);
     // assimp allocates and loops by the header's counts, whatever follows.
     const std::uint64_t room = binary ? n - data_start : data_lines + 1;
     if (instances > room)

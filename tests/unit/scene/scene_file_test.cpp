@@ -333,3 +333,36 @@ TEST(LoadScene, PlyFaceOfNoIndicesIsRefused)
     EXPECT_NE(message.find(path), std::string::npos) << message;
     EXPECT_NE(message.find("1 of its 1 faces have no indices"), std::string::npos) << message;
 }
+
+namespace {
+// A binary PLY triangle; its face's list of `items` indices, of which the
+// file holds `held`.
+std::string binary_ply(unsigned char items, int held)
+{
+    std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    s.append(reinterpret_cast<const char *>(v), sizeof(v));
+    s += char(items);
+    for (int i = 0; i < held; ++i) {
+        const std::int32_t index = i;
+        s.append(reinterpret_cast<const char *>(&index), 4);
+    }
+    return s;
+}
+}  // namespace
+
+// assimp 5.2.5 reads binary PLY data by the header without bounds: a list
+// longer than the file read past its buffer (the fuzzer: a SEGV).
+TEST(LoadScene, BinaryPlyListPastTheEndIsRefused)
+{
+    const std::string path = temp("binary.ply");
+    write(path, binary_ply(3, 3));
+    EXPECT_EQ(load_scene(path).triangle_count(), 1u);
+    write(path, binary_ply(200, 3));
+    const std::string message = refusal_of(path);
+    std::remove(path.c_str());
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("a list of 200 items in instance 0 of element 1 runs past the end"), std::string::npos)
+        << message;
+}
