@@ -458,12 +458,13 @@ private:
         const std::uint64_t mode = number(p, "mode", what, 4);
         if (mode > 6)
             no(what + " has mode " + std::to_string(mode) + " (glTF has 0 to 6)");
-        std::uint64_t vertices = 0;
-        if (const Json *attributes = p.find("attributes")) {
-            references(*attributes, accessors, what + " attributes");
-            if (attributes->find("POSITION"))
-                vertices = count_of(accessors, attributes->find("POSITION")->u);
-        }
+        // No positions: nothing for occu, and assimp 5.2.5 dereferenced
+        // null closing a line loop whose every face it dropped (SEGV).
+        const Json *attributes = p.find("attributes");
+        if (!attributes || !attributes->find("POSITION"))
+            no(what + " has no POSITION attribute");
+        references(*attributes, accessors, what + " attributes");
+        std::uint64_t vertices = count_of(accessors, attributes->find("POSITION")->u);
         if (const Json *targets = p.find("targets")) {
             if (targets->kind != Json::Array)
                 no(what + " targets is not an array");
@@ -477,6 +478,10 @@ private:
             if (!type || type->text != "SCALAR" || (component != 5121 && component != 5123 && component != 5125))
                 no(what + ": its indices, accessor " + std::to_string(i) + ", are not unsigned scalars");
             vertices = count_of(accessors, i);
+            // assimp closes an indexed line loop with its first face,
+            // which it drops when an index is beyond the vertices: null.
+            if (mode == 2)
+                no(what + " is an indexed line loop (occu reads triangles; assimp 5.2.5 crashes on some)");
         }
         // assimp makes count - 2 triangles of a strip or fan, count - 1
         // lines of a line strip: 2^64 for fewer vertices.

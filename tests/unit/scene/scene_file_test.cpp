@@ -200,19 +200,37 @@ TEST(LoadScene, GltfAccessorPastItsBufferViewIsRefused)
 }
 
 // assimp 5.2.5 makes count - 2 faces of a triangle fan or strip: for a fan
-// of no vertices it asked for 2^32 - 2 faces (64 GB; ASan: out of memory).
+// of no vertices it asked for 2^32 - 2 faces (64 GB; ASan: out of memory);
+// of 2, 2^64 - 1.
 TEST(LoadScene, GltfFanOfTooFewVerticesIsRefused)
 {
     for (const char *mode : {"5", "6"}) {
         const std::string path = temp("fan.gltf");
-        write(path, gltf(triangle_accessor, std::string(R"({"attributes":{},"mode":)") + mode + "}"));
+        write(path, gltf(R"({"bufferView":0,"componentType":5126,"count":2,"type":"VEC3"})",
+                         std::string(R"({"attributes":{"POSITION":0},"mode":)") + mode + "}"));
         const std::string message = refusal_of(path);
         std::remove(path.c_str());
         EXPECT_NE(message.find(path), std::string::npos) << message;
-        EXPECT_NE(message.find("mesh 0 primitive 0 (mode " + std::string(mode) + ") has 0 vertices; it needs 3"),
+        EXPECT_NE(message.find("mesh 0 primitive 0 (mode " + std::string(mode) + ") has 2 vertices; it needs 3"),
                   std::string::npos)
             << message;
     }
+}
+
+// assimp 5.2.5 closed an indexed line loop with its first face, which it
+// had dropped (no positions): a null dereference (the fuzzer: SEGV).
+TEST(LoadScene, GltfPrimitiveWithoutPositionsOrIndexedLineLoopIsRefused)
+{
+    const std::string path = temp("loop.gltf");
+    const std::string indices = R"(,{"bufferView":0,"componentType":5125,"count":3,"type":"SCALAR"})";
+    for (const std::string &primitive : {std::string(R"({"attributes":{"NORMAL":0},"indices":1,"mode":2})"),
+                                         std::string(R"({"attributes":{"POSITION":0},"indices":1,"mode":2})")}) {
+        write(path, gltf(triangle_accessor + indices, primitive));
+        const std::string message = refusal_of(path);
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+        EXPECT_NE(message.find("mesh 0 primitive 0"), std::string::npos) << message;
+    }
+    std::remove(path.c_str());
 }
 
 TEST(LoadScene, GltfOneOnlyAndBrokenJsonAreRefused)
