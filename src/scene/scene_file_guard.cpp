@@ -540,30 +540,37 @@ unsigned ply_type_size(const std::string &t)
     return 0;
 }
 
-// A binary PLY file's data walked as its header lays it out (list lengths
-// read from the data): assimp 5.2.5 reads it without bounds (the fuzzer:
-// a SEGV in its binary reader). The header may hold only comment,
-// obj_info, element and property lines, so that assimp reads the same
-// layout.
-void check_ply_binary_layout(const std::string &path, const std::vector<std::string> &lines,
-                             const std::vector<char> &bytes, std::size_t at, bool big_endian)
+struct PlyProperty {
+    unsigned count_size, size;  // count_size 0: not a list
+};
+struct PlyElement {
+    std::uint64_t count;
+    std::vector<PlyProperty> properties;
+};
+
+std::vector<std::string> ply_words(const std::string &line)
 {
-    struct Property {
-        unsigned count_size, size;  // count_size 0: not a list
-    };
-    struct Element {
-        std::uint64_t count;
-        std::vector<Property> properties;
-    };
-    std::vector<Element> elements;
+    std::vector<std::string> words;
+    for (std::size_t k = line.find_first_not_of(" \t"); k != std::string::npos;) {
+        const std::size_t e = line.find_first_of(" \t", k);
+        words.push_back(line.substr(k, e == std::string::npos ? std::string::npos : e - k));
+        k = e == std::string::npos ? e : line.find_first_not_of(" \t", e);
+    }
+    return words;
+}
+
+// The header after its format line, in PLY's grammar: only comment,
+// obj_info, element and property lines of the types PLY has, until
+// end_header. assimp reads what does not parse leniently, and a header it
+// misreads left it freeing memory it never allocated (the fuzzer: two
+// headers interleaved, misspelt keywords, an ASCII file); refused here,
+// for ASCII and binary files alike.
+std::vector<PlyElement> parse_ply_header(const std::string &path, const std::vector<std::string> &lines)
+{
+    std::vector<PlyElement> elements;
     for (const std::string &line : lines) {
-        std::vector<std::string> words;
-        for (std::size_t k = line.find_first_not_of(" \t"); k != std::string::npos;) {
-            const std::size_t e = line.find_first_of(" \t", k);
-            words.push_back(line.substr(k, e == std::string::npos ? std::string::npos : e - k));
-            k = e == std::string::npos ? e : line.find_first_not_of(" \t", e);
-        }
-        auto bad = [&]() { refuse(path, "PLY: a binary header line occu does not read: '" + line.substr(0, 60) + "'"); };
+        const std::vector<std::string> words = ply_words(line);
+        auto bad = [&]() { refuse(path, "PLY: a header line that is not PLY's: '" + line.substr(0, 60) + "'"); };
         if (words.empty() || words[0] == "comment" || words[0] == "obj_info")
             continue;
         if (words[0] == "end_header")
@@ -584,6 +591,15 @@ void check_ply_binary_layout(const std::string &path, const std::vector<std::str
             bad();
         }
     }
+    return elements;
+}
+
+// A binary PLY file's data walked as its header lays it out (list lengths
+// read from the data): assimp 5.2.5 reads it without bounds (the fuzzer:
+// a SEGV in its binary reader).
+void check_ply_binary_layout(const std::string &path, const std::vector<PlyElement> &elements,
+                             const std::vector<char> &bytes, std::size_t at, bool big_endian)
+{
     const std::size_t n = bytes.size();
     auto count_at = [&](std::size_t p, unsigned size) {
         std::uint64_t v = 0;
@@ -594,12 +610,12 @@ void check_ply_binary_layout(const std::string &path, const std::vector<std::str
         return v;  // signed types read as unsigned: a negative length is huge, and refused
     };
     for (std::size_t e = 0; e < elements.size(); ++e) {
-        const Element &el = elements[e];
+        const PlyElement &el = elements[e];
         if (el.properties.empty() ? el.count > n - at : false)
             refuse(path, "PLY: element " + std::to_string(e) + " declares " + std::to_string(el.count) +
                              " instances of no properties");
         for (std::uint64_t i = 0; i < el.count && !el.properties.empty(); ++i)
-            for (const Property &p : el.properties) {
+            for (const PlyProperty &p : el.properties) {
                 std::uint64_t need = p.count_size ? p.count_size : p.size;
                 if (at + need > n)
                     refuse(path, "PLY: the binary data ends inside instance " + std::to_string(i) + " of element " +
@@ -653,9 +669,16 @@ void guard_ply(const std::string &path, const std::vector<char> &bytes)
         }
         std::string text(bytes.data() + start, i - 1 - start);
         text.erase(0, text.find_first_not_of(" \t"));
+        if (line == 0 && text != "ply")
+            refuse(path, "PLY: the first line is not 'ply'");
         if (line == 1) {
-            binary = text.find("binary") != std::string::npos;
-            big_endian = text.find("big") != std::string::npos;
+            const std::vector<std::string> words = ply_words(text);
+            if (words.size() != 3 || words[0] != "format" || words[2] != "1.0" ||
+                (words[1] != "ascii" && words[1] != "binary_little_endian" && words[1] != "binary_big_endian"))
+                refuse(path, "PLY: the second line is not a format line ('format ascii|binary_little_endian|"
+                             "binary_big_endian 1.0'): '" + text.substr(0, 60) + "'");
+            binary = words[1] != "ascii";
+            big_endian = words[1] == "binary_big_endian";
         }
         if (line >= 2)
             header_lines.push_back(text);
@@ -681,8 +704,9 @@ void guard_ply(const std::string &path, const std::vector<char> &bytes)
     }
     if (header)
         refuse(path, "PLY: the header has no end_header line");
+    const std::vector<PlyElement> elements = parse_ply_header(path, header_lines);
     if (binary)
-        check_ply_binary_layout(path, header_lines, bytes, data_start, big_endian);
+        check_ply_binary_layout(path, elements, bytes, data_start, big_endian);
     // assimp allocates and loops by the header's counts, whatever follows.
     const std::uint64_t room = binary ? n - data_start : data_lines + 1;
     if (instances > room)

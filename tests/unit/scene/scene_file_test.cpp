@@ -340,6 +340,35 @@ TEST(LoadScene, PlyCountsBeyondTheFileAreRefused)
     std::remove(path.c_str());
 }
 
+// A header assimp 5.2.5 reads leniently: misspelt keywords, a second
+// header inside the first, an unknown type or format. assimp misread one
+// such ASCII file and freed memory it never allocated (the fuzzer:
+// tests/fuzz/open-findings); every line of a header must be PLY's.
+TEST(LoadScene, PlyHeaderOutsidePlysGrammarIsRefused)
+{
+    const std::string path = temp("grammar.ply");
+    const std::string good = ply_triangle("3", "3 0 1 2");
+    const std::pair<std::string, std::string> bad[] = {
+        {"element vertex", "ele~ment vertex"},
+        {"property float y", "property floap32 y"},
+        {"format ascii 1.0", "format ascii 1\xfe"},
+        {"format ascii 1.0", "format text 1.0"},
+        {"ply\n", "plz\n"},
+        {"element face 1\n", "element face 1\nply\n"},
+    };
+    for (const auto &[from, to] : bad) {
+        std::string text = good;
+        text.replace(text.find(from), from.size(), to);
+        write(path, text);
+        const std::string message = refusal_of(path);
+        EXPECT_NE(message.find(path), std::string::npos) << to << ": " << message;
+        EXPECT_NE(message.find("PLY"), std::string::npos) << to << ": " << message;
+    }
+    write(path, good);
+    EXPECT_EQ(load_scene(path).triangle_count(), 1u);
+    std::remove(path.c_str());
+}
+
 // A face of no indices (PLY "0"): assimp 5.2.5's later steps took the
 // importer's faces for granted (the fuzzer: aborts and SIGBUS in them).
 TEST(LoadScene, PlyFaceOfNoIndicesIsRefused)
