@@ -559,6 +559,19 @@ std::vector<std::string> ply_words(const std::string &line)
     return words;
 }
 
+// An element or property name: a letter or '_' first, then letters,
+// digits, '_' or '-'. assimp reads a name that starts with digits as the
+// element's count (the fuzzer: "element 2147483647face 6" allocated 51 GB).
+bool ply_name(const std::string &w)
+{
+    if (w.empty() || !(std::isalpha(static_cast<unsigned char>(w[0])) || w[0] == '_'))
+        return false;
+    for (char c : w)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'))
+            return false;
+    return true;
+}
+
 // The header after its format line, in PLY's grammar: only comment,
 // obj_info, element and property lines of the types PLY has, until
 // end_header. assimp reads what does not parse leniently, and a header it
@@ -576,12 +589,14 @@ std::vector<PlyElement> parse_ply_header(const std::string &path, const std::vec
         if (words[0] == "end_header")
             break;
         if (words[0] == "element") {
-            if (words.size() != 3 || words[2].find_first_not_of("0123456789") != std::string::npos ||
-                words[2].size() > 10)
+            if (words.size() != 3 || !ply_name(words[1]) ||
+                words[2].find_first_not_of("0123456789") != std::string::npos || words[2].size() > 10)
                 bad();
             elements.push_back({std::stoull(words[2]), {}});
         } else if (words[0] == "property" && !elements.empty()) {
-            if (words.size() == 3 && ply_type_size(words[1]))
+            if (!ply_name(words.back()))
+                bad();
+            else if (words.size() == 3 && ply_type_size(words[1]))
                 elements.back().properties.push_back({0, ply_type_size(words[1])});
             else if (words.size() == 5 && words[1] == "list" && ply_type_size(words[2]) && ply_type_size(words[3]))
                 elements.back().properties.push_back({ply_type_size(words[2]), ply_type_size(words[3])});

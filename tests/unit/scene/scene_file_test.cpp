@@ -355,6 +355,8 @@ TEST(LoadScene, PlyHeaderOutsidePlysGrammarIsRefused)
         {"format ascii 1.0", "format text 1.0"},
         {"ply\n", "plz\n"},
         {"element face 1\n", "element face 1\nply\n"},
+        {"element face 1", "element 2147483647face 1"},
+        {"property float x", "property float 9x"},
     };
     for (const auto &[from, to] : bad) {
         std::string text = good;
