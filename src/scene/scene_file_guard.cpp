@@ -572,15 +572,18 @@ bool ply_name(const std::string &w)
     return true;
 }
 
-// The header after its format line, in PLY's grammar: only comment,
-// obj_info, element and property lines of the types PLY has, until
-// end_header. assimp reads what does not parse leniently, and a header it
-// misreads left it freeing memory it never allocated (the fuzzer: two
-// headers interleaved, misspelt keywords, an ASCII file); refused here,
-// for ASCII and binary files alike.
+// The header after its format line, read as assimp 5.2.5 reads it: a line
+// of another first word is skipped and ends the element before it (old
+// Blender exporters wrote comments without 'comment'), and property lines
+// outside an element are skipped; element and property lines must be
+// PLY's (names, counts, the types PLY has), and a header holds one 'ply'
+// and one format line. assimp misread a header of two interleaved headers
+// with misspelt keywords and freed memory it never allocated (the
+// fuzzer, an ASCII file); refused here, for ASCII and binary files alike.
 std::vector<PlyElement> parse_ply_header(const std::string &path, const std::vector<std::string> &lines)
 {
     std::vector<PlyElement> elements;
+    bool in_element = false;
     for (const std::string &line : lines) {
         const std::vector<std::string> words = ply_words(line);
         auto bad = [&]() { refuse(path, "PLY: a header line that is not PLY's: '" + line.substr(0, 60) + "'"); };
@@ -588,12 +591,21 @@ std::vector<PlyElement> parse_ply_header(const std::string &path, const std::vec
             continue;
         if (words[0] == "end_header")
             break;
+        if (words[0] == "ply" || words[0] == "format")
+            bad();
+        if (words[0] != "element" && words[0] != "property") {
+            in_element = false;
+            continue;
+        }
+        if (words[0] == "property" && !in_element)
+            continue;
+        in_element = true;
         if (words[0] == "element") {
             if (words.size() != 3 || !ply_name(words[1]) ||
                 words[2].find_first_not_of("0123456789") != std::string::npos || words[2].size() > 10)
                 bad();
             elements.push_back({std::stoull(words[2]), {}});
-        } else if (words[0] == "property" && !elements.empty()) {
+        } else {
             if (!ply_name(words.back()))
                 bad();
             else if (words.size() == 3 && ply_type_size(words[1]))
@@ -602,8 +614,6 @@ std::vector<PlyElement> parse_ply_header(const std::string &path, const std::vec
                 elements.back().properties.push_back({ply_type_size(words[2]), ply_type_size(words[3])});
             else
                 bad();
-        } else {
-            bad();
         }
     }
     return elements;
@@ -649,6 +659,50 @@ void check_ply_binary_layout(const std::string &path, const std::vector<PlyEleme
     }
 }
 
+// An ASCII PLY file's data read as its header lays it out, one line per
+// element instance as assimp reads them: every property has its token on
+// the line, a list's length is a whole number no larger than the tokens
+// left. assimp 5.2.5 sizes a list by its length before reading its items,
+// and reads on past a short line (the fuzzer: 27 GB and 2.9 GB
+// allocations from a list length in a vertex line and a short line).
+void check_ply_ascii_layout(const std::string &path, const std::vector<PlyElement> &elements,
+                            const std::vector<char> &bytes,
+                            const std::vector<std::pair<std::size_t, std::size_t>> &lines)
+{
+    std::size_t next = 0;
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const PlyElement &el = elements[e];
+        for (std::uint64_t i = 0; i < el.count && !el.properties.empty(); ++i) {
+            if (next == lines.size())
+                refuse(path, "PLY: the data ends before instance " + std::to_string(i) + " of element " +
+                                 std::to_string(e));
+            const auto [begin, end] = lines[next++];
+            const std::vector<std::string> tokens = ply_words(std::string(bytes.data() + begin, end - begin));
+            auto short_line = [&]() {
+                refuse(path, "PLY: data line " + std::to_string(next) + " (instance " + std::to_string(i) +
+                                 " of element " + std::to_string(e) + ") holds fewer values than its properties");
+            };
+            std::size_t t = 0;
+            for (const PlyProperty &p : el.properties) {
+                if (t == tokens.size())
+                    short_line();
+                if (!p.count_size) {
+                    ++t;
+                    continue;
+                }
+                const std::string &length = tokens[t++];
+                if (length.empty() || length.size() > 10 || length.find_first_not_of("0123456789") != std::string::npos)
+                    refuse(path, "PLY: data line " + std::to_string(next) + ": a list length that is not a whole number: '" +
+                                     length.substr(0, 20) + "'");
+                const std::uint64_t items = std::stoull(length);
+                if (items > tokens.size() - t)
+                    short_line();
+                t += std::size_t(items);
+            }
+        }
+    }
+}
+
 void guard_ply(const std::string &path, const std::vector<char> &bytes)
 {
     // assimp's IOStreamBuffer::getNextLine, emulated: a line ends at \r,
@@ -663,6 +717,9 @@ void guard_ply(const std::string &path, const std::vector<char> &bytes)
     std::uint64_t instances = 0, data_lines = 0;
     std::size_t data_start = n;
     std::vector<std::string> header_lines;
+    // An ASCII file's data lines (begin, end), as many as its elements have
+    // instances (the instances' count is checked against the lines below).
+    std::vector<std::pair<std::size_t, std::size_t>> ascii_lines;
     for (std::size_t i = 0, line = 0; i < n; ++line) {
         if (line_end(bytes[i])) {
             while (i < n && bytes[i] != '\n')
@@ -680,6 +737,7 @@ void guard_ply(const std::string &path, const std::vector<char> &bytes)
         ++i;
         if (!header) {
             ++data_lines;
+            ascii_lines.push_back({start, i - 1});
             continue;
         }
         std::string text(bytes.data() + start, i - 1 - start);
@@ -722,6 +780,8 @@ void guard_ply(const std::string &path, const std::vector<char> &bytes)
     const std::vector<PlyElement> elements = parse_ply_header(path, header_lines);
     if (binary)
         check_ply_binary_layout(path, elements, bytes, data_start, big_endian);
+    else
+        check_ply_ascii_layout(path, elements, bytes, ascii_lines);
     // assimp allocates and loops by the header's counts, whatever follows.
     const std::uint64_t room = binary ? n - data_start : data_lines + 1;
     if (instances > room)
