@@ -56,7 +56,7 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "occu-collide: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: occu-collide [--scene FILE] [--route dense|street|medium|open|orbit|random:N:SEED|FILE]\n"
+                 "usage: occu-collide [--scene city|field|FILE] [--route dense|street|medium|open|orbit|overhead|random:N:SEED|FILE]\n"
                  "                    [--frames N] [--step METRES] [--direction forward|backward|both]\n"
                  "                    [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                    [--leaf-triangles N] [--png-every N] [--out DIR]\n"
@@ -217,7 +217,7 @@ int main(int argc, char **argv)
         gl::select_driver(gl::parse_driver(o.driver));
         CityOptions city;
         city.copies = o.city_copies;
-        const Scene scene = o.scene.empty() ? generate_city(city) : load_scene(o.scene);
+        const Scene scene = scene_by_name(o.scene, city);
         HierarchyOptions ho;
         ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
         const Hierarchy hierarchy = Hierarchy::build(scene, ho);

@@ -2,14 +2,14 @@
 // walkthrough's om-mos strategy reads (Poon and Wang, section 4; the steps
 // are in src/preprocessing/view_preprocessing.h).
 //
-//   occu-preprocess build (--out FILE | --cache DIR) [--scene FILE] [--city-copies N]
+//   occu-preprocess build (--out FILE | --cache DIR) [--scene city|field|FILE] [--city-copies N]
 //                   [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D]
 //                   [--eye-height H] [--max-occluders N] [--resolution R] [--map-divisor K]
 //                   [--selection marginal|static] [--pixels-per-occluder P]
 //                   [--shard I/N] [--driver llvmpipe|softpipe]
 //   occu-preprocess merge --out FILE SHARD...
 //   occu-preprocess views --out ROUTE [--every K] DATABASE
-//   occu-preprocess skins --out FILE [--scene FILE] [--city-copies N] [--voxel-size V]
+//   occu-preprocess skins --out FILE [--scene city|field|FILE] [--city-copies N] [--voxel-size V]
 //                   [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]
 //   occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N]
 //                   [--epsilon E] [--pixel K] [--max-edge M] [--cell-top T] [--clearance C] [--initial-extent X]
@@ -96,14 +96,14 @@ namespace {
 [[noreturn]] void usage(const std::string &error)
 {
     std::fprintf(error.empty() ? stdout : stderr,
-                 "%s%susage: occu-preprocess build (--out FILE | --cache DIR) [--scene FILE] [--city-copies N]\n"
+                 "%s%susage: occu-preprocess build (--out FILE | --cache DIR) [--scene city|field|FILE] [--city-copies N]\n"
                  "                       [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D] [--eye-height H]\n"
                  "                       [--max-occluders N] [--resolution R] [--map-divisor K]\n"
                  "                       [--selection marginal|static] [--pixels-per-occluder P]\n"
                  "                       [--shard I/N] [--driver llvmpipe|softpipe]\n"
                  "       occu-preprocess merge --out FILE SHARD...\n"
                  "       occu-preprocess views --out ROUTE [--every K] DATABASE\n"
-                 "       occu-preprocess skins --out FILE [--scene FILE] [--city-copies N] [--voxel-size V]\n"
+                 "       occu-preprocess skins --out FILE [--scene city|field|FILE] [--city-copies N] [--voxel-size V]\n"
                  "                       [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]\n"
                  "       occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N] [--epsilon E]\n"
                  "                       [--pixel K] [--max-edge M] [--cell-top T] [--clearance C] [--initial-extent X]\n"
@@ -221,7 +221,7 @@ int build(const Options &o)
     gl::select_driver(gl::parse_driver(o.driver));
     CityOptions city;
     city.copies = o.city_copies;
-    const Scene scene = o.scene.empty() ? generate_city(city) : load_scene(o.scene);
+    const Scene scene = scene_by_name(o.scene, city);
     HierarchyOptions ho;
     ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
     const Hierarchy hierarchy = Hierarchy::build(scene, ho);
@@ -304,7 +304,7 @@ int skins(const Options &o)
     using namespace occu;
     CityOptions city;
     city.copies = o.city_copies;
-    const Scene scene = o.scene.empty() ? generate_city(city) : load_scene(o.scene);
+    const Scene scene = scene_by_name(o.scene, city);
     std::printf("scene: %zu meshes, %zu triangles; %s; shard %d/%d\n", scene.meshes.size(), scene.triangle_count(),
                 o.skins.describe().c_str(), o.shard, o.shards);
     const auto start = std::chrono::steady_clock::now();

@@ -77,7 +77,7 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "occu-random-views: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: occu-random-views [--scene city|FILE[,city|FILE...]]... [--views N] [--seed S]\n"
+                 "usage: occu-random-views [--scene city|field|FILE[,...]]... [--views N] [--seed S]\n"
                  "                         [--size PIXELS] [--strategies NAME[:key=value...],...]\n"
                  "                         [--driver llvmpipe|softpipe] [--fov MIN,MAX] [--leaf-triangles N]\n"
                  "                         [--batch N] [--coherence on|off] [--switch-off F]\n"
@@ -407,10 +407,10 @@ int main(int argc, char **argv)
         // Every scene is read before any is rendered: an unreadable one is named at once.
         std::vector<Scene> scenes;
         for (const std::string &s : o.scenes) {
-            if (s != "city" && !std::ifstream(s))
+            if (!generated_scene_name(s) && !std::ifstream(s))
                 throw std::runtime_error("cannot read scene '" + s + "'" +
                                          (std::filesystem::exists(s) ? "" : ": no such file"));
-            scenes.push_back(s == "city" ? generate_city(CityOptions{}) : load_scene(s));
+            scenes.push_back(scene_by_name(s));
         }
         std::filesystem::create_directories(o.out);
         const std::string views_path = o.out + "/views.csv", summary_path = o.out + "/summary.csv";

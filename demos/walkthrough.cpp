@@ -44,7 +44,7 @@ using namespace occu;
 
 struct Options {
     std::string route = "dense";
-    std::string scene;   // empty: the procedural city
+    std::string scene;   // empty or "city": the procedural city; "field": the flat field (no occlusion); else a file
     std::vector<std::string> strategies = {"none", "vfc", "ideal", "ou", "ou-shared", "om-ps"};
     std::vector<std::string> common;   // --set key=value, for every strategy that has the key
     int frames = 60;
@@ -68,7 +68,7 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "walkthrough: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: walkthrough [--scene FILE] [--route dense|street|medium|open|orbit|random:N:SEED|FILE]\n"
+                 "usage: walkthrough [--scene city|field|FILE] [--route dense|street|medium|open|orbit|overhead|random:N:SEED|FILE]\n"
                  "                   [--strategies NAME[:key=value...],...] [--set key=value]...\n"
                  "                   [--occluder-db FILE (= --set database=FILE)]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
@@ -415,7 +415,7 @@ int main(int argc, char **argv)
         CityOptions city;
         city.copies = o.city_copies;
         // A user scene (OBJ, glTF, ... through assimp) or the default city.
-        const Scene scene = o.scene.empty() ? generate_city(city) : load_scene(o.scene);
+        const Scene scene = scene_by_name(o.scene, city);
         HierarchyOptions ho;
         ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
         const Hierarchy hierarchy = Hierarchy::build(scene, ho);

@@ -74,6 +74,33 @@ std::vector<Camera> orbit_route(const Aabb &bounds, int frames, float aspect)
     return route;
 }
 
+// Looking down at 60 degrees below the horizon, heading +z, from a height
+// of 0.4 times the scene's larger ground extent above its top, across the
+// scene along x (from 20% to 80% of its width), 10% into it along z. With
+// the 60 degree field of view and a square frame, the top corners' rays are
+// the shallowest: tan(a) = (sin 60 - t cos 60) / sqrt(t^2 + (cos 60 + t
+// sin 60)^2) with t = tan 30, so a = 26.6 degrees; every ray descends at
+// least that steeply (scene/field.h: why the field then hides nothing).
+std::vector<Camera> overhead_route(const Aabb &bounds, int frames, float aspect)
+{
+    const glm::vec3 size = bounds.extent();
+    const float height = std::max(0.4f * std::max(size.x, size.z), 1e-3f);
+    const float pitch = glm::radians(60.0f);
+    std::vector<Camera> route;
+    for (int f = 0; f < frames; ++f) {
+        const float t = frames == 1 ? 0.0f : float(f) / float(frames - 1);
+        Camera c;
+        c.aspect = aspect;
+        c.position = {bounds.min.x + size.x * (0.2f + 0.6f * t), bounds.max.y + height, bounds.min.z + 0.1f * size.z};
+        c.target = c.position + glm::vec3(0.0f, -std::sin(pitch), std::cos(pitch));
+        // Nothing is nearer than `height`; the far plane takes in the whole scene.
+        c.near_plane = 0.25f * height;
+        c.far_plane = 2.0f * glm::length(size) + 2.0f * height;
+        route.push_back(c);
+    }
+    return route;
+}
+
 // "random:N:SEED": N cameras at uniformly random points of the scene's
 // bounds, each looking in a random heading and a pitch within 60 degrees
 // of the horizon (the up vector stays well away from the view direction).
@@ -120,7 +147,7 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
                                float aspect)
 {
     const bool built_in = name == "dense" || name == "street" || name == "medium" || name == "open" ||
-                          name == "orbit" || name.rfind("random:", 0) == 0;
+                          name == "orbit" || name == "overhead" || name.rfind("random:", 0) == 0;
     if (!built_in)
         return read_route_file(name, aspect);
     // Routes placed by the scene's bounds need finite ones.
@@ -134,6 +161,8 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
         throw std::invalid_argument("a route needs at least one frame");
     if (name == "orbit")
         return orbit_route(bounds, frames, aspect);
+    if (name == "overhead")
+        return overhead_route(bounds, frames, aspect);
 
     const glm::vec3 size = bounds.extent();
     // The street between the two middle rows of blocks.

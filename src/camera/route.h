@@ -13,6 +13,9 @@
 //           is hidden (the paper's worst case).
 // Routes for any scene:
 //   orbit          around the scene's bounding sphere, looking at its centre;
+//   overhead       from above, looking down at 60 degrees, across the scene
+//                  (the route of the field, scene/field.h: from there
+//                  nothing of the field hides anything);
 //   random:N:SEED  N cameras at random points inside the scene's bounds,
 //                  looking in random directions (N frames, whatever `frames` is).
 // A route file has one camera per line, "px py pz tx ty tz" (position and
@@ -32,7 +35,7 @@ namespace occu {
 // 0.5 m, far plane twice the scene's diagonal.
 Camera street_level_lens(const Aabb &bounds, float aspect);
 
-// `name`: dense, street, medium, open, orbit, random:N:SEED, or a route file's path. Throws
+// `name`: dense, street, medium, open, orbit, overhead, random:N:SEED, or a route file's path. Throws
 // std::invalid_argument (unknown name) or std::runtime_error (a file it
 // cannot read or parse, naming the file and line; a number that is not a
 // finite float, or a camera whose view direction is not, is refused).

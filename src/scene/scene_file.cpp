@@ -9,6 +9,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "scene/field.h"
 #include "scene/palette.h"
 #include "scene/scene_file_guard.h"
 
@@ -201,6 +202,20 @@ Scene load_scene(const std::string &path, std::vector<std::string> *warnings)
     require_finite_vertices(out, "scene '" + path + "' (its node transforms applied)");
     out.update_bounds();
     return out;
+}
+
+bool generated_scene_name(const std::string &name)
+{
+    return name.empty() || name == "city" || name == "field";
+}
+
+Scene scene_by_name(const std::string &name, const CityOptions &city)
+{
+    if (name.empty() || name == "city")
+        return generate_city(city);
+    if (name == "field")
+        return generate_field(FieldOptions{});
+    return load_scene(name);
 }
 
 }  // namespace occu

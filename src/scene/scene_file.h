@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/city.h"
 #include "scene/scene.h"
 
 namespace occu {
@@ -21,5 +22,13 @@ namespace occu {
 // (0, 1, 0). Warnings go to `warnings` when given, standard error
 // ("occu: warning: ...") otherwise.
 Scene load_scene(const std::string &path, std::vector<std::string> *warnings = nullptr);
+
+// The scene a program's --scene names: "city" (or empty) the procedural
+// city of `city` (scene/city.h), "field" the flat field of small objects
+// with its defaults (scene/field.h: no occlusion), anything else a file
+// (load_scene; "./city" reads a file of that name).
+Scene scene_by_name(const std::string &name, const CityOptions &city = {});
+// Whether `name` is one of the generated scenes ("city", "field") rather than a file.
+bool generated_scene_name(const std::string &name);
 
 }  // namespace occu
