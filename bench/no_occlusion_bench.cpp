@@ -1,0 +1,355 @@
+// occu-bench-no-occlusion: only the work the scene calls for (issue 18,
+// item 6; docs/no-occlusion.md). Every strategy of the registry against
+// vfc where occlusion culling has little or nothing to gain: the city's
+// `open` route (150 m up, across the roofs: Poon and Wang's worst case) and
+// the field (scene/field.h: small posts on a plane, seen from above on the
+// `overhead` route, where nothing hides anything). The target: no strategy
+// slower than 1.05x vfc on either, by switching its tests off or otherwise.
+//
+// Per scene one side-by-side run (evaluation/side_by_side.h): every
+// strategy draws frame f before any draws frame f + 1, in an order that
+// rotates from frame to frame, so the machine's drifting load weighs on
+// all alike; a second vfc ("vfc again") runs beside the first, so that the
+// table shows the noise of a ratio between two identical strategies.
+// Traversal policies as the walkthrough's defaults: temporal coherence and
+// switch-off 0.5 where the family takes them (side_by_side.h).
+//
+// Prints per scene and strategy the mean, median and least frame ms, mean /
+// vfc's mean ("x vfc"), median / vfc's median, culling efficiency against
+// the oracle, node tests per frame over the whole route and over its last
+// quarter (0 there: the tests are switched off), and PASS or OVER against
+// 1.05x vfc (judged on the mean, the figure the README's tables give);
+// then one markdown table of both scenes. Timing only: no test runs this
+// (tests/integration/no_occlusion_field_test.cpp checks what can be
+// checked without a clock).
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camera/route.h"
+#include "cli/arguments.h"
+#include "cli/progress.h"
+#include "culling/registry.h"
+#include "evaluation/oracle.h"
+#include "evaluation/side_by_side.h"
+#include "gl/gl_headers.h"
+#include "gl/offscreen_context.h"
+#include "gl/state.h"
+#include "scene/city.h"
+#include "scene/field.h"
+#include "scene/scene_file.h"
+#include "traversal/traversal.h"
+
+namespace {
+
+using namespace occu;
+
+constexpr double target = 1.05;
+
+struct Options {
+    std::vector<std::string> strategies;   // empty: every strategy of the registry (strategy_names(), without repeats)
+    int frames = 120;
+    int size = 512;
+    std::string driver = "llvmpipe";
+    int batch = 32;
+    double switch_off = 0.5;
+    bool coherence = true;
+    std::map<std::string, std::string> databases;   // scene -> occluder database (om-mos, pc-mos)
+};
+
+[[noreturn]] void usage(const std::string &error)
+{
+    std::FILE *to = error.empty() ? stdout : stderr;
+    if (!error.empty())
+        std::fprintf(to, "occu-bench-no-occlusion: %s\n", error.c_str());
+    std::fprintf(to,
+                 "usage: occu-bench-no-occlusion [--strategies NAME,...] [--frames N] [--size PIXELS]\n"
+                 "                               [--driver llvmpipe|softpipe] [--batch N] [--switch-off F]\n"
+                 "                               [--coherence on|off] [--city-occluder-db FILE] [--field-occluder-db FILE]\n"
+                 "Runs every strategy (default: every name of the registry, a preset that repeats its family's\n"
+                 "defaults once) side by side with vfc on the city's open route and on the field's overhead route\n"
+                 "(default 120 frames each, 512x512, llvmpipe) and prints each one's frame time against vfc's with\n"
+                 "PASS or OVER against %.2fx. Strategies that need an occluder database (selection=mos) run on a\n"
+                 "scene only when one is given for it (occu-preprocess build --scene city|field --cache DIR).\n",
+                 target);
+    std::exit(error.empty() ? 0 : 2);
+}
+
+// Every name of the registry, a family's own name left out where one of its
+// presets means the same settings (om and om-ps): each strategy once.
+std::vector<std::string> every_strategy()
+{
+    std::vector<std::string> names;
+    for (const StrategyFamily &f : strategy_families()) {
+        const std::string defaults = choose_strategy(f.name).settings.changed();
+        bool repeated = false;
+        for (const StrategyPreset &p : f.presets)
+            repeated = repeated || (!p.former_name && choose_strategy(p.name).settings.changed() == defaults);
+        if (!repeated)
+            names.push_back(f.name);
+        for (const StrategyPreset &p : f.presets)
+            if (!p.former_name)
+                names.push_back(p.name);
+    }
+    return names;
+}
+
+Options parse(int argc, char **argv)
+{
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "-h" || a == "--help")
+            usage("");
+        if (i + 1 >= argc)
+            usage("unknown argument or missing value: '" + a + "'");
+        const std::string v = argv[++i];
+        try {
+            if (a == "--strategies") {
+                o.strategies = list_items(v, ',');
+                if (o.strategies.empty())
+                    usage("--strategies is empty");
+            } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
+            else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
+            else if (a == "--driver") o.driver = v;
+            else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
+            else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
+            else if (a == "--coherence") o.coherence = switch_option(a, v);
+            else if (a == "--city-occluder-db") o.databases["city"] = v;
+            else if (a == "--field-occluder-db") o.databases["field"] = v;
+            else
+                usage("unknown argument '" + a + "'");
+        } catch (const std::invalid_argument &e) {
+            usage(e.what());
+        }
+    }
+    try {
+        gl::parse_driver(o.driver);
+        if (o.strategies.empty())
+            o.strategies = every_strategy();
+        for (const std::string &s : o.strategies)
+            choose_strategy(s);
+    } catch (const std::invalid_argument &e) {
+        usage(e.what());
+    }
+    return o;
+}
+
+// One strategy on one scene: what it measured.
+struct Run {
+    std::string label;
+    Strategy strategy;
+    TraversalPolicies policies;
+    std::vector<double> ms;
+    std::vector<std::uint32_t> tests;   // node tests per frame
+    std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0;
+    double triangles = 0;
+    bool baseline() const
+    {
+        const std::string &f = strategy.choice.family->name;
+        return f == "none" || f == "ideal" || label == "vfc";
+    }
+};
+
+struct Result {
+    std::string label;
+    double mean = 0, median = 0, least = 0, x_vfc = 0, median_x_vfc = 0, efficiency = -1, tests = 0, tests_last = 0,
+           triangles = 0;
+    std::uint64_t visible_culled = 0;
+    bool baseline = false;
+    bool pass() const { return x_vfc <= target; }
+    std::string mark() const
+    {
+        if (label == "none")
+            return "baseline (no culling)";
+        if (label == "ideal")
+            return "floor";
+        if (label == "vfc")
+            return "reference";
+        if (label == "vfc again")
+            return pass() ? "noise control, within" : "noise control, OUTSIDE";
+        return pass() ? "PASS" : "OVER";
+    }
+};
+
+struct SceneResult {
+    std::string scene, route;
+    std::size_t triangles = 0, leaves = 0;
+    std::vector<Result> results;
+    std::vector<std::string> left_out;
+};
+
+SceneResult run_scene(const Options &o, const std::string &scene_name, const std::string &route_name,
+                      gl::OffscreenContext &ctx)
+{
+    SceneResult out;
+    out.scene = scene_name;
+    out.route = route_name;
+    const CityOptions city;
+    const Scene scene = scene_by_name(scene_name, city);
+    const Hierarchy hierarchy = Hierarchy::build(scene);
+    const std::vector<Camera> route = make_route(route_name, scene.bounds, city, o.frames, 1.0f);
+    SceneRenderer renderer(scene, hierarchy);
+    const StrategyContext context{scene, hierarchy, renderer};
+    out.triangles = scene.triangle_count();
+    out.leaves = hierarchy.leaf_count();
+
+    std::vector<Run> runs;
+    auto add = [&](const std::string &label, const std::string &spec) {
+        const StrategyChoice c = choose_strategy(spec);
+        std::vector<std::string> common;
+        if (c.settings.knows("selection") && c.settings.text("selection") == "mos") {
+            const auto db = o.databases.find(scene_name);
+            if (db == o.databases.end()) {
+                out.left_out.push_back(spec + ": needs an occluder database for the " + scene_name + " (--" +
+                                       scene_name + "-occluder-db)");
+                return;
+            }
+            common.push_back("database=" + db->second);
+        }
+        Run r{label, make_strategy(spec, context, common), {}, {}, {}};
+        r.policies = TraversalPolicies(*r.strategy.choice.family, o.coherence, o.switch_off);
+        runs.push_back(std::move(r));
+    };
+    for (const std::string &s : o.strategies) {
+        add(s, s);
+        if (s == "vfc")
+            add("vfc again", "vfc");
+    }
+    if (std::none_of(runs.begin(), runs.end(), [](const Run &r) { return r.label == "vfc"; }))
+        add("vfc", "vfc");
+
+    Oracle oracle(renderer, hierarchy);
+    std::printf("%s (%zu triangles, %zu leaves), route %s: %zu strategies, %zu frames, %dx%d, %s\n", scene_name.c_str(),
+                out.triangles, out.leaves, route_name.c_str(), runs.size(), route.size(), o.size, o.size,
+                ctx.renderer().c_str());
+    for (const std::string &l : out.left_out)
+        std::printf("left out: %s\n", l.c_str());
+    std::fflush(stdout);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_CULL_FACE);
+    glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
+    for (std::size_t f = 0; f < route.size(); ++f) {
+        const VisibilityTruth truth = oracle.see(route[f], o.size, o.size);
+        const Frame frame(route[f], o.size, o.size, &truth);
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            Run &r = runs[(k + f) % runs.size()];
+            const TimedFrame d =
+                draw_timed_frame(renderer, hierarchy, *r.strategy.culler, frame, r.policies.options(std::size_t(o.batch)));
+            r.ms.push_back(d.ms);
+            r.tests.push_back(d.stats.nodes_tested);
+            r.triangles += double(d.stats.triangles);
+            const CullingQuality q = compare_with_truth(truth, d.stats.drawn);
+            r.occluded += q.occluded;
+            r.occluded_culled += q.occluded_culled;
+            r.visible_culled += q.visible_culled;
+        }
+        progress(scene_name, long(f + 1), long(route.size()));
+    }
+
+    const Run &vfc = *std::find_if(runs.begin(), runs.end(), [](const Run &r) { return r.label == "vfc"; });
+    const double vfc_mean = mean_ms(vfc.ms), vfc_median = median_ms(vfc.ms);
+    for (const Run &r : runs) {
+        Result x;
+        x.label = r.label;
+        x.baseline = r.baseline();
+        x.mean = mean_ms(r.ms);
+        x.median = median_ms(r.ms);
+        x.least = *std::min_element(r.ms.begin(), r.ms.end());
+        x.x_vfc = x.mean / vfc_mean;
+        x.median_x_vfc = x.median / vfc_median;
+        if (r.occluded)
+            x.efficiency = 100.0 * double(r.occluded_culled) / double(r.occluded);
+        const std::size_t n = r.tests.size(), last = std::max<std::size_t>(1, n / 4);
+        double all = 0, tail = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            all += r.tests[i];
+            if (i >= n - last)
+                tail += r.tests[i];
+        }
+        x.tests = all / double(n);
+        x.tests_last = tail / double(last);
+        x.triangles = r.triangles / double(n);
+        x.visible_culled = r.visible_culled;
+        out.results.push_back(x);
+    }
+    std::printf("\n%-16s %9s %9s %9s %7s %9s %10s %10s %10s %9s  %s\n", "strategy", "mean ms", "median", "least",
+                "x vfc", "median x", "efficiency", "tests/fr", "last 1/4", "triangles", "mark");
+    for (const Result &x : out.results) {
+        char efficiency[32] = "-";
+        if (x.efficiency >= 0)
+            std::snprintf(efficiency, sizeof(efficiency), "%.1f%%", x.efficiency);
+        std::printf("%-16s %9.2f %9.2f %9.2f %6.3fx %8.3fx %10s %10.1f %10.1f %9.0f  %s\n", x.label.c_str(), x.mean,
+                    x.median, x.least, x.x_vfc, x.median_x_vfc, efficiency, x.tests, x.tests_last, x.triangles,
+                    x.mark().c_str());
+    }
+    for (const Run &r : runs)
+        if (const std::string note = r.strategy.culler->note(); !note.empty())
+            std::printf("%s: %s\n", r.label.c_str(), note.c_str());
+    for (const Result &x : out.results)
+        if (x.visible_culled && x.label != "ideal")
+            std::printf("note: %s culled %llu visible leaves\n", x.label.c_str(), (unsigned long long)x.visible_culled);
+    std::printf("\n");
+    std::fflush(stdout);
+    return out;
+}
+
+std::string cell(const SceneResult &s, const std::string &label)
+{
+    for (const Result &x : s.results)
+        if (x.label == label) {
+            char text[160];
+            char efficiency[32] = "-";
+            if (x.efficiency >= 0)
+                std::snprintf(efficiency, sizeof(efficiency), "%.1f%%", x.efficiency);
+            std::snprintf(text, sizeof(text), "%.2f ms (%.3fx; median %.3fx) %s %s", x.mean, x.x_vfc, x.median_x_vfc,
+                          efficiency, x.baseline ? "" : x.label == "vfc again" ? "(noise)" : (x.pass() ? "PASS" : "**OVER**"));
+            std::string t = text;
+            while (!t.empty() && t.back() == ' ')
+                t.pop_back();
+            return t;
+        }
+    return "(left out)";
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    const Options o = parse(argc, argv);
+    try {
+        gl::select_driver(gl::parse_driver(o.driver));
+        gl::OffscreenContext ctx(o.size, o.size);
+        std::vector<SceneResult> scenes;
+        scenes.push_back(run_scene(o, "city", "open", ctx));
+        scenes.push_back(run_scene(o, "field", "overhead", ctx));
+
+        std::printf("| strategy | city, open route | field, overhead route |\n|---|---|---|\n");
+        std::vector<std::string> labels;
+        for (const SceneResult &s : scenes)
+            for (const Result &x : s.results)
+                if (std::find(labels.begin(), labels.end(), x.label) == labels.end())
+                    labels.push_back(x.label);
+        int over = 0;
+        for (const std::string &l : labels) {
+            std::printf("| %s | %s | %s |\n", l.c_str(), cell(scenes[0], l).c_str(), cell(scenes[1], l).c_str());
+            for (const SceneResult &s : scenes)
+                for (const Result &x : s.results)
+                    over += x.label == l && !x.baseline && x.label != "vfc again" && !x.pass();
+        }
+        std::printf("\ncells: mean frame ms (mean / vfc's mean; median / vfc's median) culling efficiency, and PASS or\n"
+                    "OVER against %.2fx vfc on the mean; none (no culling) and ideal (the floor) are not judged; \"vfc\n"
+                    "again\" is vfc a second time: its ratio is the noise of two identical strategies.\n"
+                    "%d strategy-scene pairs over %.2fx vfc.\n",
+                    target, over, target);
+        return 0;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "occu-bench-no-occlusion: %s\n", e.what());
+        return 1;
+    }
+}
