@@ -9,8 +9,8 @@ namespace occu {
 
 Scene generate_field(const FieldOptions &o)
 {
-    if (o.count_x < 1 || o.count_z < 1 || !(o.post_size > 0.0f) || !(o.ledge_depth >= 0.0f) ||
-        !(o.spacing > o.post_size + 2.0f * o.ledge_depth) || !(o.min_height > 0.0f) || !(o.max_height >= o.min_height))
+    if (o.count_x < 1 || o.count_z < 1 || !(o.post_size > 0.0f) || !(o.spacing > o.post_size) ||
+        !(o.min_height > 0.0f) || !(o.max_height >= o.min_height))
         throw std::invalid_argument("field: posts need a positive size and height and room between them");
     Scene scene;
     std::mt19937 rng(o.seed);
@@ -23,6 +23,7 @@ Scene generate_field(const FieldOptions &o)
             const glm::vec3 lo{margin + x * o.spacing - 0.5f * o.post_size, 0.0f,
                                margin + z * o.spacing - 0.5f * o.post_size};
             const glm::vec3 hi = lo + glm::vec3(o.post_size, height, o.post_size);
+            // Never the hue of the post before, as the city's lots.
             hue = (hue + 1 + std::uint32_t(rng() % (facade_hue_count() - 1))) % facade_hue_count();
             const BuildingColours colours = building_colours(hue, unit(rng), unit(rng));
             Mesh m;
@@ -31,15 +32,6 @@ Scene generate_field(const FieldOptions &o)
             // The top in the roof colour, the sides in the wall's.
             for (std::size_t v = 0; v < m.positions.size(); ++v)
                 m.colors.push_back(m.normals[v].y > 0.5f ? colours.roof : colours.wall);
-            // The ledge halfway up, one box per face, as the city's buildings
-            // have at every floor (scene/city.cpp).
-            m.color = colours.trim;
-            const float y = lo.y + 0.5f * height, t = 0.15f, d = o.ledge_depth;
-            append_box(m, Aabb::of({lo.x - d, y, lo.z - d}, {hi.x + d, y + t, lo.z}));
-            append_box(m, Aabb::of({lo.x - d, y, hi.z}, {hi.x + d, y + t, hi.z + d}));
-            append_box(m, Aabb::of({lo.x - d, y, lo.z}, {lo.x, y + t, hi.z}));
-            append_box(m, Aabb::of({hi.x, y, lo.z}, {hi.x + d, y + t, hi.z}));
-            m.color = colours.wall;
             m.update_bounds();
             scene.meshes.push_back(std::move(m));
             PrismOccluder p;
@@ -48,10 +40,18 @@ Scene generate_field(const FieldOptions &o)
             p.top = double(hi.y);
             scene.prism_occluders.push_back(std::move(p));
         }
+    // The ground: one quad facing up, with nothing under it (the city's is a
+    // box 1 m deep): a node holding a face below the ground would have a
+    // box reaching under it, which the ground hides where the node shows
+    // nothing else, and occlusion tests would find that.
     Mesh ground;
     ground.name = "ground";
     ground.color = street_colour();
-    append_box(ground, Aabb::of({0.0f, -1.0f, 0.0f}, {o.count_x * o.spacing, 0.0f, o.count_z * o.spacing}));
+    const float gx = o.count_x * o.spacing, gz = o.count_z * o.spacing;
+    ground.positions = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, gz}, {gx, 0.0f, gz}, {gx, 0.0f, 0.0f}};
+    ground.normals.assign(4, glm::vec3(0.0f, 1.0f, 0.0f));
+    ground.indices = {0, 1, 2, 0, 2, 3};   // counter-clockwise seen from above
+    ground.update_bounds();
     scene.meshes.push_back(std::move(ground));
     scene.update_bounds();
     return scene;

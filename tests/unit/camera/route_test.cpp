@@ -40,6 +40,30 @@ TEST(Route, DenseRouteWalksTheFirstStreetTowardsTheCentre)
     }
 }
 
+// The field (scene/field.h) hides nothing where every view ray descends at
+// more than 24.4 degrees; the overhead route promises 26.6 at the least.
+TEST(Route, OverheadRaysAllDescendSteeply)
+{
+    const Aabb field = Aabb::of({0, 0, 0}, {384, 1, 384});
+    const auto route = make_route("overhead", field, CityOptions{}, 5, 1.0f);
+    ASSERT_EQ(route.size(), 5u);
+    for (const Camera &c : route) {
+        const glm::mat4 inverse = glm::inverse(c.view_projection());
+        float least = 90.0f;
+        for (float x : {-1.0f, 0.0f, 1.0f})
+            for (float y : {-1.0f, 0.0f, 1.0f}) {
+                const glm::vec4 far = inverse * glm::vec4(x, y, 1.0f, 1.0f);
+                const glm::vec3 ray = glm::normalize(glm::vec3(far) / far.w - c.position);
+                least = std::min(least, glm::degrees(std::asin(-ray.y)));
+            }
+        EXPECT_GT(least, 26.5f);
+        EXPECT_LT(least, 26.7f);   // the top corners: tan a = 0.5
+        EXPECT_GT(c.position.y, field.max.y + 100.0f);
+        EXPECT_GT(c.near_plane, 0.0f);
+    }
+    EXPECT_LT(route.front().position.x, route.back().position.x);
+}
+
 TEST(Route, FileRoutesAndErrorsNamingFileAndLine)
 {
     // Per process: meson runs this binary once per driver, at the same time.
