@@ -290,7 +290,7 @@ void run_scene(const Options &o, std::size_t scene_index, const std::string &sce
             r.coherence.emplace();
         if ((family.queries_rasterizer || family.costs_per_frame) && o.switch_off > 0.0) {
             SwitchOff::Settings s;
-            s.min_gain = o.switch_off;
+            s.min_gain = o.switch_off * family.switch_off_share;
             r.switch_off.emplace(s);
         }
         runs.push_back(std::move(r));

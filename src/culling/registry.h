@@ -49,6 +49,12 @@ struct StrategyFamily {
     // switch-off, which saves that work where occlusion culls little,
     // applies.
     bool costs_per_frame = false;
+    // The share of the switch-off's least gain (--switch-off F: the
+    // triangles occlusion tests must cull, as a share of those drawn) that
+    // this family's tests must reach to stay on: 1 for tests that stall
+    // drawing while they wait for their answers; less for tests whose
+    // answers come while drawing goes on (chc), which pay at a smaller gain.
+    double switch_off_share = 1.0;
     bool needs_truth = false;      // culls with the oracle's answer (Frame::truth)
     std::vector<SettingSpec> settings;
     std::vector<StrategyPreset> presets;

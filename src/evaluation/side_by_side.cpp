@@ -24,7 +24,7 @@ TraversalPolicies::TraversalPolicies(const StrategyFamily &family, bool coherenc
         coherence.emplace();
     if ((family.queries_rasterizer || family.costs_per_frame) && min_gain > 0.0) {
         SwitchOff::Settings s;
-        s.min_gain = min_gain;
+        s.min_gain = min_gain * family.switch_off_share;
         switch_off.emplace(s);
     }
 }

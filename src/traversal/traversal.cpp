@@ -38,12 +38,15 @@ public:
 
     FrameStats run()
     {
-        if (culler_.orders_frame())
+        testing_ = !options_.switch_off || options_.switch_off->begin_frame();
+        // A strategy that orders the frame itself runs its own traversal
+        // while it tests; switched off, it is not called at all and the
+        // frame below is view-frustum culling alone, as for any strategy.
+        if (culler_.orders_frame() && testing_)
             return run_ordered();
-        VisibleNodeList *coherence = options_.coherence;
+        VisibleNodeList *coherence = culler_.orders_frame() ? nullptr : options_.coherence;
         if (coherence)
             coherence->begin_frame(nodes_.size());
-        testing_ = !options_.switch_off || options_.switch_off->begin_frame();
         stats_.occlusion_tested = testing_;
         // A frame switched off costs the strategy nothing: no occluders
         // drawn, no tests (the traversal culls to the frustum itself).
@@ -116,6 +119,11 @@ private:
         watch_.time(traverse_ms, [&] { culler_.traverse(sink); });
         stats_.test_ms = std::max(0.0, traverse_ms - sink.draw_ms);
         stats_.passes = culler_.stats().passes;
+        // Judged as any tested frame is: the triangles its answers culled
+        // against those it drew. Its own traversal cannot be cut, so a probe
+        // is a whole frame of it.
+        if (options_.switch_off)
+            options_.switch_off->end_frame(true, double(stats_.triangles), double(stats_.triangles_occluded));
         return std::move(stats_);
     }
 
@@ -164,7 +172,7 @@ private:
         }
         if (visibility == Visibility::occluded) {
             ++stats_.nodes_occluded;
-            stats_.triangles_occluded += n.subtree_triangles;
+            stats_.triangles_occluded += in_frustum_triangles(node);
             return;
         }
         if (options_.coherence && !ordered_)
@@ -186,6 +194,33 @@ private:
                 untested_[n.first_child + c] = !test_below;
             push(n.first_child + c);
         }
+    }
+
+    // The triangles of `node`'s subtree that view-frustum culling would have
+    // drawn: what culling it as occluded saved. A node reaching out of the
+    // frustum may hold leaves wholly outside it, and a test may find such a
+    // node occluded where its part in the frustum holds nothing that shows
+    // (chc does on the field, scene/field.h, whose leaves at the frame's
+    // edges show nothing); counted whole, they would look like a gain to
+    // the switch-off where there is none. Only nodes crossing a frustum
+    // plane are opened, so the cost stays at the frame's edges.
+    std::uint64_t in_frustum_triangles(std::uint32_t node) const
+    {
+        const HierarchyNode &n = nodes_[node];
+        switch (frame_.frustum.classify(n.bounds)) {
+        case Frustum::Side::inside:
+            return n.subtree_triangles;
+        case Frustum::Side::outside:
+            return 0;
+        default:
+            break;
+        }
+        if (n.leaf())
+            return n.triangle_count;
+        std::uint64_t t = 0;
+        for (std::uint32_t c = 0; c < n.child_count; ++c)
+            t += in_frustum_triangles(n.first_child + c);
+        return t;
     }
 
     const SceneRenderer &renderer_;

@@ -5,7 +5,9 @@
 // policies of traversal/policies.h where the caller gives them. A culler
 // that orders the frame itself (Culler::orders_frame: chc) walks the
 // hierarchy in its own way; this then only draws and counts for it, and
-// its batch and policies do not apply.
+// its batch and temporal coherence do not apply; switch-off does (a
+// switched-off frame is view-frustum culled here without calling it; a
+// probe is a whole frame of its own traversal).
 #pragma once
 
 #include <cstdint>
@@ -37,7 +39,10 @@ struct FrameStats {
     std::uint32_t nodes_view_culled = 0;
     std::uint32_t nodes_occluded = 0;
     std::uint32_t passes = 0;               // the culler's report
-    std::uint64_t triangles_occluded = 0;   // in the subtrees of nodes found occluded
+    // In the subtrees of nodes found occluded, less the leaves wholly outside
+    // the frustum (view-frustum culling would not have drawn them either):
+    // what the occlusion tests saved, which the switch-off judges by.
+    std::uint64_t triangles_occluded = 0;
     bool occlusion_tested = true;           // false while switched off
     // Wall time in the culler, apart from what it saves: begin_frame
     // (occluders, maps: setup_ms) and the tests (test_ms), including waits
