@@ -41,8 +41,9 @@ public:
         testing_ = !options_.switch_off || options_.switch_off->begin_frame();
         // A strategy that orders the frame itself runs its own traversal
         // while it tests; switched off, it is not called at all and the
-        // frame below is view-frustum culling alone, as for any strategy.
-        if (culler_.orders_frame() && testing_)
+        // frame below is view-frustum culling alone, as for any strategy;
+        // its probes are the common traversal's, through its test().
+        if (culler_.orders_frame() && testing_ && !(options_.switch_off && options_.switch_off->probing()))
             return run_ordered();
         VisibleNodeList *coherence = culler_.orders_frame() ? nullptr : options_.coherence;
         if (coherence)
@@ -143,12 +144,15 @@ private:
         while (!front_.empty() && batch.size() < size) {
             const std::uint32_t n = front_.top().second;
             front_.pop();
-            const bool assumed = !testing_ || untested(n) ||
-                                 (options_.coherence && !(options_.switch_off && options_.switch_off->probing()) &&
-                                  options_.coherence->assumed_visible(n));
+            const bool probing = options_.switch_off && options_.switch_off->probing();
+            // A probe draws leaves untested (policies.h), and culls those
+            // outside the frustum itself.
+            const bool probe_leaf = probing && options_.switch_off->probe_skips_leaves() && nodes_[n].leaf();
+            const bool assumed = !testing_ || untested(n) || probe_leaf ||
+                                 (options_.coherence && !probing && options_.coherence->assumed_visible(n));
             if (assumed) {
                 const bool outside = frame_.frustum.classify(nodes_[n].bounds) == Frustum::Side::outside;
-                if (!outside || !testing_) {
+                if (!outside || !testing_ || probe_leaf) {
                     settle(n, outside ? Visibility::view_culled : Visibility::visible, !untested(n));
                     continue;
                 }
