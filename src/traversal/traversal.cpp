@@ -52,7 +52,12 @@ public:
         // A frame switched off costs the strategy nothing: no occluders
         // drawn, no tests (the traversal culls to the frustum itself).
         if (testing_)
-            watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(frame_); });
+            watch_.time(stats_.setup_ms, [&] {
+                if (options_.switch_off && options_.switch_off->probing())
+                    culler_.begin_probe(frame_);
+                else
+                    culler_.begin_frame(frame_);
+            });
         push(0);
         std::vector<NodeTest> batch;
         while (!front_.empty()) {

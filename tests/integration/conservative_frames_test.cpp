@@ -80,6 +80,10 @@ struct Variant {
     std::string spec;
     std::size_t batch = 16;
     bool coherence = false;
+    // Switched off after the first frame, probing as soon as it can (frames
+    // 1, 3, 7 and 15 of the 20 of its routes): the switch-off's probes (inner nodes only,
+    // Culler::begin_probe, chc through the common traversal) stay exact.
+    bool probes = false;
 };
 
 }  // namespace
@@ -103,6 +107,8 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     variants.push_back({"ou:proxy=triangles:max-test-area=1", 16});
     variants.push_back({"ou-shared", 32, true});
     variants.push_back({"om-ps", 16, true});
+    for (const char *probed : {"ou", "hp", "om-fh", "pc-fh", "skins-drawn", "chc"})
+        variants.push_back({probed, 16, false, true});
 
     const Strategy none = make_strategy("none", context);
     Oracle oracle(renderer, h);
@@ -115,7 +121,13 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
         TraversalOptions options;
         options.batch = v.batch;
         options.coherence = v.coherence ? &coherence : nullptr;
-        const std::string key = v.spec + "/" + std::to_string(v.batch) + (v.coherence ? "/coherent" : "");
+        SwitchOff::Settings probe_every_frame;
+        probe_every_frame.min_gain = 1e9;
+        probe_every_frame.probe_period = 1;
+        SwitchOff switch_off(probe_every_frame);
+        options.switch_off = v.probes ? &switch_off : nullptr;
+        const std::string key =
+            v.spec + "/" + std::to_string(v.batch) + (v.coherence ? "/coherent" : "") + (v.probes ? "/probes" : "");
         // The city's routes, and random views from inside its bounds (eyes in
         // buildings and streets alike, looking anywhere).
         for (const char *route : {"dense", "medium", "open", "random:6:2026"}) {
