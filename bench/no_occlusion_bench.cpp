@@ -54,6 +54,7 @@ constexpr double target = 1.05;
 struct Options {
     std::vector<std::string> strategies;   // empty: every strategy of the registry (strategy_names(), without repeats)
     int frames = 120;
+    int rounds = 1;   // walks of each route, strategies made anew for each
     int size = 512;
     std::string driver = "llvmpipe";
     int batch = 32;
@@ -68,13 +69,15 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "occu-bench-no-occlusion: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: occu-bench-no-occlusion [--strategies NAME,...] [--frames N] [--size PIXELS]\n"
+                 "usage: occu-bench-no-occlusion [--strategies NAME,...] [--frames N] [--rounds R] [--size PIXELS]\n"
                  "                               [--driver llvmpipe|softpipe] [--batch N] [--switch-off F]\n"
                  "                               [--coherence on|off] [--city-occluder-db FILE] [--field-occluder-db FILE]\n"
                  "Runs every strategy (default: every name of the registry, a preset that repeats its family's\n"
                  "defaults once) side by side with vfc on the city's open route and on the field's overhead route\n"
                  "(default 120 frames each, 512x512, llvmpipe) and prints each one's frame time against vfc's with\n"
-                 "PASS or OVER against %.2fx. Strategies that need an occluder database (selection=mos) run on a\n"
+                 "PASS or OVER against %.2fx. --rounds R walks each route R times, the strategies made anew each\n"
+                 "time (their first frame and probes included each time), and gives the figures of all frames\n"
+                 "with the least and greatest round's mean against vfc's. Strategies that need an occluder database (selection=mos) run on a\n"
                  "scene only when one is given for it (occu-preprocess build --scene city|field --cache DIR).\n",
                  target);
     std::exit(error.empty() ? 0 : 2);
@@ -115,6 +118,7 @@ Options parse(int argc, char **argv)
                 if (o.strategies.empty())
                     usage("--strategies is empty");
             } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
+            else if (a == "--rounds") o.rounds = int(integer_option(a, v, 1, 100));
             else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
             else if (a == "--driver") o.driver = v;
             else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
@@ -161,6 +165,7 @@ struct Result {
     double mean = 0, median = 0, least = 0, x_vfc = 0, median_x_vfc = 0, efficiency = -1, tests = 0, tests_last = 0,
            triangles = 0;
     std::uint64_t visible_culled = 0;
+    std::vector<double> round_x_vfc;   // each round's mean / vfc's mean in that round
     bool baseline = false;
     bool pass() const { return x_vfc <= target; }
     std::string mark() const
@@ -198,58 +203,105 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
     const StrategyContext context{scene, hierarchy, renderer};
     out.triangles = scene.triangle_count();
     out.leaves = hierarchy.leaf_count();
-
-    std::vector<Run> runs;
-    auto add = [&](const std::string &label, const std::string &spec) {
-        const StrategyChoice c = choose_strategy(spec);
-        std::vector<std::string> common;
-        if (c.settings.knows("selection") && c.settings.text("selection") == "mos") {
-            const auto db = o.databases.find(scene_name);
-            if (db == o.databases.end()) {
-                out.left_out.push_back(spec + ": needs an occluder database for the " + scene_name + " (--" +
-                                       scene_name + "-occluder-db)");
-                return;
-            }
-            common.push_back("database=" + db->second);
-        }
-        Run r{label, make_strategy(spec, context, common), {}, {}, {}};
-        r.policies = TraversalPolicies(*r.strategy.choice.family, o.coherence, o.switch_off);
-        runs.push_back(std::move(r));
-    };
-    for (const std::string &s : o.strategies) {
-        add(s, s);
-        if (s == "vfc")
-            add("vfc again", "vfc");
-    }
-    if (std::none_of(runs.begin(), runs.end(), [](const Run &r) { return r.label == "vfc"; }))
-        add("vfc", "vfc");
-
-    Oracle oracle(renderer, hierarchy);
-    std::printf("%s (%zu triangles, %zu leaves), route %s: %zu strategies, %zu frames, %dx%d, %s\n", scene_name.c_str(),
-                out.triangles, out.leaves, route_name.c_str(), runs.size(), route.size(), o.size, o.size,
-                ctx.renderer().c_str());
-    for (const std::string &l : out.left_out)
-        std::printf("left out: %s\n", l.c_str());
-    std::fflush(stdout);
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
-    glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
-    for (std::size_t f = 0; f < route.size(); ++f) {
-        const VisibilityTruth truth = oracle.see(route[f], o.size, o.size);
-        const Frame frame(route[f], o.size, o.size, &truth);
-        for (std::size_t k = 0; k < runs.size(); ++k) {
-            Run &r = runs[(k + f) % runs.size()];
-            const TimedFrame d =
-                draw_timed_frame(renderer, hierarchy, *r.strategy.culler, frame, r.policies.options(std::size_t(o.batch)));
-            r.ms.push_back(d.ms);
-            r.tests.push_back(d.stats.nodes_tested);
-            r.triangles += double(d.stats.triangles);
-            const CullingQuality q = compare_with_truth(truth, d.stats.drawn);
-            r.occluded += q.occluded;
-            r.occluded_culled += q.occluded_culled;
-            r.visible_culled += q.visible_culled;
+
+    // The oracle's answers once: the frames are the same in every round.
+    Oracle oracle(renderer, hierarchy);
+    std::vector<VisibilityTruth> truth;
+    for (const Camera &c : route)
+        truth.push_back(oracle.see(c, o.size, o.size));
+
+    // One walk of the route by every strategy, made anew.
+    auto walk = [&](bool first) {
+        std::vector<Run> runs;
+        auto add = [&](const std::string &label, const std::string &spec) {
+            const StrategyChoice c = choose_strategy(spec);
+            std::vector<std::string> common;
+            if (c.settings.knows("selection") && c.settings.text("selection") == "mos") {
+                const auto db = o.databases.find(scene_name);
+                if (db == o.databases.end()) {
+                    if (first)
+                        out.left_out.push_back(spec + ": needs an occluder database for the " + scene_name + " (--" +
+                                               scene_name + "-occluder-db)");
+                    return;
+                }
+                common.push_back("database=" + db->second);
+            }
+            Run r{label, make_strategy(spec, context, common), {}, {}, {}};
+            r.policies = TraversalPolicies(*r.strategy.choice.family, o.coherence, o.switch_off);
+            runs.push_back(std::move(r));
+        };
+        for (const std::string &s : o.strategies) {
+            add(s, s);
+            if (s == "vfc")
+                add("vfc again", "vfc");
         }
-        progress(scene_name, long(f + 1), long(route.size()));
+        if (std::none_of(runs.begin(), runs.end(), [](const Run &r) { return r.label == "vfc"; }))
+            add("vfc", "vfc");
+        if (first) {
+            std::printf("%s (%zu triangles, %zu leaves), route %s: %zu strategies, %zu frames, %d round(s), %dx%d, %s\n",
+                        scene_name.c_str(), out.triangles, out.leaves, route_name.c_str(), runs.size(), route.size(),
+                        o.rounds, o.size, o.size, ctx.renderer().c_str());
+            for (const std::string &l : out.left_out)
+                std::printf("left out: %s\n", l.c_str());
+            std::fflush(stdout);
+        }
+        glEnable(GL_DEPTH_TEST);
+        glEnable(GL_CULL_FACE);
+        glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
+        for (std::size_t f = 0; f < route.size(); ++f) {
+            const VisibilityTruth &t = truth[f];
+            const Frame frame(route[f], o.size, o.size, &t);
+            for (std::size_t k = 0; k < runs.size(); ++k) {
+                Run &r = runs[(k + f) % runs.size()];
+                const TimedFrame d = draw_timed_frame(renderer, hierarchy, *r.strategy.culler, frame,
+                                                      r.policies.options(std::size_t(o.batch)));
+                r.ms.push_back(d.ms);
+                r.tests.push_back(d.stats.nodes_tested);
+                r.triangles += double(d.stats.triangles);
+                const CullingQuality q = compare_with_truth(t, d.stats.drawn);
+                r.occluded += q.occluded;
+                r.occluded_culled += q.occluded_culled;
+                r.visible_culled += q.visible_culled;
+            }
+            progress(scene_name, long(f + 1), long(route.size()));
+        }
+        return runs;
+    };
+
+    // Every round's frames pooled; per round its mean against vfc's, and
+    // the node tests per frame over the route and over its last quarter.
+    std::vector<Run> runs;
+    std::map<std::string, std::vector<double>> round_ratio;
+    std::map<std::string, double> tests, tests_last;
+    for (int round = 0; round < o.rounds; ++round) {
+        std::vector<Run> done = walk(round == 0);
+        const double vfc_round =
+            mean_ms(std::find_if(done.begin(), done.end(), [](const Run &r) { return r.label == "vfc"; })->ms);
+        for (std::size_t i = 0; i < done.size(); ++i) {
+            Run &r = done[i];
+            round_ratio[r.label].push_back(mean_ms(r.ms) / vfc_round);
+            const std::size_t n = r.tests.size(), last = std::max<std::size_t>(1, n / 4);
+            double all = 0, tail = 0;
+            for (std::size_t j = 0; j < n; ++j) {
+                all += r.tests[j];
+                if (j >= n - last)
+                    tail += r.tests[j];
+            }
+            tests[r.label] += all / double(n) / double(o.rounds);
+            tests_last[r.label] += tail / double(last) / double(o.rounds);
+            if (round == 0) {
+                runs.push_back(std::move(r));
+                continue;
+            }
+            Run &p = runs[i];
+            p.ms.insert(p.ms.end(), r.ms.begin(), r.ms.end());
+            p.triangles += r.triangles;
+            p.occluded += r.occluded;
+            p.occluded_culled += r.occluded_culled;
+            p.visible_culled += r.visible_culled;
+        }
     }
 
     const Run &vfc = *std::find_if(runs.begin(), runs.end(), [](const Run &r) { return r.label == "vfc"; });
@@ -265,30 +317,27 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
         x.median_x_vfc = x.median / vfc_median;
         if (r.occluded)
             x.efficiency = 100.0 * double(r.occluded_culled) / double(r.occluded);
-        const std::size_t n = r.tests.size(), last = std::max<std::size_t>(1, n / 4);
-        double all = 0, tail = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            all += r.tests[i];
-            if (i >= n - last)
-                tail += r.tests[i];
-        }
-        x.tests = all / double(n);
-        x.tests_last = tail / double(last);
-        x.triangles = r.triangles / double(n);
+        x.tests = tests[r.label];
+        x.tests_last = tests_last[r.label];
+        x.triangles = r.triangles / double(r.ms.size());
         x.visible_culled = r.visible_culled;
+        x.round_x_vfc = round_ratio[r.label];
         out.results.push_back(x);
     }
-    std::printf("\n%-16s %9s %9s %9s %7s %9s %10s %10s %10s %9s  %s\n", "strategy", "mean ms", "median", "least",
-                "x vfc", "median x", "efficiency", "tests/fr", "last 1/4", "triangles", "mark");
+    std::printf("\n%-16s %9s %9s %9s %7s %9s %15s %10s %10s %10s %9s  %s\n", "strategy", "mean ms", "median", "least",
+                "x vfc", "median x", "rounds x vfc", "efficiency", "tests/fr", "last 1/4", "triangles", "mark");
     for (const Result &x : out.results) {
         char efficiency[32] = "-";
         if (x.efficiency >= 0)
             std::snprintf(efficiency, sizeof(efficiency), "%.1f%%", x.efficiency);
-        std::printf("%-16s %9.2f %9.2f %9.2f %6.3fx %8.3fx %10s %10.1f %10.1f %9.0f  %s\n", x.label.c_str(), x.mean,
-                    x.median, x.least, x.x_vfc, x.median_x_vfc, efficiency, x.tests, x.tests_last, x.triangles,
+        const auto [lo, hi] = std::minmax_element(x.round_x_vfc.begin(), x.round_x_vfc.end());
+        char rounds[48];
+        std::snprintf(rounds, sizeof(rounds), "%.3f-%.3fx", *lo, *hi);
+        std::printf("%-16s %9.2f %9.2f %9.2f %6.3fx %8.3fx %15s %10s %10.1f %10.1f %9.0f  %s\n", x.label.c_str(), x.mean,
+                    x.median, x.least, x.x_vfc, x.median_x_vfc, rounds, efficiency, x.tests, x.tests_last, x.triangles,
                     x.mark().c_str());
     }
-    for (const Run &r : runs)
+    for (const Run &r : runs)   // the first round's
         if (const std::string note = r.strategy.culler->note(); !note.empty())
             std::printf("%s: %s\n", r.label.c_str(), note.c_str());
     for (const Result &x : out.results)
@@ -303,12 +352,17 @@ std::string cell(const SceneResult &s, const std::string &label)
 {
     for (const Result &x : s.results)
         if (x.label == label) {
-            char text[160];
+            char text[200];
             char efficiency[32] = "-";
             if (x.efficiency >= 0)
                 std::snprintf(efficiency, sizeof(efficiency), "%.1f%%", x.efficiency);
-            std::snprintf(text, sizeof(text), "%.2f ms (%.3fx; median %.3fx) %s %s", x.mean, x.x_vfc, x.median_x_vfc,
-                          efficiency, x.baseline ? "" : x.label == "vfc again" ? "(noise)" : (x.pass() ? "PASS" : "**OVER**"));
+            const auto [lo, hi] = std::minmax_element(x.round_x_vfc.begin(), x.round_x_vfc.end());
+            char rounds[64] = "";
+            if (x.round_x_vfc.size() > 1)
+                std::snprintf(rounds, sizeof(rounds), "; rounds %.3f-%.3fx", *lo, *hi);
+            std::snprintf(text, sizeof(text), "%.2f ms (%.3fx; median %.3fx%s) %s %s", x.mean, x.x_vfc, x.median_x_vfc,
+                          rounds, efficiency,
+                          x.baseline ? "" : x.label == "vfc again" ? "(noise)" : (x.pass() ? "PASS" : "**OVER**"));
             std::string t = text;
             while (!t.empty() && t.back() == ' ')
                 t.pop_back();
