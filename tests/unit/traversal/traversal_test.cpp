@@ -95,6 +95,67 @@ TEST(Traversal, SwitchedOffProbesBackOff)
     EXPECT_EQ(tested, (std::vector<std::uint32_t>{0, 8, 24, 56, 120, 184}));
 }
 
+// Counts the leaves and inner nodes it is asked about, and which frames
+// were begun as probes; answers as vfc does.
+class CountingCuller final : public Culler {
+public:
+    explicit CountingCuller(const Hierarchy &h) : h_(h) {}
+    void begin_frame(const Frame &frame) override { frustum_.emplace(frame.frustum); }
+    void begin_probe(const Frame &frame) override
+    {
+        ++probes;
+        begin_frame(frame);
+    }
+    void test(std::vector<NodeTest> &tests) override
+    {
+        for (NodeTest &t : tests) {
+            ++(h_.nodes()[t.node].leaf() ? leaves : inner);
+            t.result = frustum_->classify(t.box) == Frustum::Side::outside ? Visibility::view_culled
+                                                                           : Visibility::visible;
+        }
+    }
+    std::uint32_t leaves = 0, inner = 0, probes = 0;
+
+private:
+    const Hierarchy &h_;
+    std::optional<Frustum> frustum_;
+};
+
+// A probe (traversal/policies.h) is begun with begin_probe, tests inner
+// nodes only and draws what a frame draws; a frame tests leaves too.
+TEST(Traversal, ProbesTestInnerNodesOnlyAndDrawWhatAFrameDraws)
+{
+    const BoxRow row(40);
+    SwitchOff switch_off;   // culls nothing: off after frame 0, probe at frame 8
+    TraversalOptions options;
+    options.switch_off = &switch_off;
+    CountingCuller counting(*row.h);
+    const Frame frame(row.camera, 32, 32);
+    std::vector<FrameStats> stats;
+    for (int f = 0; f <= 8; ++f)
+        stats.push_back(render_hierarchy(*row.renderer, *row.h, counting, frame, options));
+    ASSERT_TRUE(stats[8].occlusion_tested);
+    EXPECT_EQ(counting.probes, 1u);
+    EXPECT_EQ(stats[8].drawn, stats[0].drawn);
+    EXPECT_GT(stats[0].nodes_tested, stats[8].nodes_tested);
+    const std::uint32_t leaves_in_frame = counting.leaves;
+    EXPECT_GT(leaves_in_frame, 0u);
+    counting.leaves = 0;
+    render_hierarchy(*row.renderer, *row.h, counting, frame, options);   // frame 9: off
+    EXPECT_EQ(counting.leaves, 0u);
+    // The leaves were tested in frame 0 only.
+    CountingCuller probe_only(*row.h);
+    SwitchOff fresh;
+    options.switch_off = &fresh;
+    for (int f = 0; f <= 8; ++f) {
+        if (f == 8)
+            probe_only.leaves = probe_only.inner = 0;
+        render_hierarchy(*row.renderer, *row.h, probe_only, frame, options);
+    }
+    EXPECT_EQ(probe_only.leaves, 0u) << "a probe tested leaves";
+    EXPECT_GT(probe_only.inner, 0u) << "a probe tested no inner node";
+}
+
 // Nodes visible last frame are drawn untested, except every retest_period
 // frames; so a second frame tests fewer nodes and draws the same.
 TEST(Traversal, VisibleNodeListSkipsTestsOfLastFramesVisibleNodes)
