@@ -291,38 +291,29 @@ Sweep plan(const Options &o)
 Options parse(int argc, char **argv)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-h" || a == "--help")
-            usage("");
-        if (i + 1 >= argc)
-            usage("unknown argument or missing value: '" + a + "'");
-        const std::string v = argv[++i];
-        try {
-            if (a == "--routes") {
-                o.routes = list_items(v, ',');
-                if (o.routes.empty())
-                    usage("--routes is empty");
-            } else if (a == "--strategies") {
-                o.strategies = list_items(v, ',');
-                if (o.strategies.empty())
-                    usage("--strategies is empty");
-            } else if (a == "--knob") {
-                const std::size_t eq = v.find('=');
-                if (eq == std::string::npos || eq == 0 || list_items(v.substr(eq + 1), ',').empty())
-                    usage("--knob wants SETTING=V1,V2,..., got '" + v + "'");
-                o.knobs[v.substr(0, eq)] = list_items(v.substr(eq + 1), ',');
-            } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
-            else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
-            else if (a == "--driver") o.driver = v;
-            else if (a == "--out") o.out = v;
-            else if (a == "--plots") o.plots = switch_option(a, v);
-            else
-                usage("unknown argument '" + a + "'");
-        } catch (const std::invalid_argument &e) {
-            usage(e.what());
-        }
-    }
+    for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
+        if (a == "--routes") {
+            o.routes = list_items(v, ',');
+            if (o.routes.empty())
+                usage("--routes is empty");
+        } else if (a == "--strategies") {
+            o.strategies = list_items(v, ',');
+            if (o.strategies.empty())
+                usage("--strategies is empty");
+        } else if (a == "--knob") {
+            const std::size_t eq = v.find('=');
+            if (eq == std::string::npos || eq == 0 || list_items(v.substr(eq + 1), ',').empty())
+                usage("--knob wants SETTING=V1,V2,..., got '" + v + "'");
+            o.knobs[v.substr(0, eq)] = list_items(v.substr(eq + 1), ',');
+        } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
+        else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
+        else if (a == "--driver") o.driver = v;
+        else if (a == "--out") o.out = v;
+        else if (a == "--plots") o.plots = switch_option(a, v);
+        else
+            return false;
+        return true;
+    });
     if (o.strategies.empty())
         o.strategies = default_strategies();
     try {

@@ -105,33 +105,24 @@ std::vector<std::string> every_strategy()
 Options parse(int argc, char **argv)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-h" || a == "--help")
-            usage("");
-        if (i + 1 >= argc)
-            usage("unknown argument or missing value: '" + a + "'");
-        const std::string v = argv[++i];
-        try {
-            if (a == "--strategies") {
-                o.strategies = list_items(v, ',');
-                if (o.strategies.empty())
-                    usage("--strategies is empty");
-            } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
-            else if (a == "--rounds") o.rounds = int(integer_option(a, v, 1, 100));
-            else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
-            else if (a == "--driver") o.driver = v;
-            else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
-            else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
-            else if (a == "--coherence") o.coherence = switch_option(a, v);
-            else if (a == "--city-occluder-db") o.databases["city"] = v;
-            else if (a == "--field-occluder-db") o.databases["field"] = v;
-            else
-                usage("unknown argument '" + a + "'");
-        } catch (const std::invalid_argument &e) {
-            usage(e.what());
-        }
-    }
+    for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
+        if (a == "--strategies") {
+            o.strategies = list_items(v, ',');
+            if (o.strategies.empty())
+                usage("--strategies is empty");
+        } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
+        else if (a == "--rounds") o.rounds = int(integer_option(a, v, 1, 100));
+        else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
+        else if (a == "--driver") o.driver = v;
+        else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
+        else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
+        else if (a == "--coherence") o.coherence = switch_option(a, v);
+        else if (a == "--city-occluder-db") o.databases["city"] = v;
+        else if (a == "--field-occluder-db") o.databases["field"] = v;
+        else
+            return false;
+        return true;
+    });
     try {
         gl::parse_driver(o.driver);
         if (o.strategies.empty())

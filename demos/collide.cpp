@@ -78,35 +78,27 @@ struct Options {
 Options parse(int argc, char **argv)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-h" || a == "--help")
-            usage("");
-        if (i + 1 >= argc)
-            usage("unknown argument or missing value: '" + a + "'");
-        const std::string v = argv[++i];
-        try {
-            if (a == "--route") o.route = v;
-            else if (a == "--scene") o.scene = v;
-            else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 1000000));
-            else if (a == "--step") o.step = number_option(a, v, 0.0, 1e6, true);
-            else if (a == "--size") o.size = int(integer_option(a, v, 3, 8192));
-            else if (a == "--driver") o.driver = v;
-            else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
-            else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
-            else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 1000000));
-            else if (a == "--out") o.out = v;
-            else if (a == "--direction") {
-                if (v != "forward" && v != "backward" && v != "both")
-                    usage("--direction wants forward, backward or both, got '" + v + "'");
-                o.forward = v != "backward";
-                o.backward = v != "forward";
-            } else
-                usage("unknown argument '" + a + "'");
-        } catch (const std::invalid_argument &e) {
-            usage(e.what());
+    for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
+        if (a == "--route") o.route = v;
+        else if (a == "--scene") o.scene = v;
+        else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 1000000));
+        else if (a == "--step") o.step = number_option(a, v, 0.0, 1e6, true);
+        else if (a == "--size") o.size = int(integer_option(a, v, 3, 8192));
+        else if (a == "--driver") o.driver = v;
+        else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
+        else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 1000000));
+        else if (a == "--out") o.out = v;
+        else if (a == "--direction") {
+            if (v != "forward" && v != "backward" && v != "both")
+                usage("--direction wants forward, backward or both, got '" + v + "'");
+            o.forward = v != "backward";
+            o.backward = v != "forward";
+        } else {
+            return false;
         }
-    }
+        return true;
+    });
     return o;
 }
 

@@ -117,60 +117,51 @@ bool needs_database(const StrategyChoice &c)
 Options parse(int argc, char **argv)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-h" || a == "--help")
-            usage("");
-        if (i + 1 >= argc)
-            usage("unknown argument or missing value: '" + a + "'");
-        const std::string v = argv[++i];
-        try {
-            if (a == "--scene") {
-                const std::vector<std::string> s = list_items(v, ',');
-                if (s.empty())
-                    usage("--scene is empty");
-                o.scenes.insert(o.scenes.end(), s.begin(), s.end());
-            }
-            else if (a == "--views") o.views = integer_option(a, v, 1, 10000000);
-            else if (a == "--seed") o.seed = (unsigned long)integer_option(a, v, 0, 0xffffffffL);
-            else if (a == "--size") o.size = int(integer_option(a, v, 16, 4096));
-            else if (a == "--strategies") {
-                o.strategies = list_items(v, ',');
-                if (o.strategies.empty())
-                    usage("--strategies is empty");
-            }
-            else if (a == "--driver") o.driver = v;
-            else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
-            else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
-            else if (a == "--coherence") o.coherence = switch_option(a, v);
-            else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
-            else if (a == "--fov") {
-                const std::vector<std::string> f = list_items(v, ',');
-                if (f.size() != 2)
-                    usage("--fov is MIN,MAX in degrees, got '" + v + "'");
-                o.fov_min = float(number_option(a, f[0], 1.0, 170.0));
-                o.fov_max = float(number_option(a, f[1], 1.0, 170.0));
-                if (o.fov_min > o.fov_max)
-                    usage("--fov is MIN,MAX: " + f[0] + " > " + f[1]);
-            }
-            else if (a == "--mos-grid") {
-                std::istringstream in(v);
-                char c1 = 0, c2 = 0, slash = 0;
-                glm::ivec3 g;
-                int h = 0;
-                if (!(in >> g.x >> c1 >> g.y >> c2 >> g.z >> slash >> h) || c1 != ',' || c2 != ',' || slash != '/' ||
-                    !in.eof() || g.x < 1 || g.y < 1 || g.z < 1 || h < 1 || h > 64 || g.x * g.y * g.z > 4096)
-                    usage("--mos-grid is NX,NY,NZ/HEADINGS (at most 4096 points, 64 headings), got '" + v + "'");
-                o.mos_grid = g;
-                o.mos_headings = h;
-            }
-            else if (a == "--out") o.out = v;
-            else
-                usage("unknown argument '" + a + "'");
-        } catch (const std::invalid_argument &e) {
-            usage(e.what());
+    for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
+        if (a == "--scene") {
+            const std::vector<std::string> s = list_items(v, ',');
+            if (s.empty())
+                usage("--scene is empty");
+            o.scenes.insert(o.scenes.end(), s.begin(), s.end());
         }
-    }
+        else if (a == "--views") o.views = integer_option(a, v, 1, 10000000);
+        else if (a == "--seed") o.seed = (unsigned long)integer_option(a, v, 0, 0xffffffffL);
+        else if (a == "--size") o.size = int(integer_option(a, v, 16, 4096));
+        else if (a == "--strategies") {
+            o.strategies = list_items(v, ',');
+            if (o.strategies.empty())
+                usage("--strategies is empty");
+        }
+        else if (a == "--driver") o.driver = v;
+        else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
+        else if (a == "--coherence") o.coherence = switch_option(a, v);
+        else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
+        else if (a == "--fov") {
+            const std::vector<std::string> f = list_items(v, ',');
+            if (f.size() != 2)
+                usage("--fov is MIN,MAX in degrees, got '" + v + "'");
+            o.fov_min = float(number_option(a, f[0], 1.0, 170.0));
+            o.fov_max = float(number_option(a, f[1], 1.0, 170.0));
+            if (o.fov_min > o.fov_max)
+                usage("--fov is MIN,MAX: " + f[0] + " > " + f[1]);
+        }
+        else if (a == "--mos-grid") {
+            std::istringstream in(v);
+            char c1 = 0, c2 = 0, slash = 0;
+            glm::ivec3 g;
+            int h = 0;
+            if (!(in >> g.x >> c1 >> g.y >> c2 >> g.z >> slash >> h) || c1 != ',' || c2 != ',' || slash != '/' ||
+                !in.eof() || g.x < 1 || g.y < 1 || g.z < 1 || h < 1 || h > 64 || g.x * g.y * g.z > 4096)
+                usage("--mos-grid is NX,NY,NZ/HEADINGS (at most 4096 points, 64 headings), got '" + v + "'");
+            o.mos_grid = g;
+            o.mos_headings = h;
+        }
+        else if (a == "--out") o.out = v;
+        else
+            return false;
+        return true;
+    });
     if (o.scenes.empty())
         o.scenes = {"city", default_models[0], default_models[1]};
     if (o.views < long(o.scenes.size()))

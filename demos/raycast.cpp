@@ -89,36 +89,28 @@ std::vector<int> brick_sizes(const std::string &option, const std::string &text)
 Options parse(int argc, char **argv)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-h" || a == "--help")
-            usage("");
-        if (i + 1 >= argc)
-            usage("unknown argument or missing value: '" + a + "'");
-        const std::string v = argv[++i];
-        try {
-            if (a == "--route") o.route = v;
-            else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 1000000));
-            else if (a == "--size") o.size = int(integer_option(a, v, 1, 8192));
-            else if (a == "--driver") o.driver = v;
-            else if (a == "--brick") o.bricks = brick_sizes(a, v);
-            else if (a == "--list-layers") o.list_layers = int(integer_option(a, v, 1, 1024));
-            else if (a == "--step") o.step = number_option(a, v, 1e-3, 1e3, true);
-            else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 1000000));
-            else if (a == "--out") o.out = v;
-            else if (a == "--block") {
-                const auto comma = v.find(',');
-                if (comma == std::string::npos)
-                    usage("--block wants BX,BZ, got '" + v + "'");
-                const CityOptions city;
-                o.block_x = int(integer_option(a, v.substr(0, comma), 0, city.blocks_x - 1));
-                o.block_z = int(integer_option(a, v.substr(comma + 1), 0, city.blocks_z - 1));
-            } else
-                usage("unknown argument '" + a + "'");
-        } catch (const std::invalid_argument &e) {
-            usage(e.what());
+    for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
+        if (a == "--route") o.route = v;
+        else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 1000000));
+        else if (a == "--size") o.size = int(integer_option(a, v, 1, 8192));
+        else if (a == "--driver") o.driver = v;
+        else if (a == "--brick") o.bricks = brick_sizes(a, v);
+        else if (a == "--list-layers") o.list_layers = int(integer_option(a, v, 1, 1024));
+        else if (a == "--step") o.step = number_option(a, v, 1e-3, 1e3, true);
+        else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 1000000));
+        else if (a == "--out") o.out = v;
+        else if (a == "--block") {
+            const auto comma = v.find(',');
+            if (comma == std::string::npos)
+                usage("--block wants BX,BZ, got '" + v + "'");
+            const CityOptions city;
+            o.block_x = int(integer_option(a, v.substr(0, comma), 0, city.blocks_x - 1));
+            o.block_z = int(integer_option(a, v.substr(comma + 1), 0, city.blocks_z - 1));
+        } else {
+            return false;
         }
-    }
+        return true;
+    });
     return o;
 }
 

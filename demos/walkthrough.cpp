@@ -90,46 +90,37 @@ struct Options {
 Options parse(int argc, char **argv)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-h" || a == "--help")
-            usage("");
-        if (i + 1 >= argc)
-            usage("unknown argument or missing value: '" + a + "'");
-        const std::string v = argv[++i];
-        try {
-            if (a == "--route") o.route = v;
-            else if (a == "--scene") o.scene = v;
-            else if (a == "--strategies") {
-                o.strategies = list_items(v, ',');
-                if (o.strategies.empty())
-                    usage("--strategies is empty");
-            }
-            else if (a == "--set") o.common.push_back(v);
-            else if (a == "--occluder-db") o.common.push_back("database=" + v);
-            else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
-            else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
-            else if (a == "--driver") o.driver = v;
-            else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
-            else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
-            else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
-            else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 100000));
-            else if (a == "--out") o.out = v;
-            else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
-            else if (a == "--coherence") o.coherence = switch_option(a, v);
-            else if (a == "--oracle") o.oracle = switch_option(a, v);
-            else if (a == "--report") o.report = switch_option(a, v);
-            else if (a == "--video") {
-                o.video = list_items(v, ',');
-                if (o.video.empty())
-                    usage("--video is empty");
-            }
-            else
-                usage("unknown argument '" + a + "'");
-        } catch (const std::invalid_argument &e) {
-            usage(e.what());
+    for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
+        if (a == "--route") o.route = v;
+        else if (a == "--scene") o.scene = v;
+        else if (a == "--strategies") {
+            o.strategies = list_items(v, ',');
+            if (o.strategies.empty())
+                usage("--strategies is empty");
         }
-    }
+        else if (a == "--set") o.common.push_back(v);
+        else if (a == "--occluder-db") o.common.push_back("database=" + v);
+        else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
+        else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
+        else if (a == "--driver") o.driver = v;
+        else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
+        else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
+        else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 100000));
+        else if (a == "--out") o.out = v;
+        else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
+        else if (a == "--coherence") o.coherence = switch_option(a, v);
+        else if (a == "--oracle") o.oracle = switch_option(a, v);
+        else if (a == "--report") o.report = switch_option(a, v);
+        else if (a == "--video") {
+            o.video = list_items(v, ',');
+            if (o.video.empty())
+                usage("--video is empty");
+        }
+        else
+            return false;
+        return true;
+    });
     // Strategies and settings are checked before anything is built.
     try {
         std::vector<StrategyChoice> chosen;

@@ -49,6 +49,30 @@ inline std::vector<std::string> list_items(const std::string &list, char by)
     return items;
 }
 
+// Reads argv as "--name value" pairs, as every occu program takes its
+// options: -h or --help, and a name without its value, go to `usage`
+// (which exits); handle(name, value) returns false for a name it does not
+// know, and a std::invalid_argument it throws goes to `usage` with its
+// message.
+template <class Usage, class Handle>
+void for_each_option(int argc, char **argv, Usage &&usage, Handle &&handle)
+{
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "-h" || a == "--help")
+            usage("");
+        if (i + 1 >= argc)
+            usage("unknown argument or missing value: '" + a + "'");
+        const std::string v = argv[++i];
+        try {
+            if (!handle(a, v))
+                usage("unknown argument '" + a + "'");
+        } catch (const std::invalid_argument &e) {
+            usage(e.what());
+        }
+    }
+}
+
 // "on" or "off".
 inline bool switch_option(const std::string &option, const std::string &text)
 {
