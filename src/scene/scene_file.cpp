@@ -7,10 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include "scene/field.h"
 #include "scene/palette.h"
+#include "scene/ply_file.h"
 #include "scene/scene_file_guard.h"
 
 namespace occu {
@@ -179,6 +182,20 @@ void require_faces_inside(const aiScene &in, const std::string &source)
 
 Scene load_scene(const std::string &path, std::vector<std::string> *warnings)
 {
+    if (std::ifstream file{path, std::ios::binary}) {
+        const std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+        if (assimp_would_read_as_ply(path, bytes)) {
+            std::vector<std::string> ply_warnings;
+            Scene out;
+            out.meshes.push_back(read_ply(path, bytes, ply_warnings));
+            for (const std::string &w : ply_warnings)
+                Warnings{warnings}(w);
+            if (out.triangle_count() == 0)
+                throw std::runtime_error("scene '" + path + "' holds no triangles");
+            out.update_bounds();
+            return out;
+        }
+    }
     guard_scene_file(path);
     Assimp::Importer importer;
     const aiScene *in = importer.ReadFile(path, 0);

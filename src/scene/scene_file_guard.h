@@ -15,23 +15,26 @@
 // accessors without a buffer view are refused (occu's scenes are static
 // meshes; assimp 5.2.5 writes sparse values at indices it does not check).
 //
-// PLY: the header must end with an end_header line that assimp's line
-// reader reaches (without one it loops forever at the end of the file); a
-// line ending in \r, \0 or \f needs a \n after it (assimp's reader skips
-// to one, past its buffer); the header's element counts must not exceed
-// the lines (ASCII) or bytes (binary) that follow it (assimp allocates and
-// loops by them: "element vertex 4294967295" asked for 48 GB).
+// PLY files assimp never reads: occu reads them itself (scene/ply_file.h),
+// since assimp's PLY importer wrote past its buffers on malformed files
+// that no check from outside could tell from good ones.
 //
-// Which checks run: by the extension (.gltf, .glb, .ply), and for other
+// Which checks run: by the extension (.gltf, .glb), and for other
 // extensions by the content, as assimp picks its importer.
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace occu {
 
 // Throws std::runtime_error naming `path` and what is wrong; returns when
 // assimp may read the file (it may still refuse it).
 void guard_scene_file(const std::string &path);
+
+// Whether assimp would read the file with its PLY importer: the extension
+// .ply, or an extension no importer claims and "ply" in its first 200
+// bytes. load_scene reads such files with read_ply instead.
+bool assimp_would_read_as_ply(const std::string &path, const std::vector<char> &bytes);
 
 }  // namespace occu
