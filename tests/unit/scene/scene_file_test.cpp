@@ -343,7 +343,7 @@ TEST(LoadScene, PlyCountsBeyondTheFileAreRefused)
 // A header assimp 5.2.5 reads leniently: misspelt keywords, a second
 // header inside the first, an unknown type or format. assimp misread one
 // such ASCII file and freed memory it never allocated (the fuzzer:
-// tests/fuzz/open-findings); every line of a header must be PLY's.
+// regression-two-headers.ply); every line of a header must be PLY's.
 TEST(LoadScene, PlyHeaderOutsidePlysGrammarIsRefused)
 {
     const std::string path = temp("grammar.ply");
