@@ -182,8 +182,11 @@ void require_faces_inside(const aiScene &in, const std::string &source)
 
 Scene load_scene(const std::string &path, std::vector<std::string> *warnings)
 {
+    // Read once: to choose occu's PLY reader, and for the guard's checks.
+    // A file that cannot be opened is assimp's to name below.
+    std::vector<char> bytes;
     if (std::ifstream file{path, std::ios::binary}) {
-        const std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+        bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
         if (assimp_would_read_as_ply(path, bytes)) {
             std::vector<std::string> ply_warnings;
             Scene out;
@@ -195,8 +198,8 @@ Scene load_scene(const std::string &path, std::vector<std::string> *warnings)
             out.update_bounds();
             return out;
         }
+        guard_scene_file(path, bytes);
     }
-    guard_scene_file(path);
     Assimp::Importer importer;
     const aiScene *in = importer.ReadFile(path, 0);
     if (in && !(in->mFlags & AI_SCENE_FLAGS_INCOMPLETE) && in->mRootNode) {

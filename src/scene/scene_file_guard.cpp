@@ -7,8 +7,6 @@
 #include <cctype>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -545,12 +543,8 @@ bool mentions_ply(const std::vector<char> &bytes)
 
 }  // namespace
 
-void guard_scene_file(const std::string &path)
+void guard_scene_file(const std::string &path, const std::vector<char> &bytes)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        return;  // assimp says why it cannot open it
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string ext = lower_extension(path);
     // assimp picks the importer by the extension, by the content when no
     // importer claims the extension.

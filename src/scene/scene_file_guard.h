@@ -29,8 +29,8 @@
 namespace occu {
 
 // Throws std::runtime_error naming `path` and what is wrong; returns when
-// assimp may read the file (it may still refuse it).
-void guard_scene_file(const std::string &path);
+// assimp may read the file (it may still refuse it). `bytes`: the file's.
+void guard_scene_file(const std::string &path, const std::vector<char> &bytes);
 
 // Whether assimp would read the file with its PLY importer: the extension
 // .ply, or an extension no importer claims and "ply" in its first 200
