@@ -467,6 +467,26 @@ std::vector<bool> pareto(const std::vector<std::pair<double, double>> &points)
     return front;
 }
 
+// The variants `ids` as points (time, wrong pixels) and (time, -culling
+// efficiency), means over the routes, and which of them lie on each front.
+struct Fronts {
+    std::vector<std::pair<double, double>> by_wrong, by_efficiency;
+    std::vector<bool> front_w, front_e;
+};
+
+Fronts fronts(const Sweep &sweep, const std::vector<std::size_t> &ids)
+{
+    Fronts f;
+    for (std::size_t id : ids) {
+        const Figures v = figures(sweep.variants[id], std::nullopt);
+        f.by_wrong.emplace_back(v.ms, v.wrong);
+        f.by_efficiency.emplace_back(v.ms, -v.efficiency);
+    }
+    f.front_w = pareto(f.by_wrong);
+    f.front_e = pareto(f.by_efficiency);
+    return f;
+}
+
 std::string file_name(const std::string &label)
 {
     std::string s = label;
@@ -499,13 +519,7 @@ bool plot(const Options &o, const std::string &strategy, const Sweep &sweep, dou
             if (std::find(settings.begin(), settings.end(), r.setting) == settings.end())
                 settings.push_back(r.setting);
         }
-    std::vector<std::pair<double, double>> by_wrong, by_efficiency;
-    for (std::size_t id : ids) {
-        const Figures f = figures(sweep.variants[id], std::nullopt);
-        by_wrong.emplace_back(f.ms, f.wrong);
-        by_efficiency.emplace_back(f.ms, -f.efficiency);
-    }
-    const std::vector<bool> front_w = pareto(by_wrong), front_e = pareto(by_efficiency);
+    const auto &[by_wrong, by_efficiency, front_w, front_e] = fronts(sweep, ids);
     auto write_front = [&](const std::string &path, const std::vector<bool> &front, bool wrong) {
         std::vector<std::pair<double, double>> p;
         for (std::size_t i = 0; i < ids.size(); ++i)
@@ -681,13 +695,7 @@ int main(int argc, char **argv)
                     ids.push_back(r.variant);
             if (ids.empty())
                 continue;
-            std::vector<std::pair<double, double>> by_wrong, by_efficiency;
-            for (std::size_t id : ids) {
-                const Figures f = figures(sweep.variants[id], std::nullopt);
-                by_wrong.emplace_back(f.ms, f.wrong);
-                by_efficiency.emplace_back(f.ms, -f.efficiency);
-            }
-            const std::vector<bool> front_w = pareto(by_wrong), front_e = pareto(by_efficiency);
+            const auto &[by_wrong, by_efficiency, front_w, front_e] = fronts(sweep, ids);
             std::size_t def = ids.size();
             for (std::size_t i = 0; i < ids.size(); ++i)
                 if (sweep.variants[ids[i]].spec == strategy && sweep.variants[ids[i]].leaf == default_leaf &&
