@@ -251,8 +251,7 @@ public:
             return v;
         }
         if (next_token_ == tokens_.size())
-            refuse(path_, "data line " + std::to_string(line_) + " (instance " + std::to_string(instance_) +
-                              " of element " + std::to_string(element_) + ") holds fewer values than its properties");
+            short_line();
         const std::string &token = tokens_[next_token_++];
         char *end = nullptr;
         const double v = std::strtod(token.c_str(), &end);
@@ -275,14 +274,13 @@ public:
             return items;
         }
         if (next_token_ == tokens_.size())
-            value(length_type);  // refuses: fewer values than properties
+            short_line();
         const std::string &token = tokens_[next_token_++];
         if (!whole_number(token, items))
             refuse(path_, "data line " + std::to_string(line_) + ": a list length that is not a whole number: '" +
                               token.substr(0, 20) + "'");
         if (items > tokens_.size() - next_token_)
-            refuse(path_, "data line " + std::to_string(line_) + " (instance " + std::to_string(instance_) +
-                              " of element " + std::to_string(element_) + ") holds fewer values than its properties");
+            short_line();
         return items;
     }
 
@@ -290,6 +288,12 @@ public:
     std::size_t bytes_left() const { return bytes_.size() - at_; }
 
 private:
+    [[noreturn]] void short_line() const
+    {
+        refuse(path_, "data line " + std::to_string(line_) + " (instance " + std::to_string(instance_) +
+                          " of element " + std::to_string(element_) + ") holds fewer values than its properties");
+    }
+
     const std::string &path_;
     const Header &h_;
     const std::vector<char> &bytes_;
