@@ -1,0 +1,60 @@
+/*
+ * GL_MESAX_occlusion_unit_async: the by-region modes of conditional
+ * rendering are not accepted on a tile (spec MESAX_occlusion_unit_async,
+ * section 5.X.2, Errors and issue 17): each generates INVALID_ENUM and
+ * begins nothing, so EndConditionalRenderOcclusionTileMESAX then generates
+ * INVALID_OPERATION and a draw after it is unconditional.
+ *
+ * The pass: one tile, the 32 x 32 window, with nothing drawn in it (NOHC
+ * 0), so that a condition, had one begun, would discard the draw.
+ *
+ * Subtests: by-region-wait, by-region-no-wait, by-region-wait-inverted,
+ * by-region-no-wait-inverted (each: INVALID_ENUM, nothing begun, the red
+ * rectangle drawn).
+ */
+#include "ou_util.h"
+
+#ifndef GL_QUERY_BY_REGION_WAIT_INVERTED
+#define GL_QUERY_BY_REGION_WAIT_INVERTED 0x8E19
+#define GL_QUERY_BY_REGION_NO_WAIT_INVERTED 0x8E1A
+#endif
+
+enum { S = 32 };
+
+int main(int argc, char **argv)
+{
+    const struct ou_async_functions a = ou_init_async(argc, argv, S, S);
+    glDisable(GL_DEPTH_TEST);
+    GLuint pass, record[OU_BRIEF_SIZE];
+    GLuint *buffers[1] = {record};
+    GLsizei sizes[1] = {OU_BRIEF_SIZE};
+    a.GenOcclusionPasses(1, &pass);
+    OcclusionBuffersMESAX(1, sizes, buffers);
+    a.BeginOcclusionPass(GL_BRIEF_OCCLUSION_MESAX, pass);
+    a.EndOcclusionPass();
+
+    static const struct {
+        GLenum mode;
+        const char *name;
+    } modes[] = {
+        {GL_QUERY_BY_REGION_WAIT, "by-region-wait"},
+        {GL_QUERY_BY_REGION_NO_WAIT, "by-region-no-wait"},
+        {GL_QUERY_BY_REGION_WAIT_INVERTED, "by-region-wait-inverted"},
+        {GL_QUERY_BY_REGION_NO_WAIT_INVERTED, "by-region-no-wait-inverted"},
+    };
+    static const unsigned char red[4] = {255, 0, 0, 255};
+    for (unsigned i = 0; i < sizeof(modes) / sizeof(modes[0]); ++i) {
+        glClearColor(0, 0, 0, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        a.BeginConditionalRenderOcclusionTile(pass, 0, 0, 0.0f, modes[i].mode);
+        const bool rejected = piglit_check_gl_error(GL_INVALID_ENUM);
+        glColor4ub(255, 0, 0, 255);
+        ou_rect(0, 0, S, S, 0.5f);
+        const bool drawn = piglit_probe_rect_rgba_ub(0, 0, S, S, red, 0);
+        a.EndConditionalRenderOcclusionTile();
+        const bool nothing_begun = piglit_check_gl_error(GL_INVALID_OPERATION);
+        subtest(rejected && drawn && nothing_begun, modes[i].name);
+    }
+    a.DeleteOcclusionPasses(1, &pass);
+    piglit_report_result(result);
+}
