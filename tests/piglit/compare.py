@@ -6,7 +6,10 @@ baseline's (Debian's unpatched Mesa of the same version on the same test).
 A test that reports subtests is checked per subtest too, as 'TEST@SUBTEST':
 a test whose baseline is a fail for one subtest still guards the others.
 occu's own tests (group 'occu@') have no baseline: they must pass or skip.
-Prints one line per failed check and ends with 'piglit: N passed, N failed'.
+Each check is counted as what it is: a pass as passed, a skip as skipped, a
+fail or warn that the baseline also has as known (failing as on unpatched
+Mesa), anything worse than the baseline as failed. Prints one line per failed
+check and ends with 'piglit: N passed, N failed, N skipped, N known'.
 
   compare.py RESULTS_DIR BASELINE
 """
@@ -65,7 +68,7 @@ def main():
         sys.exit(__doc__)
     results = load_results(sys.argv[1])
     baseline, problems = load_baseline(sys.argv[2])
-    passed, failed = 0, len(problems)
+    passed, failed, skipped, known = 0, len(problems), 0, 0
     for p in problems:
         print(f'FAIL baseline: {p}')
     for name in sorted(results):
@@ -80,8 +83,12 @@ def main():
                 print(f'note: {name}: {got}, better than the baseline ({want}); re-record the baseline')
         else:
             ok, why = False, 'not in the baseline (re-record it: tests/piglit/record-baseline.sh)'
-        if ok:
+        if ok and got == 'pass':
             passed += 1
+        elif ok and got in ('skip', 'notrun'):
+            skipped += 1
+        elif ok:
+            known += 1
         else:
             failed += 1
             print(f'FAIL {name}: {got} ({why})')
@@ -92,7 +99,7 @@ def main():
             print(f'FAIL {name}: subtest not reported (its test: {results[test]})')
         else:
             print(f'FAIL {name}: in the baseline but not run (regression.list and baseline.txt disagree)')
-    print(f'piglit: {passed} passed, {failed} failed')
+    print(f'piglit: {passed} passed, {failed} failed, {skipped} skipped, {known} known')
     return 1 if failed else 0
 
 
