@@ -13,7 +13,8 @@
 #   source/                  the unpacked source package, a git repository whose first
 #                            commit is pristine; each patch of the series is one commit
 #                            on it (git am), as in a merge request's branch
-#   source-unpatched/        a second work tree of that commit, for --unpatched
+#   source-unpatched/, source-sanitized/   work trees of that commit for the other
+#                            variants (the sanitized one with the series applied)
 #   build-<options>-<variant>/   meson build dir, reused so that a patch change
 #                            rebuilds only what it touches
 #   install-<options>-<patches>/ the installed Mesa, one per key; '.complete' marks it done
@@ -33,6 +34,10 @@ case ${1:-} in
         # (LD_PRELOAD), so undefined symbols are allowed at link time. GCC 12
         # with ASan reports a null format string in util/log.c that cannot
         # happen (Mesa passes -Werror=format): kept a warning.
+        # Mesa's own unit tests are not run on this build (tools/test runs them on
+        # the plain one): compiling nir_tests, spirv_tests and the rest under ASan
+        # was most of a cold run's time.
+        options=("${options[@]/-Dbuild-tests=true/-Dbuild-tests=false}")
         options+=(-Db_sanitize=address,undefined -Db_lundef=false
                   -Dc_args=-Wno-error=format-overflow -Dcpp_args=-Wno-error=format-overflow) ;;
     *) die "tools/mesa.sh: unknown option '$1' (expected --unpatched, --sanitize or nothing)" ;;
@@ -63,8 +68,10 @@ if [ -f "$prefix/.complete" ]; then
 fi
 
 mkdir -p "$top"
-exec 9>"$top/.lock"
-flock 9    # one build at a time per Mesa version; others wait, then reuse
+# One build at a time per variant (each has its own tree and build dir);
+# others wait, then reuse. The fetch below has a lock of its own.
+exec 9>"$top/.lock-$variant"
+flock 9
 if [ -f "$prefix/.complete" ]; then
     echo "$prefix"; exit 0
 fi
@@ -72,6 +79,8 @@ fi
 "$OCCU_ROOT/tools/deps.sh" build
 
 # --- fetch: Debian's source package at the pinned version -----------------------------
+exec 8>"$top/.lock-fetch"
+flock 8
 if [ ! -f "$src/.occu-pristine" ]; then
     dl=$OCCU_CACHE/mesa/download
     mkdir -p "$dl"
@@ -94,14 +103,17 @@ Check that patches/mesa still applies to $apt_version, then change MESA_DEBIAN_V
     mv "$src.tmp" "$src"
     touch "$src/.occu-pristine"
 fi
+flock -u 8
 
-# The unpatched variant builds from a second work tree of the pristine commit,
-# so that switching variants never touches the patched tree's files.
-if [ $variant = unpatched ]; then
-    if [ ! -d "$top/source-unpatched" ]; then
-        git -C "$src" worktree add -q --detach "$top/source-unpatched" HEAD
+# The unpatched and sanitized variants build from work trees of their own,
+# made from the pristine commit, so that building one variant never touches
+# the files of another's build, nor a Mesa developer's edits in source/.
+if [ $variant != patched ]; then
+    if [ ! -d "$top/source-$variant" ]; then
+        git -C "$src" worktree add -q --detach "$top/source-$variant" \
+            "$(git -C "$src" rev-list --max-parents=0 HEAD)"
     fi
-    src=$top/source-unpatched
+    src=$top/source-$variant
 fi
 
 # --- patch: reset the tree to pristine, commit the series on it in order ---------------
