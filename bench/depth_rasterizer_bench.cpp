@@ -25,10 +25,10 @@
 
 #include "camera/route.h"
 #include "culling/culler.h"
-#include "occluders/skin_occluders.h"
 #include "raster/depth_rasterizer.h"
 #include "scene/city.h"
 #include "spatial/hierarchy.h"
+#include "strategies/leone_occluder_skins/skin_occluders.h"
 
 namespace {
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "maps/opacity_map.h"
-#include "maps/sparse_depth_map.h"
+#include "strategies/poon_wang_opacity_maps/opacity_map.h"
+#include "strategies/poon_wang_opacity_maps/sparse_depth_map.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // occu-preprocess: builds the minimum-occluder-set database that the
 // walkthrough's om-mos strategy reads (Poon and Wang, section 4; the steps
-// are in src/preprocessing/view_preprocessing.h).
+// are in src/strategies/poon_wang_opacity_maps/view_preprocessing.h).
 //
 //   occu-preprocess build (--out FILE | --cache DIR) [--scene city|field|FILE] [--city-copies N]
 //                   [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D]
@@ -23,9 +23,10 @@
 // the run-time maps the database serves (R x R maps of a frame of R * K
 // pixels; the walkthrough's defaults are 128 and 4).
 // --selection static keeps the paper's fixed scores (section 4.3) instead of the
-// greedy marginal order (preprocessing/occluder_scoring.h). --pixels-per-occluder P
-// weighs an occluder's cost: 1 + its pixels (at --resolution) / P (16384); a
-// large P counts occluders, a small one their rasterization.
+// greedy marginal order (strategies/poon_wang_opacity_maps/occluder_scoring.h).
+// --pixels-per-occluder P weighs an occluder's cost: 1 + its pixels (at
+// --resolution) / P (16384); a large P counts occluders, a small one their
+// rasterization.
 //
 // Grid points span the scene's ground rectangle corner to corner at eye
 // height (for the default city, 8 x 8 points are its street crossings);
@@ -40,9 +41,9 @@
 // database made for another scene, hierarchy, map resolution or Mesa.
 //
 // `skins` makes the occluder skins of the scene's meshes (Leone et al.,
-// section 4; preprocessing/occluder_skins.h, which describes the file and the
-// options: voxel edge in metres, boxes per mesh, the smallest box in m^3 and
-// where boxes start growing). Pure geometry: no GL, no Mesa. Meshes without
+// section 4; strategies/leone_occluder_skins/occluder_skins.h, which
+// describes the file and the options: voxel edge in metres, boxes per mesh,
+// the smallest box in m^3 and where boxes start growing). Pure geometry: no GL, no Mesa. Meshes without
 // skins (not watertight, no interior at that voxel size) are listed on
 // stderr and recorded in the file; they do not make the command fail.
 // --shard I/N takes the meshes m with m % N == I - 1. `merge` joins skin
@@ -50,8 +51,8 @@
 // all its shards must be of the kind of the first.
 //
 // `view-cells` precomputes the potentially visible set of every view cell
-// (Wonka, Wimmer and Schmalstieg 2000; preprocessing/view_cell_visibility.h
-// and pvs_database.h): cells over the city's streets with edges of at most
+// (Wonka, Wimmer and Schmalstieg 2000; strategies/wonka_view_cells/:
+// view_cell_visibility.h and pvs_database.h): cells over the city's streets with edges of at most
 // --max-edge m kept --clearance m from the buildings, prisms up to
 // --cell-top m, sample points --epsilon apart,
 // occluders shrunk by epsilon, cull maps of --pixel m pixels growing from
@@ -81,15 +82,15 @@
 #include "cli/progress.h"
 #include "gl/extensions.h"
 #include "gl/offscreen_context.h"
-#include "preprocessing/occluder_database.h"
-#include "preprocessing/occluder_skins.h"
-#include "preprocessing/pvs_database.h"
-#include "preprocessing/view_cell_visibility.h"
-#include "preprocessing/view_preprocessing.h"
 #include "render/scene_renderer.h"
 #include "scene/city.h"
 #include "scene/scene_file.h"
 #include "spatial/hierarchy.h"
+#include "strategies/leone_occluder_skins/occluder_skins.h"
+#include "strategies/poon_wang_opacity_maps/occluder_database.h"
+#include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
+#include "strategies/wonka_view_cells/pvs_database.h"
+#include "strategies/wonka_view_cells/view_cell_visibility.h"
 
 namespace {
 

@@ -37,9 +37,9 @@
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
-#include "preprocessing/view_preprocessing.h"
 #include "scene/city.h"
 #include "scene/scene_file.h"
+#include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
 #include "traversal/traversal.h"
 
 namespace {

@@ -75,6 +75,7 @@ struct Options {
                  "                   [--leaf-triangles N] [--batch N] [--coherence on|off] [--switch-off F]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
                  "                   [--video STRATEGY,...]\n"
+                 "       walkthrough --list-strategies [--markdown]\n"
                  "--report (on) ends the run with the plots of frames.csv (tools/plot-walkthrough.sh, gnuplot)\n"
                  "and DIR/index.html, a page of the summary, the plots and the frames beside their top views\n"
                  "(tools/report-walkthrough.sh); --video makes DIR/route.mp4 of the named strategies' frames and\n"
@@ -89,6 +90,14 @@ struct Options {
 
 Options parse(int argc, char **argv)
 {
+    // The registry's strategies, as --help lists them or as README's table.
+    if (argc >= 2 && std::strcmp(argv[1], "--list-strategies") == 0) {
+        const bool markdown = argc == 3 && std::strcmp(argv[2], "--markdown") == 0;
+        if (argc > 2 && !markdown)
+            usage("--list-strategies takes --markdown alone");
+        std::fputs((markdown ? strategies_markdown() : strategies_help()).c_str(), stdout);
+        std::exit(0);
+    }
     Options o;
     for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
         if (a == "--route") o.route = v;

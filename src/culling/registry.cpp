@@ -26,6 +26,23 @@ Found find(const std::string &name)
     throw std::invalid_argument("unknown culling strategy '" + name + "' (known: " + known + ")");
 }
 
+// A family's flags in words, as help and the markdown table list them.
+std::string properties(const StrategyFamily &f)
+{
+    return std::string(f.conservative ? "conservative" : "approximate") +
+           (f.queries_rasterizer ? ", queries the rasterizer" : "") +
+           (f.costs_per_frame ? ", costs time each frame" : "") + (f.needs_truth ? ", needs the oracle" : "");
+}
+
+// A markdown table cell: a '|' would end the cell.
+std::string cell(const std::string &text)
+{
+    std::string c;
+    for (char ch : text)
+        c += ch == '|' ? std::string("\\|") : std::string(1, ch);
+    return c;
+}
+
 std::pair<std::string, std::string> split_assignment(const std::string &item)
 {
     const auto eq = item.find('=');
@@ -94,9 +111,7 @@ std::string strategies_help()
 {
     std::string h;
     for (const StrategyFamily &f : strategy_families()) {
-        h += "  " + f.name + ": " + f.summary + "\n      " + f.paper + "; " +
-             (f.conservative ? "conservative" : "approximate") + (f.queries_rasterizer ? ", queries the rasterizer" : "") +
-             (f.costs_per_frame ? ", costs time each frame" : "") + (f.needs_truth ? ", needs the oracle" : "") + "\n";
+        h += "  " + f.name + ": " + f.summary + "\n      " + f.paper + "; " + properties(f) + "\n";
         std::string former;
         for (const StrategyPreset &p : f.presets) {
             if (!p.former_name)
@@ -110,6 +125,31 @@ std::string strategies_help()
             h += "      " + s.describe() + "\n";
     }
     return h;
+}
+
+std::string strategies_markdown()
+{
+    std::string t = "| family | presets | paper | what it does | settings (default) | properties |\n"
+                    "|---|---|---|---|---|---|\n";
+    for (const StrategyFamily &f : strategy_families()) {
+        std::string presets, former;
+        for (const StrategyPreset &p : f.presets) {
+            std::string &list = p.former_name ? former : presets;
+            list += (list.empty() ? "`" : ", `") + p.name + "`" + (p.settings.empty() ? "" : " (`" + p.settings + "`)");
+        }
+        if (!former.empty())
+            presets += (presets.empty() ? "" : "; ") + ("former names, still accepted: " + former);
+        std::string settings;
+        for (const SettingSpec &s : f.settings) {
+            // "`key=default` (range; role): help"
+            const std::string d = s.describe();
+            const std::size_t open = d.find(" (");
+            settings += (settings.empty() ? "" : "<br>") + ("`" + d.substr(0, open) + "`" + d.substr(open));
+        }
+        t += "| `" + f.name + "` | " + cell(presets) + " | " + cell(f.paper) + " | " + cell(f.summary) + " | " +
+             cell(settings) + " | " + cell(properties(f)) + " |\n";
+    }
+    return t;
 }
 
 }  // namespace occu

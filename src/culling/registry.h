@@ -92,5 +92,8 @@ Strategy make_strategy(const std::string &spec, const StrategyContext &context,
 std::vector<std::string> strategy_names();
 // The families, their papers, presets and settings, for --help.
 std::string strategies_help();
+// The same as one markdown table, a row per family (README's strategies
+// table is this text, and a test keeps it so).
+std::string strategies_markdown();
 
 }  // namespace occu

@@ -1,6 +1,8 @@
 // The shape of an image pyramid built by 2x2 reduction, shared by the
-// Z-pyramid of Greene, Kass and Miller (maps/z_pyramid.h) and the
-// hierarchical occlusion map of Zhang et al. (maps/hierarchical_occlusion_map.h),
+// Z-pyramid of Greene, Kass and Miller
+// (strategies/greene_hierarchical_z_buffer/z_pyramid.h) and the
+// hierarchical occlusion map of Zhang et al.
+// (strategies/zhang_hierarchical_occlusion_maps/hierarchical_occlusion_map.h),
 // and the hierarchical rectangle test both run on it (Moller and Haines,
 // "Occlusion Culling Algorithms": "Hierarchical Z-Buffering and the
 // Hierarchical Visibility Algorithm" and "The HOM Algorithm").

@@ -47,8 +47,9 @@ public:
     const HierarchyNode &root() const { return nodes_.front(); }
     std::size_t leaf_count() const;
     // A hash of the scene's triangles and of the nodes built over them:
-    // what a precomputed database (preprocessing/occluder_database.h) was
-    // made for. 16 hex digits.
+    // what a precomputed database (e.g.
+    // strategies/poon_wang_opacity_maps/occluder_database.h) was made for.
+    // 16 hex digits.
     const std::string &fingerprint() const { return fingerprint_; }
 
 private:

@@ -1,8 +1,8 @@
 // Fuzzes the minimum-occluder-set database loader
-// (preprocessing/occluder_database.h): any bytes are either a database or
-// refused naming the file.
+// (strategies/poon_wang_opacity_maps/occluder_database.h): any bytes are
+// either a database or refused naming the file.
 #include "fuzz_input.h"
-#include "preprocessing/occluder_database.h"
+#include "strategies/poon_wang_opacity_maps/occluder_database.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
 {

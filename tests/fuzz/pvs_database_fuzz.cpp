@@ -1,11 +1,12 @@
-// Fuzzes the PVS database loader (preprocessing/pvs_database.h): any bytes
-// are either a database whose cells are finite triangles with area, whose
-// sets name cells that exist with leaves in ascending order, and whose
-// cells a ViewCells accepts, or refused naming the file.
+// Fuzzes the PVS database loader (strategies/wonka_view_cells/
+// pvs_database.h): any bytes are either a database whose cells are finite
+// triangles with area, whose sets name cells that exist with leaves in
+// ascending order, and whose cells a ViewCells accepts, or refused naming the
+// file.
 #include <cmath>
 
 #include "fuzz_input.h"
-#include "preprocessing/pvs_database.h"
+#include "strategies/wonka_view_cells/pvs_database.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
 {

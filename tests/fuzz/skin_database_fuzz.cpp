@@ -1,10 +1,11 @@
-// Fuzzes the occluder-skin database loader (preprocessing/occluder_skins.h):
-// any bytes are either a database whose boxes are finite and not inverted,
-// or refused naming the file.
+// Fuzzes the occluder-skin database loader
+// (strategies/leone_occluder_skins/occluder_skins.h): any bytes are either a
+// database whose boxes are finite and not inverted, or refused naming the
+// file.
 #include <cmath>
 
 #include "fuzz_input.h"
-#include "preprocessing/occluder_skins.h"
+#include "strategies/leone_occluder_skins/occluder_skins.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
 {

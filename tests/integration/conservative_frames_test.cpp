@@ -20,9 +20,9 @@
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
-#include "preprocessing/occluder_database.h"
-#include "preprocessing/view_preprocessing.h"
 #include "scene/city.h"
+#include "strategies/poon_wang_opacity_maps/occluder_database.h"
+#include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
 #include "traversal/traversal.h"
 
 #include "frame_comparison.h"

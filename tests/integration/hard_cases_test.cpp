@@ -33,9 +33,9 @@
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
-#include "preprocessing/view_preprocessing.h"
 #include "scene/scene.h"
 #include "spatial/hierarchy.h"
+#include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
 
 #include "frame_comparison.h"
 

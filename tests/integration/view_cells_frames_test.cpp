@@ -1,12 +1,12 @@
 // View-cell visibility (Wonka, Wimmer and Schmalstieg 2000;
-// preprocessing/view_cell_visibility.h, strategies/wonka_view_cells/): on a
-// 3x3-block city, the potentially visible sets found with the Occlusion Unit
-// equal those found by reading the cull maps back; and the `pvs` strategy,
-// fed a database of those sets, draws frames equal to unculled frames from
-// random eyes anywhere in their cells (corners, edges, street level and the
-// cells' top included, looking any way, straight up and down too), culls
-// far more than vfc, and falls back to view-frustum culling, saying so, for
-// eyes in no cell.
+// strategies/wonka_view_cells/view_cell_visibility.h): on a 3x3-block city,
+// the potentially visible sets found with the Occlusion Unit equal those
+// found by reading the cull maps back; and the `pvs` strategy, fed a database
+// of those sets, draws frames equal to unculled frames from random eyes
+// anywhere in their cells (corners, edges, street level and the cells' top
+// included, looking any way, straight up and down too), culls far more than
+// vfc, and falls back to view-frustum culling, saying so, for eyes in no
+// cell.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,9 +20,9 @@
 #include "evaluation/oracle.h"
 #include "frame_comparison.h"
 #include "gl/offscreen_context.h"
-#include "preprocessing/pvs_database.h"
 #include "render/scene_renderer.h"
 #include "scene/city.h"
+#include "strategies/wonka_view_cells/pvs_database.h"
 #include "traversal/traversal.h"
 
 using namespace occu;

@@ -3,9 +3,9 @@
 #include <memory>
 #include <optional>
 
-#include "occluders/skin_occluders.h"
 #include "raster/depth_rasterizer.h"
 #include "spatial/hierarchy.h"
+#include "strategies/leone_occluder_skins/skin_occluders.h"
 
 namespace occu::strategies {
 

@@ -1,11 +1,13 @@
 // Poon and Wang, "Occlusion Culling Using Minimum Occluder Set and Opacity
 // Map": occlusion culling with the opacity map and the sparse depth map
-// (section 5; maps/), by one of three occluder selections (section 6.1):
-//   selection=ps    occluders by projected size (occluders/selection.h)
+// (section 5; opacity_map.h, sparse_depth_map.h), by one of three occluder
+// selections (section 6.1):
+//   selection=ps    occluders by projected size (selection.h)
 //   selection=fh    occluders by first hit (an ID buffer of the frame)
 //   selection=mos   occluders from the minimum-occluder-set database of the
-//                   nearest grid point and heading (section 4;
-//                   preprocessing/, made by occu-preprocess)
+//                   nearest grid point and heading (section 4:
+//                   view_preprocessing.h and the files it names;
+//                   occluder_database.h, made by occu-preprocess)
 // and one of two comparisons (figure 8): compare=maps is the overlap test
 // on the opacity map, then the sparse depth map (OM + SDM); compare=pixels
 // checks coverage and depth pixel by pixel (the paper's PC).

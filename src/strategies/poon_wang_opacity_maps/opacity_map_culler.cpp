@@ -7,13 +7,13 @@
 
 #include "gl/framebuffer.h"
 #include "gl/state.h"
-#include "maps/opacity_map.h"
-#include "maps/sparse_depth_map.h"
-#include "occluders/selection.h"
-#include "preprocessing/occluder_database.h"
 #include "render/id_buffer.h"
 #include "render/scene_renderer.h"
 #include "spatial/hierarchy.h"
+#include "strategies/poon_wang_opacity_maps/occluder_database.h"
+#include "strategies/poon_wang_opacity_maps/opacity_map.h"
+#include "strategies/poon_wang_opacity_maps/selection.h"
+#include "strategies/poon_wang_opacity_maps/sparse_depth_map.h"
 
 namespace occu::strategies {
 

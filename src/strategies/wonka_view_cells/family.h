@@ -2,7 +2,7 @@
 // Fusion for Urban Walkthroughs" (2000): view cells over the city's
 // streets, each with its potentially visible set precomputed from point
 // samples of its boundary against occluders shrunk by epsilon, fused in
-// cull maps (sections 2-6; preprocessing/view_cell_visibility.h).
+// cull maps (sections 2-6; view_cell_visibility.h).
 //   pvs   looks up the view cell that holds the eye (section 3) and draws
 //         its set cut by the view frustum (section 7.3): no per-frame
 //         occlusion work at all. Conservative for every eye in the cell.

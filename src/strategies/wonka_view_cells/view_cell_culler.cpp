@@ -9,10 +9,10 @@
 #include <string>
 
 #include "gl/occlusion_unit.h"
-#include "preprocessing/pvs_database.h"
-#include "preprocessing/view_cell_visibility.h"
 #include "scene/scene.h"
 #include "spatial/hierarchy.h"
+#include "strategies/wonka_view_cells/pvs_database.h"
+#include "strategies/wonka_view_cells/view_cell_visibility.h"
 
 namespace occu::strategies {
 

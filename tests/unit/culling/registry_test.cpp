@@ -64,6 +64,40 @@ TEST(Registry, EveryFamilyNamesItsPaperAndFactory)
         EXPECT_NE(help.find(n), std::string::npos) << n;
 }
 
+// README's strategies table: a row per family in the registry's order, each
+// with the table's six cells (a '|' inside a cell is escaped), naming the
+// family, its listed presets, its paper and every setting.
+TEST(Registry, MarkdownTableHasARowPerFamily)
+{
+    const std::string table = strategies_markdown();
+    std::vector<std::string> rows;
+    for (std::size_t at = 0, end; at < table.size(); at = end + 1) {
+        end = table.find('\n', at);
+        ASSERT_NE(end, std::string::npos) << "the table ends with a newline";
+        rows.push_back(table.substr(at, end - at));
+    }
+    ASSERT_EQ(rows.size(), strategy_families().size() + 2);
+    for (const std::string &row : rows) {
+        int cells = -1;
+        for (std::size_t i = 0; i < row.size(); ++i)
+            cells += row[i] == '|' && (i == 0 || row[i - 1] != '\\');
+        EXPECT_EQ(cells, 6) << row;
+    }
+    for (std::size_t i = 0; i < strategy_families().size(); ++i) {
+        const StrategyFamily &f = strategy_families()[i];
+        const std::string &row = rows[i + 2];
+        EXPECT_EQ(row.rfind("| `" + f.name + "` |", 0), 0u) << row;
+        EXPECT_NE(row.find(f.paper), std::string::npos) << f.name;
+        for (const StrategyPreset &p : f.presets)
+            EXPECT_NE(row.find("`" + p.name + "`"), std::string::npos) << p.name;
+        for (const SettingSpec &s : f.settings)
+            EXPECT_NE(row.find("`" + s.name + "="), std::string::npos) << f.name << ": " << s.name;
+    }
+    EXPECT_NE(table.find("| `pvs` |"), std::string::npos);
+    EXPECT_NE(table.find("(0..1; approximation, exact at 0)"), std::string::npos);
+    EXPECT_NE(table.find("box\\|triangles"), std::string::npos) << "a choice's '|' escaped";
+}
+
 TEST(Registry, EveryNameBuildsAConservativeStrategyAtDefaults)
 {
     const OneBox box;

@@ -1,0 +1,155 @@
+// The hierarchical Z-buffer (Greene, Kass and Miller; Moeller and Haines,
+// "Hierarchical Z-Buffering and the Hierarchical Visibility Algorithm"):
+// see family.h.
+#include "strategies/greene_hierarchical_z_buffer/family.h"
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include "gl/framebuffer.h"
+#include "gl/state.h"
+#include "raster/depth_rasterizer.h"
+#include "render/scene_renderer.h"
+#include "spatial/hierarchy.h"
+#include "strategies/greene_hierarchical_z_buffer/z_pyramid.h"
+#include "strategies/leone_occluder_skins/skin_occluders.h"
+
+namespace occu::strategies {
+
+namespace {
+
+class HierarchicalZBufferCuller final : public Culler {
+public:
+    HierarchicalZBufferCuller(const StrategyContext &context, const Settings &settings)
+        : renderer_(context.renderer), last_frame_(settings.text("source") == "last-frame"),
+          limit_(std::size_t(settings.integer("max-occluders")))
+    {
+        options_.divisor = int(settings.integer("map-divisor"));
+        options_.per_pixel_depth = settings.text("depth") == "pixel";
+        if (!last_frame_)
+            skins_.emplace(context.scene, settings);
+    }
+
+    void begin_frame(const Frame &frame) override
+    {
+        frame_.emplace(frame);
+        if (last_frame_) {
+            last_frame_depth(frame);
+        } else {
+            raster_.begin(frame.view_projection, frame.width, frame.height, options_);
+            skins_->render(frame, raster_, limit_);
+            raster_.read(depth_);
+            pyramid_.build(raster_.width(), raster_.height(), depth_.data());
+        }
+        drawn_.clear();
+        stats_.passes = 1;
+    }
+
+    void test(std::vector<NodeTest> &tests) override
+    {
+        const Frame &f = *frame_;
+        const int k = options_.divisor;
+        for (NodeTest &t : tests) {
+            const auto footprint = f.occlusion_candidate(t);
+            if (!footprint || footprint->rect.empty())
+                continue;
+            // The pyramid's pixels that hold the footprint's, from the
+            // coarsest level enclosing them down, only where it fails.
+            const PixelRect m = footprint->rect.to_map(k).clamped({0, 0, pyramid_.width(), pyramid_.height()});
+            const float z = footprint->window_z_near - 1e-6f;
+            // A leaf the pyramid keeps is tested again by its box's faces
+            // in the skins' depth buffer, pixel by pixel, as skins does.
+            if (pyramid_.occluded(m, z) || (t.leaf && !last_frame_ && raster_.faces_occluded(t.box, z)))
+                t.result = Visibility::occluded;
+        }
+    }
+
+    void rendered(std::uint32_t node) override { drawn_.push_back(node); }
+
+    CullerStats stats() const override { return stats_; }
+
+private:
+    // The two-pass scheme of GPU culling: the depth of the leaves the last
+    // frame drew, rendered in this frame's view, stands for this frame's
+    // occluders. Drawn at full resolution into the strategy's own
+    // framebuffer and read back; reduced by map-divisor to the farthest
+    // depth of each block, so the test stays conservative.
+    void last_frame_depth(const Frame &frame)
+    {
+        previous_.swap(drawn_);
+        const int w = frame.width, h = frame.height, k = options_.divisor;
+        if (!target_)
+            target_.emplace(w, h);
+        target_->resize(w, h);
+        full_.resize(std::size_t(w) * std::size_t(h));
+        {
+            gl::Framebuffer::Bind bind(*target_);
+            gl::AttribScope state(GL_ENABLE_BIT | GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_POLYGON_BIT);
+            gl::MatrixScope matrices;
+            gl::load_camera(frame.camera);
+            glEnable(GL_DEPTH_TEST);
+            glEnable(GL_CULL_FACE);
+            glDepthFunc(GL_LESS);
+            glDepthMask(GL_TRUE);
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            glClearDepth(1.0);
+            glClear(GL_DEPTH_BUFFER_BIT);
+            for (std::uint32_t n : previous_)
+                renderer_.draw_leaf_flat(n);
+            glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, full_.data());
+        }
+        const int mw = (w + k - 1) / k, mh = (h + k - 1) / k;
+        depth_.assign(std::size_t(mw) * std::size_t(mh), 0.0f);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                float &d = depth_[std::size_t(y / k) * std::size_t(mw) + std::size_t(x / k)];
+                d = std::max(d, full_[std::size_t(y) * std::size_t(w) + std::size_t(x)]);
+            }
+        pyramid_.build(mw, mh, depth_.data());
+    }
+
+    const SceneRenderer &renderer_;
+    bool last_frame_;
+    std::size_t limit_;
+    DepthRasterizer::Options options_;
+    DepthRasterizer raster_;
+    std::optional<SkinOccluders> skins_;
+    std::optional<gl::Framebuffer> target_;
+    std::vector<float> full_, depth_;
+    std::vector<std::uint32_t> drawn_, previous_;
+    ZPyramid pyramid_;
+    std::optional<Frame> frame_;
+    CullerStats stats_;
+};
+
+}  // namespace
+
+StrategyFamily hierarchical_z_buffer_family()
+{
+    using Role = SettingSpec::Role;
+    StrategyFamily f;
+    f.name = "hzb";
+    f.paper = "Greene, Kass and Miller 1993 (Moeller and Haines, hierarchical Z-buffering)";
+    f.summary = "a Z-pyramid of the skins' CPU depth, or of last frame's visible leaves, tested coarse to fine";
+    f.costs_per_frame = true;
+    f.settings = {
+        choice_setting("source", {"skins", "last-frame"},
+                       "the occluder skins' CPU depth buffer, or the depth of the leaves the last frame drew"),
+        choice_setting("depth", {"pixel", "polygon"}, "skins: depth per pixel, or one farthest depth per polygon"),
+        integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per pyramid pixel at level 0, each way"),
+        integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
+                        "skins rasterized per frame, largest on screen first", "0"),
+    };
+    for (SettingSpec &s : skin_settings())
+        f.settings.push_back(std::move(s));
+    f.presets = {
+        {"hzb-last-frame", "source=last-frame"},
+    };
+    f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
+        return std::make_unique<HierarchicalZBufferCuller>(context, settings);
+    };
+    return f;
+}
+
+}  // namespace occu::strategies

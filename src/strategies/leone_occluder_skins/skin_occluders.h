@@ -1,0 +1,59 @@
+// Occluder skins at run time (Leone et al., section 5): the skins of the
+// scene's meshes (occluder_skins.h), frustum-culled each
+// frame, the largest on screen first, and their faces that face the eye
+// rasterized as quads into a CPU depth buffer (raster/depth_rasterizer.h).
+// Shared by the strategies that take their occluders from skins.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "culling/culler.h"
+#include "culling/settings.h"
+#include "raster/depth_rasterizer.h"
+#include "scene/scene.h"
+
+namespace occu {
+
+class SkinOccluders {
+public:
+    // From the skin database at `database` (refused, naming why, when made
+    // for another scene), or with an empty path made from `scene` now with
+    // the default SkinOptions. Each mesh keeps its first `boxes_per_mesh`
+    // boxes (the largest first).
+    SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh);
+    // As its strategy's settings (skin_settings below) ask.
+    SkinOccluders(const Scene &scene, const Settings &settings);
+
+    // Renders the usable skins in `frame`'s frustum into `raster` (begun
+    // for the frame): at most `limit` of them (0: all), chosen by the solid angle
+    // their boxes subtend, drawn nearest first, skipping those the ones
+    // before already hide. Returns how many it drew.
+    std::size_t render(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
+
+    // Whether skin `i` may stand for its mesh in `frame`: only where the
+    // mesh's bounding box lies wholly beyond the near plane. A skin hides
+    // what lies behind it because the mesh's surface in front of it is
+    // drawn; a near plane through the mesh clips that surface away, and an
+    // eye inside the mesh sees its walls from behind, where back-face
+    // culling drops them: in both GL shows what the skin would hide.
+    bool usable(std::size_t i, const Frame &frame) const;
+
+    std::size_t size() const { return boxes_.size(); }
+    const std::vector<Aabb> &boxes() const { return boxes_; }
+    // The bounding box of skin i's mesh.
+    const Aabb &mesh_bounds(std::size_t i) const { return mesh_bounds_[i]; }
+
+private:
+    std::vector<Aabb> boxes_;
+    std::vector<Aabb> mesh_bounds_;   // per skin, its mesh's
+    std::vector<std::pair<float, std::uint32_t>> chosen_;
+};
+
+// The settings of every strategy whose occluders are skins: skin-boxes
+// and skin-database.
+std::vector<SettingSpec> skin_settings();
+
+}  // namespace occu

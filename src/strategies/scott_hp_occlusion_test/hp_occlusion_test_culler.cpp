@@ -1,0 +1,111 @@
+#include "strategies/scott_hp_occlusion_test/family.h"
+
+#include <optional>
+#include <stdexcept>
+
+#include "render/occlusion_proxy.h"
+
+namespace occu::strategies {
+
+namespace {
+
+class HpOcclusionTestCuller final : public Culler {
+public:
+    HpOcclusionTestCuller()
+    {
+        GenQueries_ = reinterpret_cast<PFNGLGENQUERIESPROC>(gl::get_proc_address("glGenQueries"));
+        DeleteQueries_ = reinterpret_cast<PFNGLDELETEQUERIESPROC>(gl::get_proc_address("glDeleteQueries"));
+        BeginQuery_ = reinterpret_cast<PFNGLBEGINQUERYPROC>(gl::get_proc_address("glBeginQuery"));
+        EndQuery_ = reinterpret_cast<PFNGLENDQUERYPROC>(gl::get_proc_address("glEndQuery"));
+        GetQueryObjectuiv_ =
+            reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(gl::get_proc_address("glGetQueryObjectuiv"));
+        if (!GenQueries_ || !DeleteQueries_ || !BeginQuery_ || !EndQuery_ || !GetQueryObjectuiv_)
+            throw std::runtime_error("hp needs occlusion queries (GL 1.5 or ARB_occlusion_query)");
+    }
+    ~HpOcclusionTestCuller() override
+    {
+        if (!queries_.empty())
+            DeleteQueries_(GLsizei(queries_.size()), queries_.data());
+    }
+
+    void begin_frame(const Frame &frame) override
+    {
+        frame_.emplace(frame);
+        stats_ = {};
+    }
+
+    void test(std::vector<NodeTest> &tests) override
+    {
+        const Frame &f = *frame_;
+        std::vector<std::size_t> queried;
+        proxies_.clear();
+        for (std::size_t i = 0; i < tests.size(); ++i) {
+            NodeTest &t = tests[i];
+            t.result = Visibility::visible;
+            if (f.frustum.classify(t.box) == Frustum::Side::outside) {
+                t.result = Visibility::view_culled;
+            } else if (f.footprint(t.box)) {
+                // A box whose proxy cannot be drawn whole is visible untested.
+                if (const auto proxy = proxy_box(t.box, f.camera, f.view_projection, f.height)) {
+                    queried.push_back(i);
+                    proxies_.push_back(*proxy);
+                }
+            }
+        }
+        if (queried.empty())
+            return;
+        if (queries_.size() < queried.size()) {
+            const std::size_t more = queried.size() - queries_.size();
+            queries_.resize(queried.size());
+            GenQueries_(GLsizei(more), queries_.data() + (queries_.size() - more));
+        }
+        {
+            const ProxyTestState proxy_state;
+            const gl::AttribScope writes(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            glDepthMask(GL_FALSE);
+            for (std::size_t k = 0; k < queried.size(); ++k) {
+                BeginQuery_(GL_SAMPLES_PASSED, queries_[k]);
+                draw_proxy_box(proxies_[k]);
+                EndQuery_(GL_SAMPLES_PASSED);
+            }
+        }
+        for (std::size_t k = 0; k < queried.size(); ++k) {
+            GLuint samples = 0;
+            GetQueryObjectuiv_(queries_[k], GL_QUERY_RESULT, &samples);
+            tests[queried[k]].result = samples == 0 ? Visibility::occluded : Visibility::visible;
+        }
+        stats_.passes += std::uint32_t(queried.size());
+    }
+
+    CullerStats stats() const override { return stats_; }
+
+private:
+    PFNGLGENQUERIESPROC GenQueries_;
+    PFNGLDELETEQUERIESPROC DeleteQueries_;
+    PFNGLBEGINQUERYPROC BeginQuery_;
+    PFNGLENDQUERYPROC EndQuery_;
+    PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv_;
+    std::vector<GLuint> queries_;
+    std::vector<Aabb> proxies_;   // of the queried boxes, in order
+    std::optional<Frame> frame_;
+    CullerStats stats_;
+};
+
+}  // namespace
+
+StrategyFamily hp_occlusion_test_family()
+{
+    StrategyFamily f;
+    f.name = "hp";
+    f.paper = "Scott, Olsen and Gannett 1998, the HP occlusion test "
+              "(Moeller and Haines, VISUALIZE fx's hardware implementation)";
+    f.summary = "one occlusion query per node box, front to back, the flag read before the box is drawn or opened";
+    f.queries_rasterizer = true;
+    f.make = [](const StrategyContext &, const Settings &) -> std::unique_ptr<Culler> {
+        return std::make_unique<HpOcclusionTestCuller>();
+    };
+    return f;
+}
+
+}  // namespace occu::strategies
