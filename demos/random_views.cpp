@@ -225,7 +225,7 @@ void run_scene(const Options &o, std::size_t scene_index, const std::string &sce
     HierarchyOptions ho;
     ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
     const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-    const std::vector<Camera> cameras = random_views(scene.bounds, views, seed, 1.0f, o.fov_min, o.fov_max);
+    const std::vector<Camera> cameras = random_views(scene.bounds, views, seed, 1.0f, o.fov_min, o.fov_max, scene.quake3.get());
 
     gl::OffscreenContext ctx(o.size, o.size);
     SceneRenderer renderer(scene, hierarchy);

@@ -68,7 +68,8 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "walkthrough: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: walkthrough [--scene city|field|FILE] [--route dense|street|medium|open|orbit|overhead|random:N:SEED|FILE]\n"
+                 "usage: walkthrough [--scene city|field|FILE|PAK.pk3:maps/LEVEL.bsp]\n"
+                 "                   [--route dense|street|medium|open|orbit|overhead|random:N:SEED|spawn[:K]|FILE]\n"
                  "                   [--strategies NAME[:key=value...],...] [--set key=value]...\n"
                  "                   [--occluder-db FILE (= --set database=FILE)]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
@@ -410,7 +411,7 @@ int main(int argc, char **argv)
         HierarchyOptions ho;
         ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
         const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f);
+        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
 
         gl::OffscreenContext ctx(o.size, o.size);
         SceneRenderer renderer(scene, hierarchy);
