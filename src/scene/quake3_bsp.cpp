@@ -262,6 +262,25 @@ struct FileVertex {
     glm::vec3 position, normal;
 };
 
+// Whether the curves of a patch's control grid along one direction are
+// all straight and evenly parameterized: along `n` points spaced `step`
+// apart, `lines` of them spaced `stride` apart, every middle point of a
+// piece (a, b, c) has a - 2b + c = 0 (to a millionth of the points'
+// magnitudes: the rounding of their conversion to metres): the quadratic
+// is then linear in its parameter.
+bool straight(const FileVertex *control, std::int64_t n, std::int64_t lines, std::int64_t step, std::int64_t stride)
+{
+    for (std::int64_t l = 0; l < lines; ++l)
+        for (std::int64_t k = 0; k + 2 < n; k += 2) {
+            const glm::vec3 &a = control[l * stride + k * step].position, &b = control[l * stride + (k + 1) * step].position,
+                            &c = control[l * stride + (k + 2) * step].position;
+            const float magnitude = glm::length(a) + 2.0f * glm::length(b) + glm::length(c);
+            if (!(glm::length(a - 2.0f * b + c) <= 1e-6f * magnitude))
+                return false;
+        }
+    return true;
+}
+
 // Quadratic Bernstein weights at t.
 glm::vec3 bernstein2(float t) { return {(1 - t) * (1 - t), 2 * t * (1 - t), t * t}; }
 
@@ -454,19 +473,25 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
                 r.refuse(faces_lump, i, "a patch of " + std::to_string(w) + " x " + std::to_string(h) +
                                             " control points (odd sizes of at least 3, holding its " +
                                             std::to_string(n_vertices) + " vertices, expected)");
-            const std::int64_t columns = std::int64_t(w - 1) / 2 * segments + 1, rows = std::int64_t(h - 1) / 2 * segments + 1;
+            const FileVertex *control = vertices.data() + first_vertex;
+            // A direction in which every piece is straight and evenly
+            // parameterized (each middle control point halfway between its
+            // neighbours) is exactly one segment a piece: more would add
+            // triangles, not shape.
+            const std::int64_t su = straight(control, w, h, 1, w) ? 1 : segments,
+                               sv = straight(control, h, w, w, 1) ? 1 : segments;
+            const std::int64_t columns = std::int64_t(w - 1) / 2 * su + 1, rows = std::int64_t(h - 1) / 2 * sv + 1;
             made_vertices += std::uint64_t(columns * rows);
             if (made_vertices > max_vertices)
                 r.refuse(faces_lump, i, "its patches at " + std::to_string(segments) +
                                             " segments a piece make more than " + std::to_string(max_vertices) +
                                             " vertices");
-            const FileVertex *control = vertices.data() + first_vertex;
             for (std::int64_t row = 0; row < rows; ++row) {
-                const std::int64_t pj = std::min<std::int64_t>(row / segments, (h - 1) / 2 - 1);
-                const glm::vec3 bv = bernstein2(float(row - pj * segments) / float(segments));
+                const std::int64_t pj = std::min<std::int64_t>(row / sv, (h - 1) / 2 - 1);
+                const glm::vec3 bv = bernstein2(float(row - pj * sv) / float(sv));
                 for (std::int64_t col = 0; col < columns; ++col) {
-                    const std::int64_t pi = std::min<std::int64_t>(col / segments, (w - 1) / 2 - 1);
-                    const glm::vec3 bu = bernstein2(float(col - pi * segments) / float(segments));
+                    const std::int64_t pi = std::min<std::int64_t>(col / su, (w - 1) / 2 - 1);
+                    const glm::vec3 bu = bernstein2(float(col - pi * su) / float(su));
                     FileVertex v{glm::vec3(0.0f), glm::vec3(0.0f)};
                     for (int b = 0; b < 3; ++b)
                         for (int a = 0; a < 3; ++a) {

@@ -23,7 +23,10 @@
 // their meshverts list; faces of type 2 (Bezier patches: a grid of
 // width x height control points, odd sizes, read as (width-1)/2 x
 // (height-1)/2 biquadratic pieces of 3x3 points) tessellated into
-// `patch_segments` x `patch_segments` quads a piece; faces of type 4
+// `patch_segments` x `patch_segments` quads a piece (one segment along a
+// direction in which the whole patch is straight and evenly
+// parameterized, which is then exact: OpenArena's arches and pipes are
+// often curved one way only); faces of type 4
 // (billboards: flares, sprites) are not drawn, nor faces whose texture's
 // surface flags say SURF_NODRAW (0x80; clip, caulk, trigger and hint
 // brushes) or SURF_SKY (0x4: the sky is drawn at infinity, not where the

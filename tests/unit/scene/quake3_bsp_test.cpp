@@ -350,6 +350,26 @@ TEST(Quake3Bsp, PatchOfTwoPiecesSharesItsMiddleColumn)
     EXPECT_EQ(used.size(), 15u);
 }
 
+TEST(Quake3Bsp, PatchStraightOneWayIsOneSegmentThatWay)
+{
+    // A vault: curved along x (columns), straight along y (rows, each middle
+    // row halfway between its neighbours).
+    BspFile f = minimal_level();
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+            f.vertices[std::size_t(7 + row * 3 + col)].position = {32.0f * col, 32.0f * row, col == 1 ? 64.0f : 0.0f};
+    const Scene s = read(f, Quake3Options{8});
+    EXPECT_EQ(s.quake3->faces[2].index_count, 8u * 1u * 6u) << "8 segments across the curve, 1 along the straight way";
+    const Mesh &wall = *mesh_named(s, "textures/test/wall");
+    const Quake3Level::Face &patch = s.quake3->faces[2];
+    for (std::uint32_t t = patch.first_index; t < patch.first_index + patch.index_count; ++t) {
+        // On the parabola z = 64 * 2u(1 - u), u = x / 64, whatever y.
+        const glm::vec3 p = wall.positions[wall.indices[t]] / quake3_unit_metres;
+        const float u = p.x / 64.0f;
+        EXPECT_NEAR(p.y, 64.0f * 2.0f * u * (1.0f - u), 1e-3f);
+    }
+}
+
 TEST(Quake3Bsp, TreeLeavesClustersAndVisibility)
 {
     const Scene s = read(minimal_level());
