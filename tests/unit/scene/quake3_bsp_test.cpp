@@ -132,8 +132,7 @@ struct BspFile {
         }
         lumps[16].assign(visdata.begin(), visdata.end());
 
-        std::vector<char> out;
-        out.insert(out.end(), {'I', 'B', 'S', 'P'});
+        std::vector<char> out = {'I', 'B', 'S', 'P'};
         i32(out, version);
         std::size_t at = 8 + 17 * 8;
         for (const auto &l : lumps) {
