@@ -39,6 +39,7 @@
 #include "gl/state.h"
 #include "preprocessing/view_preprocessing.h"
 #include "scene/city.h"
+#include "scene/pk3_archive.h"
 #include "scene/scene_file.h"
 #include "traversal/traversal.h"
 
@@ -398,7 +399,9 @@ int main(int argc, char **argv)
         // Every scene is read before any is rendered: an unreadable one is named at once.
         std::vector<Scene> scenes;
         for (const std::string &s : o.scenes) {
-            if (!generated_scene_name(s) && !std::ifstream(s))
+            // A level in a pk3 archive is no file of its own: load_scene names what is missing.
+            std::string archive, member;
+            if (!generated_scene_name(s) && !split_pk3_path(s, archive, member) && !std::ifstream(s))
                 throw std::runtime_error("cannot read scene '" + s + "'" +
                                          (std::filesystem::exists(s) ? "" : ": no such file"));
             scenes.push_back(scene_by_name(s));
