@@ -261,13 +261,13 @@ bool generated_scene_name(const std::string &name)
     return name.empty() || name == "city" || name == "field";
 }
 
-Scene scene_by_name(const std::string &name, const CityOptions &city)
+Scene scene_by_name(const std::string &name, const CityOptions &city, const Quake3Options &quake3)
 {
     if (name.empty() || name == "city")
         return generate_city(city);
     if (name == "field")
         return generate_field(FieldOptions{});
-    return load_scene(name);
+    return load_scene(name, nullptr, quake3);
 }
 
 }  // namespace occu

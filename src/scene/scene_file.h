@@ -34,8 +34,8 @@ Scene load_scene(const std::string &path, std::vector<std::string> *warnings = n
 // The scene a program's --scene names: "city" (or empty) the procedural
 // city of `city` (scene/city.h), "field" the flat field of small objects
 // with its defaults (scene/field.h: no occlusion), anything else a file
-// (load_scene; "./city" reads a file of that name).
-Scene scene_by_name(const std::string &name, const CityOptions &city = {});
+// (load_scene, with `quake3` for a level; "./city" reads a file of that name).
+Scene scene_by_name(const std::string &name, const CityOptions &city = {}, const Quake3Options &quake3 = {});
 // Whether `name` is one of the generated scenes ("city", "field") rather than a file.
 bool generated_scene_name(const std::string &name);
 
