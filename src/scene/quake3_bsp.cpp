@@ -36,7 +36,9 @@ constexpr int face_polygon = 1, face_patch = 2, face_mesh = 3, face_billboard = 
 
 // What a level may make at most: beyond it a file (or a patch level)
 // asks for more memory than a scene can use.
-constexpr std::uint64_t max_vertices = 1u << 23;
+// (About 40 times the largest of Debian's 100 levels at 8 patch segments;
+// the work of reaching it a second or two at worst.)
+constexpr std::uint64_t max_vertices = 1u << 22, max_indices = 3u << 22;
 
 // Quake's spawn lift and view height (its game code: SelectSpawnPoint
 // raises the player 9 units above the spot; DEFAULT_VIEWHEIGHT 26).
@@ -410,12 +412,27 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
         level->leaf_faces.push_back(std::uint32_t(f));
     }
 
+    // Each model (the world, then the brush entities) owns a run of faces;
+    // the compiler writes them one after another. Overlapping runs are
+    // refused: a face of two models means nothing, and marking runs that
+    // overlap would cost models x faces.
     std::vector<std::int32_t> face_model(face_count, -1);
-    for (std::size_t m = r.count(models_lump); m-- > 0;) {
+    std::vector<std::pair<std::int32_t, std::size_t>> runs;   // (first face, model) of non-empty runs
+    for (std::size_t m = 0; m < r.count(models_lump); ++m) {
         const std::int32_t first = r.i32(r.at(models_lump, m, 24)), n = r.i32(r.at(models_lump, m, 28));
         r.require_range(models_lump, m, "faces", first, n, faces_lump);
         r.require_range(models_lump, m, "brushes", r.i32(r.at(models_lump, m, 32)), r.i32(r.at(models_lump, m, 36)),
                         brushes_lump);
+        if (n > 0)
+            runs.emplace_back(first, m);
+    }
+    std::sort(runs.begin(), runs.end());
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        const std::size_t m = runs[k].second;
+        const std::int32_t first = runs[k].first, n = r.i32(r.at(models_lump, m, 28));
+        if (k + 1 < runs.size() && std::int64_t(first) + n > runs[k + 1].first)
+            r.refuse(models_lump, m, "faces " + std::to_string(first) + " to " + std::to_string(std::int64_t(first) + n) +
+                                         " overlap those of model " + std::to_string(runs[k + 1].second));
         std::fill(face_model.begin() + first, face_model.begin() + first + n, std::int32_t(m));
     }
 
@@ -434,7 +451,7 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
     Scene scene;
     std::vector<std::int32_t> texture_mesh(level->textures.size(), -1);
     const int segments = options.patch_segments;
-    std::uint64_t made_vertices = 0;
+    std::uint64_t made_vertices = 0, made_indices = 0;
     std::size_t bad_normals = 0;
     for (std::size_t i = 0; i < face_count; ++i) {
         Quake3Level::Face face;
@@ -458,6 +475,10 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
         if (face.type == face_polygon || face.type == face_mesh) {
             if (n_meshverts % 3 != 0)
                 r.refuse(faces_lump, i, std::to_string(n_meshverts) + " meshverts are not whole triangles");
+            // Faces may share meshverts: what they make together is bounded, not the lump.
+            made_indices += std::uint64_t(n_meshverts);
+            if (made_indices > max_indices)
+                r.refuse(faces_lump, i, "the faces so far make more than " + std::to_string(max_indices / 3) + " triangles");
             for (std::int32_t k = 0; k < n_meshverts; ++k) {
                 const std::int32_t offset = r.i32(r.at(meshverts_lump, std::size_t(first_meshvert + k), 0));
                 if (offset < 0 || offset >= n_vertices)
@@ -473,6 +494,13 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
                 r.refuse(faces_lump, i, "a patch of " + std::to_string(w) + " x " + std::to_string(h) +
                                             " control points (odd sizes of at least 3, holding its " +
                                             std::to_string(n_vertices) + " vertices, expected)");
+            if (!texture.drawn) {
+                // The compiler keeps patches it has made triangles of itself
+                // (q3map2 -patchmeta) as nodraw faces, for collision.
+                ++level->hidden_face_count;
+                level->faces.push_back(face);
+                continue;
+            }
             const FileVertex *control = vertices.data() + first_vertex;
             // A direction in which every piece is straight and evenly
             // parameterized (each middle control point halfway between its
@@ -482,10 +510,12 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
                                sv = straight(control, h, w, w, 1) ? 1 : segments;
             const std::int64_t columns = std::int64_t(w - 1) / 2 * su + 1, rows = std::int64_t(h - 1) / 2 * sv + 1;
             made_vertices += std::uint64_t(columns * rows);
-            if (made_vertices > max_vertices)
+            made_indices += 6 * std::uint64_t((columns - 1) * (rows - 1));
+            if (made_vertices > max_vertices || made_indices > max_indices)
                 r.refuse(faces_lump, i, "its patches at " + std::to_string(segments) +
                                             " segments a piece make more than " + std::to_string(max_vertices) +
-                                            " vertices");
+                                            " vertices or " + std::to_string(max_indices / 3) +
+                                            " triangles (fewer segments make fewer)");
             for (std::int64_t row = 0; row < rows; ++row) {
                 const std::int64_t pj = std::min<std::int64_t>(row / sv, (h - 1) / 2 - 1);
                 const glm::vec3 bv = bernstein2(float(row - pj * sv) / float(sv));

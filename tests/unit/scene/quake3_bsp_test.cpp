@@ -480,6 +480,7 @@ TEST(Quake3Bsp, IndicesOutsideTheirLumpsAreRefusedNamingLumpAndRecord)
         {"leaf cluster below -1", [](BspFile &f) { f.leaves[0].cluster = -2; }, "cluster -2 is neither"},
         {"leaf face", [](BspFile &f) { f.leaf_faces[4] = 7; }, "lump 5 (leaffaces): record 4: face 7 to 8 lie outside the 7 faces"},
         {"model faces", [](BspFile &f) { f.models[0].face_count = 8; }, "lump 7 (models): record 0: faces 0 to 8"},
+        {"model faces overlap", [](BspFile &f) { f.models.push_back({6, 1}); }, "lump 7 (models): record 0: faces 0 to 7 overlap those of model 1"},
         {"visdata size", [](BspFile &f) { f.visdata[4] = 2; }, "lump 16 (visdata): 2 clusters of 2 bytes do not fit its 2 bytes"},
         {"visdata vector too short", [](BspFile &f) { f.visdata = {9, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1}; }, "vectors of 1 bytes cannot hold a bit for each of 9"},
         {"visdata negative", [](BspFile &f) { f.visdata[3] = char(0x80); }, "lump 16 (visdata): -2147483646 clusters"},
@@ -500,6 +501,33 @@ TEST(Quake3Bsp, IndicesOutsideTheirLumpsAreRefusedNamingLumpAndRecord)
         EXPECT_EQ(why.rfind("cannot read scene 'test.bsp': Quake III BSP: ", 0), 0u) << c.name << ": " << why;
         EXPECT_NE(why.find(c.message), std::string::npos) << c.name << ": " << why;
     }
+}
+
+TEST(Quake3Bsp, FacesSharingTheirRecordsCannotMakeUnboundedGeometry)
+{
+    // 1,000 patches on the same 9 control points at 64 segments: 4.2
+    // million vertices from a file of a tenth of a megabyte.
+    BspFile patches = minimal_level();
+    patches.faces.resize(1000, patches.faces[2]);
+    patches.models = {{0, 1000}};
+    std::vector<std::string> warnings;
+    try {
+        read_quake3_bsp("test.bsp", patches.bytes(), Quake3Options{64}, warnings);
+        FAIL() << "1,000 patches of 64 x 64 quads read";
+    } catch (const std::runtime_error &e) {
+        EXPECT_NE(std::string(e.what()).find("segments a piece make more than 4194304 vertices"), std::string::npos) << e.what();
+    }
+    // 6,000 faces sharing 3,000 meshverts: 6 million triangles from a file of 0.6 megabytes.
+    BspFile meshes = minimal_level();
+    meshes.vertices.resize(3);
+    meshes.meshverts.assign(3000, 0);
+    for (std::size_t k = 0; k < meshes.meshverts.size(); ++k)
+        meshes.meshverts[k] = std::int32_t(k % 3);
+    meshes.faces.assign(6000, {0, 3, 0, 3, 0, 3000, {0, 0, 1}});
+    meshes.models = {{0, 6000}};
+    meshes.leaf_faces = {0, 1, 2, 3, 4};
+    const std::string why = refusal_of_bytes(meshes.bytes());
+    EXPECT_NE(why.find("the faces so far make more than 4194304 triangles"), std::string::npos) << why;
 }
 
 TEST(Quake3Bsp, PatchSegmentsOutsideTheirRangeAreRefused)
