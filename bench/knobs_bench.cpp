@@ -342,7 +342,7 @@ void walk(const Options &o, std::size_t route_index, int leaf, Sweep &sweep, con
     HierarchyOptions ho;
     ho.max_leaf_triangles = std::uint32_t(leaf);
     const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-    const std::vector<Camera> route = make_route(route_name, scene.bounds, city, o.frames, 1.0f);
+    const std::vector<Camera> route = make_route(route_name, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
     SceneRenderer renderer(scene, hierarchy);
     const StrategyContext context{scene, hierarchy, renderer};
     struct Live {
@@ -605,7 +605,7 @@ int main(int argc, char **argv)
         const Scene scene = generate_city(city);
         // Routes are checked before any run.
         for (const std::string &r : o.routes)
-            make_route(r, scene.bounds, city, o.frames, 1.0f);
+            make_route(r, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
         std::set<int> leaves;
         for (const Variant &v : sweep.variants)
             leaves.insert(v.leaf);

@@ -189,7 +189,7 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
     const CityOptions city;
     const Scene scene = scene_by_name(scene_name, city);
     const Hierarchy hierarchy = Hierarchy::build(scene);
-    const std::vector<Camera> route = make_route(route_name, scene.bounds, city, o.frames, 1.0f);
+    const std::vector<Camera> route = make_route(route_name, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
     SceneRenderer renderer(scene, hierarchy);
     const StrategyContext context{scene, hierarchy, renderer};
     out.triangles = scene.triangle_count();

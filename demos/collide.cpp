@@ -56,7 +56,8 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "occu-collide: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: occu-collide [--scene city|field|FILE] [--route dense|street|medium|open|orbit|overhead|random:N:SEED|FILE]\n"
+                 "usage: occu-collide [--scene city|field|FILE|PAK.pk3:maps/LEVEL.bsp]\n"
+                 "                    [--route dense|street|medium|open|orbit|overhead|random:N:SEED|spawn[:K]|FILE]\n"
                  "                    [--frames N] [--step METRES] [--direction forward|backward|both]\n"
                  "                    [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                    [--leaf-triangles N] [--png-every N] [--out DIR]\n"
@@ -213,7 +214,7 @@ int main(int argc, char **argv)
         HierarchyOptions ho;
         ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
         const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f);
+        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
         // Every camera must have a check volume for the step, before any work.
         for (std::size_t f = 0; f < route.size(); ++f)
             if (!(o.step > double(route[f].near_plane)) || !(o.step < double(route[f].far_plane))) {

@@ -371,7 +371,7 @@ int view_cells(const Options &o)
                                  std::to_string(cells.size()));
     std::vector<bool> on_route(cells.size(), o.route.empty());
     if (!o.route.empty()) {
-        for (const Camera &camera : make_route(o.route, scene.bounds, city, o.route_frames, 1.0f))
+        for (const Camera &camera : make_route(o.route, scene.bounds, city, o.route_frames, 1.0f, scene.quake3.get()))
             if (const auto c = cells.locate(camera.position))
                 on_route[*c] = true;
     }

@@ -38,6 +38,7 @@
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
 #include "scene/city.h"
+#include "scene/pk3_archive.h"
 #include "scene/scene_file.h"
 #include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
 #include "traversal/traversal.h"
@@ -225,7 +226,7 @@ void run_scene(const Options &o, std::size_t scene_index, const std::string &sce
     HierarchyOptions ho;
     ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
     const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-    const std::vector<Camera> cameras = random_views(scene.bounds, views, seed, 1.0f, o.fov_min, o.fov_max);
+    const std::vector<Camera> cameras = random_views(scene.bounds, views, seed, 1.0f, o.fov_min, o.fov_max, scene.quake3.get());
 
     gl::OffscreenContext ctx(o.size, o.size);
     SceneRenderer renderer(scene, hierarchy);
@@ -398,7 +399,9 @@ int main(int argc, char **argv)
         // Every scene is read before any is rendered: an unreadable one is named at once.
         std::vector<Scene> scenes;
         for (const std::string &s : o.scenes) {
-            if (!generated_scene_name(s) && !std::ifstream(s))
+            // A level in a pk3 archive is no file of its own: load_scene names what is missing.
+            std::string archive, member;
+            if (!generated_scene_name(s) && !split_pk3_path(s, archive, member) && !std::ifstream(s))
                 throw std::runtime_error("cannot read scene '" + s + "'" +
                                          (std::filesystem::exists(s) ? "" : ": no such file"));
             scenes.push_back(scene_by_name(s));

@@ -143,7 +143,7 @@ int main(int argc, char **argv)
         const CityOptions city;
         const Scene scene = generate_city(city);
         const Hierarchy hierarchy = Hierarchy::build(scene, HierarchyOptions{});
-        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f);
+        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
         const DensityVolume volume = smoke_above_block(o.block_x, o.block_z, city.block_size);
 
         gl::OffscreenContext ctx(o.size, o.size);

@@ -51,6 +51,7 @@ struct Options {
     int size = 512;
     std::string driver = "llvmpipe";
     int city_copies = 1;
+    int patch_segments = Quake3Options{}.patch_segments;
     int leaf_triangles = 256;
     int batch = 32;
     int png_every = 20;
@@ -68,11 +69,13 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "walkthrough: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: walkthrough [--scene city|field|FILE] [--route dense|street|medium|open|orbit|overhead|random:N:SEED|FILE]\n"
+                 "usage: walkthrough [--scene city|field|FILE|PAK.pk3:maps/LEVEL.bsp]\n"
+                 "                   [--route dense|street|medium|open|orbit|overhead|random:N:SEED|spawn[:K]|FILE]\n"
                  "                   [--strategies NAME[:key=value...],...] [--set key=value]...\n"
                  "                   [--occluder-db FILE (= --set database=FILE)]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
-                 "                   [--leaf-triangles N] [--batch N] [--coherence on|off] [--switch-off F]\n"
+                 "                   [--patch-segments N] [--leaf-triangles N] [--batch N] [--coherence on|off]\n"
+                 "                   [--switch-off F]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
                  "                   [--video STRATEGY,...]\n"
                  "       walkthrough --list-strategies [--markdown]\n"
@@ -80,6 +83,7 @@ struct Options {
                  "and DIR/index.html, a page of the summary, the plots and the frames beside their top views\n"
                  "(tools/report-walkthrough.sh); --video makes DIR/route.mp4 of the named strategies' frames and\n"
                  "top views (tools/video-walkthrough.sh, ffmpeg; needs --png-every 1).\n"
+                 "--patch-segments (8): quads along each way of a Quake III level's Bezier patch pieces.\n"
                  "--set applies to every chosen strategy that has the setting. --coherence (temporal coherence)\n"
                  "applies to the strategies that query the rasterizer; --switch-off (least share of triangles\n"
                  "occlusion tests must cull; 0 never switches off) to those and to the strategies whose CPU\n"
@@ -113,6 +117,7 @@ Options parse(int argc, char **argv)
         else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
         else if (a == "--driver") o.driver = v;
         else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
+        else if (a == "--patch-segments") o.patch_segments = int(integer_option(a, v, 1, 64));
         else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 100000));
@@ -414,12 +419,14 @@ int main(int argc, char **argv)
         gl::select_driver(gl::parse_driver(o.driver));
         CityOptions city;
         city.copies = o.city_copies;
-        // A user scene (OBJ, glTF, ... through assimp) or the default city.
-        const Scene scene = scene_by_name(o.scene, city);
+        // A user scene (OBJ, glTF, ... through assimp; PLY or a Quake III level) or the default city.
+        Quake3Options quake3;
+        quake3.patch_segments = o.patch_segments;
+        const Scene scene = scene_by_name(o.scene, city, quake3);
         HierarchyOptions ho;
         ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
         const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f);
+        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
 
         gl::OffscreenContext ctx(o.size, o.size);
         SceneRenderer renderer(scene, hierarchy);

@@ -16,12 +16,14 @@ BUILD_PACKAGES=(
     libglvnd-dev libglvnd-core-dev
     g++ libglm-dev libgtest-dev libpng-dev
     libassimp-dev       # user scenes (OBJ, glTF)
+    libzip-dev          # Quake III levels inside pk3 archives (src/scene/pk3_archive.cpp)
     libcgal-dev libpolyclipping-dev   # view cells (constrained Delaunay) and occluder shrinking (polygon offsets)
 )
 # To run the piglit regression run on the patched driver.
 TEST_PACKAGES=(
     piglit
     assimp-testmodels   # real models the demos must refuse (BoxWithInfinites.glb: infinite vertices)
+    openarena-data openarena-088-data   # Quake III levels (pk3 archives of IBSP files) the BSP reader's tests load
     clang libclang-rt-14-dev   # the fuzz targets: libFuzzer and the sanitizers' runtimes (tools/fuzz)
     chromium            # headless, renders the walkthrough's report page in its test (walkthrough-report.sh)
     # view-cells-slurm.sh starts a single-node Slurm cluster of its own (munged, slurmctld,

@@ -7,10 +7,20 @@
 #include <stdexcept>
 
 #include "cli/number_fields.h"
+#include "scene/quake3_bsp.h"
 
 namespace occu {
 
 namespace {
+
+// Random eyes drawn for one camera before a level is taken to have no open space.
+constexpr int max_eye_tries = 100000;
+
+bool in_open_leaf(const Quake3Level &level, const glm::vec3 &p)
+{
+    const std::int32_t leaf = level.leaf_at(p);
+    return leaf >= 0 && level.leaves[std::size_t(leaf)].cluster >= 0;
+}
 
 std::vector<Camera> read_route_file(const std::string &path, float aspect)
 {
@@ -105,7 +115,12 @@ std::vector<Camera> overhead_route(const Aabb &bounds, int frames, float aspect)
 // bounds, each looking in a random heading and a pitch within 60 degrees
 // of the horizon (the up vector stays well away from the view direction).
 // The same N and SEED give the same cameras.
-std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, float aspect)
+//
+// In a Quake III level an eye is drawn again until it lies in an open leaf
+// (a cluster >= 0): the level's solid space and the void around it are
+// leaves of cluster -1, where no player can stand and a camera sees the
+// backs of walls.
+std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, float aspect, const Quake3Level *level)
 {
     std::istringstream in(name.substr(std::string("random:").size()));
     long count = 0;
@@ -121,6 +136,12 @@ std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, fl
         Camera c;
         c.aspect = aspect;
         c.position = bounds.min + glm::vec3(unit(random), unit(random), unit(random)) * bounds.extent();
+        for (int tries = 1; level && !in_open_leaf(*level, c.position); ++tries) {
+            if (tries == max_eye_tries)
+                throw std::invalid_argument("route '" + name + "': no eye in the level's open space after " +
+                                            std::to_string(max_eye_tries) + " random points of its bounds");
+            c.position = bounds.min + glm::vec3(unit(random), unit(random), unit(random)) * bounds.extent();
+        }
         const float heading = 6.28318530718f * unit(random);
         const float pitch = glm::radians(120.0f * unit(random) - 60.0f);
         c.target = c.position + glm::vec3(std::cos(pitch) * std::cos(heading), std::sin(pitch),
@@ -129,6 +150,46 @@ std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, fl
         c.far_plane = 2.0f * diagonal;
         route.push_back(c);
     }
+    return route;
+}
+
+// "spawn" or "spawn:K" (the playable-space views): K views at each
+// spawn point's eye, the first along its angle, each next turned 360 / K
+// degrees to the left (counter-clockwise seen from above, as Quake's yaw
+// turns), level. The lens: Quake III's default field of view (cg_fov 90,
+// horizontal), its near plane (4 units), a far plane that takes in the
+// whole level.
+std::vector<Camera> spawn_route(const std::string &name, const Aabb &bounds, float aspect, const Quake3Level *level)
+{
+    long views = 8;
+    if (name != "spawn") {
+        std::istringstream in(name.substr(std::string("spawn:").size()));
+        if (!(in >> views) || !in.eof() || views < 1 || views > 360)
+            throw std::invalid_argument("route '" + name + "': spawn routes are spawn or spawn:K (K views a spawn point, 1..360)");
+    }
+    if (!level)
+        throw std::invalid_argument("route '" + name + "': the scene is not a Quake III level; only levels have spawn points");
+    if (level->spawns.empty())
+        throw std::invalid_argument("route '" + name + "': the level has no spawn points (info_player_deathmatch, "
+                                    "info_player_start, team_CTF_*player, team_CTF_*spawn)");
+    const float fovy = 2.0f * std::atan(std::tan(glm::radians(45.0f)) / aspect);
+    std::vector<Camera> route;
+    for (const Quake3Spawn &spawn : level->spawns)
+        for (long k = 0; k < views; ++k) {
+            // Turning left about +y: a yaw added in Quake turns the same way
+            // in occu (the map from Quake's frame is a rotation).
+            const float turn = 6.28318530718f * float(k) / float(views);
+            const glm::vec3 d = spawn.direction;
+            Camera c;
+            c.aspect = aspect;
+            c.fovy_degrees = glm::degrees(fovy);
+            c.position = spawn.eye;
+            c.target = spawn.eye + glm::vec3(d.x * std::cos(turn) + d.z * std::sin(turn), 0.0f,
+                                             -d.x * std::sin(turn) + d.z * std::cos(turn));
+            c.near_plane = 4.0f * quake3_unit_metres;
+            c.far_plane = 2.0f * glm::length(bounds.extent()) + glm::length(spawn.eye - bounds.center());
+            route.push_back(c);
+        }
     return route;
 }
 
@@ -144,10 +205,11 @@ Camera street_level_lens(const Aabb &bounds, float aspect)
 }
 
 std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, const CityOptions &city, int frames,
-                               float aspect)
+                               float aspect, const Quake3Level *level)
 {
     const bool built_in = name == "dense" || name == "street" || name == "medium" || name == "open" ||
-                          name == "orbit" || name == "overhead" || name.rfind("random:", 0) == 0;
+                          name == "orbit" || name == "overhead" || name.rfind("random:", 0) == 0 ||
+                          name == "spawn" || name.rfind("spawn:", 0) == 0;
     if (!built_in)
         return read_route_file(name, aspect);
     // Routes placed by the scene's bounds need finite ones.
@@ -156,7 +218,9 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
         !std::isfinite(bounds.max.z))
         throw std::invalid_argument("route '" + name + "': the scene's bounds are empty or not finite");
     if (name.rfind("random:", 0) == 0)
-        return random_route(name, bounds, aspect);
+        return random_route(name, bounds, aspect, level);
+    if (name == "spawn" || name.rfind("spawn:", 0) == 0)
+        return spawn_route(name, bounds, aspect, level);
     if (frames < 1)
         throw std::invalid_argument("a route needs at least one frame");
     if (name == "orbit")
@@ -204,12 +268,12 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
 }
 
 std::vector<Camera> random_views(const Aabb &bounds, long count, unsigned long seed, float aspect, float fov_min,
-                                 float fov_max)
+                                 float fov_max, const Quake3Level *level)
 {
     if (!(fov_min >= 1.0f && fov_max <= 170.0f && fov_min <= fov_max))
         throw std::invalid_argument("fields of view must lie in 1..170 degrees, the least first");
     std::vector<Camera> views = make_route("random:" + std::to_string(count) + ":" + std::to_string(seed), bounds,
-                                           CityOptions{}, 1, aspect);
+                                           CityOptions{}, 1, aspect, level);
     std::mt19937 random(std::uint32_t(seed & 0xffffffffu) ^ 0x9e3779b9u);
     std::uniform_real_distribution<float> fov(fov_min, fov_max);
     for (Camera &c : views)

@@ -17,7 +17,16 @@
 //                  (the route of the field, scene/field.h: from there
 //                  nothing of the field hides anything);
 //   random:N:SEED  N cameras at random points inside the scene's bounds,
-//                  looking in random directions (N frames, whatever `frames` is).
+//                  looking in random directions (N frames, whatever `frames` is);
+//                  in a Quake III level, only points in its open space: a
+//                  BSP leaf of a cluster (>= 0), not one inside a solid.
+// Routes for Quake III levels (scene/quake3_bsp.h):
+//   spawn, spawn:K  every player spawn point of the level in turn, from the
+//                  eye of a player standing there, looking along its angle
+//                  and then turning through 360 degrees about the vertical,
+//                  K views a spawn point (8, every 45 degrees, by default),
+//                  level, with Quake III's 90 degree horizontal field of view
+//                  (K x spawn points frames, whatever `frames` is).
 // A route file has one camera per line, "px py pz tx ty tz" (position and
 // target); '#' starts a comment.
 #pragma once
@@ -30,17 +39,22 @@
 
 namespace occu {
 
+struct Quake3Level;
+
 // The lens of the street-level routes (dense, street, medium), which
 // occluder preprocessing places its views with: 60 degrees, near plane
 // 0.5 m, far plane twice the scene's diagonal.
 Camera street_level_lens(const Aabb &bounds, float aspect);
 
-// `name`: dense, street, medium, open, orbit, overhead, random:N:SEED, or a route file's path. Throws
-// std::invalid_argument (unknown name) or std::runtime_error (a file it
-// cannot read or parse, naming the file and line; a number that is not a
-// finite float, or a camera whose view direction is not, is refused).
+// `name`: dense, street, medium, open, orbit, overhead, random:N:SEED,
+// spawn[:K], or a route file's path. `level`: the scene's Quake III level
+// (Scene::quake3), or null. Throws std::invalid_argument (unknown name;
+// spawn without a level or a level without spawn points; random eyes that
+// find no open leaf) or std::runtime_error (a file it cannot read or
+// parse, naming the file and line; a number that is not a finite float,
+// or a camera whose view direction is not, is refused).
 std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds, const CityOptions &city,
-                               int frames, float aspect);
+                               int frames, float aspect, const Quake3Level *level = nullptr);
 
 // The cameras of the route random:COUNT:SEED (eyes uniformly inside the
 // bounds, buildings and streets alike; random headings; pitch within 60
@@ -49,6 +63,6 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds
 // that eyes and directions are the route's. Throws as make_route does, and
 // std::invalid_argument for a field of view outside [1, 170] or fov_min > fov_max.
 std::vector<Camera> random_views(const Aabb &scene_bounds, long count, unsigned long seed, float aspect, float fov_min,
-                                 float fov_max);
+                                 float fov_max, const Quake3Level *level = nullptr);
 
 }  // namespace occu

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,11 @@ struct Mesh {
     glm::vec3 color{0.8f};              // RGB in [0, 1], before lighting
     std::vector<glm::vec3> colors;       // one per position, or empty: `color` for every vertex
     Aabb bounds;
+    // False for a see-through mesh (glass, grates, water, foliage: a
+    // Quake III level's translucent shaders, scene/quake3_bsp.h): drawn,
+    // but hiding nothing behind it, so no strategy or preprocessing step
+    // may take it as an occluder.
+    bool occluder = true;
 
     std::size_t triangle_count() const { return indices.size() / 3; }
     // Recomputes `bounds` from the positions.
@@ -37,12 +43,17 @@ struct PrismOccluder {
     double bottom = 0.0, top = 0.0;
 };
 
+struct Quake3Level;
+
 struct Scene {
     std::vector<Mesh> meshes;
     Aabb bounds;
     // The 2.5D occluders a generator knows (the city's buildings); empty
     // for a loaded scene, whose solids nothing tells apart.
     std::vector<PrismOccluder> prism_occluders;
+    // A Quake III level's BSP tree, leaves, clusters, visibility and spawn
+    // points (scene/quake3_bsp.h), where the scene is one; null otherwise.
+    std::shared_ptr<const Quake3Level> quake3;
 
     std::size_t triangle_count() const;
     void update_bounds();

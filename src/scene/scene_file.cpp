@@ -4,6 +4,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -13,6 +15,7 @@
 
 #include "scene/field.h"
 #include "scene/palette.h"
+#include "scene/pk3_archive.h"
 #include "scene/ply_file.h"
 #include "scene/scene_file_guard.h"
 
@@ -178,15 +181,44 @@ void require_faces_inside(const aiScene &in, const std::string &source)
     }
 }
 
+bool bsp_extension(const std::string &path)
+{
+    if (path.size() < 4)
+        return false;
+    std::string tail = path.substr(path.size() - 4);
+    for (char &c : tail)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    return tail == ".bsp";
+}
+
+Scene quake3_scene(const std::string &source, const std::vector<char> &bytes, const Quake3Options &options,
+                   std::vector<std::string> *warnings)
+{
+    std::vector<std::string> level_warnings;
+    Scene out = read_quake3_bsp(source, bytes, options, level_warnings);
+    for (const std::string &w : level_warnings)
+        Warnings{warnings}(w);
+    return out;
+}
+
 }  // namespace
 
-Scene load_scene(const std::string &path, std::vector<std::string> *warnings)
+Scene load_scene(const std::string &path, std::vector<std::string> *warnings, const Quake3Options &quake3)
 {
-    // Read once: to choose occu's PLY reader, and for the guard's checks.
-    // A file that cannot be opened is assimp's to name below.
+    std::string archive, member;
+    if (split_pk3_path(path, archive, member))
+        return quake3_scene(path, read_pk3_member(archive, member), quake3, warnings);
+    // Read once: to choose occu's PLY or BSP reader, and for the guard's
+    // checks. A file that cannot be opened is assimp's to name below,
+    // except a level's (assimp's BSP importer is not used).
     std::vector<char> bytes;
-    if (std::ifstream file{path, std::ios::binary}) {
+    std::ifstream file{path, std::ios::binary};
+    if (!file && bsp_extension(path))
+        throw std::runtime_error("cannot read scene '" + path + "': " + std::strerror(errno));
+    if (file) {
         bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+        if (bsp_extension(path) || looks_like_ibsp(bytes))
+            return quake3_scene(path, bytes, quake3, warnings);
         if (assimp_would_read_as_ply(path, bytes)) {
             std::vector<std::string> ply_warnings;
             Scene out;
@@ -229,13 +261,13 @@ bool generated_scene_name(const std::string &name)
     return name.empty() || name == "city" || name == "field";
 }
 
-Scene scene_by_name(const std::string &name, const CityOptions &city)
+Scene scene_by_name(const std::string &name, const CityOptions &city, const Quake3Options &quake3)
 {
     if (name.empty() || name == "city")
         return generate_city(city);
     if (name == "field")
         return generate_field(FieldOptions{});
-    return load_scene(name);
+    return load_scene(name, nullptr, quake3);
 }
 
 }  // namespace occu

@@ -1,10 +1,12 @@
-// User scenes from files (OBJ, glTF and the other formats assimp reads).
+// User scenes from files (OBJ, glTF and the other formats assimp reads;
+// PLY files and Quake III levels occu reads itself).
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "scene/city.h"
+#include "scene/quake3_bsp.h"
 #include "scene/scene.h"
 
 namespace occu {
@@ -21,13 +23,19 @@ namespace occu {
 // triangles; and normals that are zero or not finite, replaced by
 // (0, 1, 0). Warnings go to `warnings` when given, standard error
 // ("occu: warning: ...") otherwise.
-Scene load_scene(const std::string &path, std::vector<std::string> *warnings = nullptr);
+//
+// Quake III levels (scene/quake3_bsp.h) occu reads itself: a path
+// "ARCHIVE.pk3:maps/NAME.bsp" names a level inside a pk3 archive
+// (scene/pk3_archive.h), and a file ending .bsp, or beginning "IBSP", is
+// one; `quake3` says how finely their patches are tessellated.
+Scene load_scene(const std::string &path, std::vector<std::string> *warnings = nullptr,
+                 const Quake3Options &quake3 = {});
 
 // The scene a program's --scene names: "city" (or empty) the procedural
 // city of `city` (scene/city.h), "field" the flat field of small objects
 // with its defaults (scene/field.h: no occlusion), anything else a file
-// (load_scene; "./city" reads a file of that name).
-Scene scene_by_name(const std::string &name, const CityOptions &city = {});
+// (load_scene, with `quake3` for a level; "./city" reads a file of that name).
+Scene scene_by_name(const std::string &name, const CityOptions &city = {}, const Quake3Options &quake3 = {});
 // Whether `name` is one of the generated scenes ("city", "field") rather than a file.
 bool generated_scene_name(const std::string &name);
 

@@ -20,6 +20,13 @@ printf 'occu-occluder-database 2\nalgorithm minimum-occluder-set c\noptions x\nr
 # vertices include infinities.
 infinite_box=$(dpkg -L assimp-testmodels 2>/dev/null | grep '/BoxWithInfinites\.glb$' | head -n 1)
 [ -n "$infinite_box" ] || { echo "FAIL: assimp-testmodels is not installed (BoxWithInfinites.glb)"; failures=$((failures + 1)); }
+# Quake III levels: a .bsp cut short after its magic, and one whose faces lump runs
+# past the end of the file (a directory entry of lump 13 beyond its bytes).
+printf 'IBSP' > "$dir/short.bsp"
+{ printf 'IBSP\056\000\000\000'; i=0; while [ $i -lt 17 ]; do printf '\220\000\000\000\000\000\000\000'; i=$((i + 1)); done; } > "$dir/lumps.bsp"
+printf '\220\000\000\000\150\000\000\000' | dd of="$dir/lumps.bsp" bs=1 seek=$((8 + 13 * 8)) conv=notrunc 2>/dev/null
+pak=/usr/share/games/openarena/baseoa/pak6-patch088.pk3
+[ -f "$pak" ] || { echo "FAIL: openarena-088-data is not installed ($pak)"; failures=$((failures + 1)); }
 # A real database, of the city in leaves of 256 triangles.
 "$preprocess" build --out "$dir/small.db" --grid 2,1,2 --directions 1 >/dev/null 2>&1 || echo "could not make small.db"
 
@@ -43,6 +50,13 @@ expect_error "no-such-scene.obj" "$walkthrough" --frames 1 --scene "$dir/no-such
 expect_error "nan.obj': vertex 2 of mesh 'wall' is (1, nan, 0)" "$walkthrough" --frames 1 --scene "$dir/nan.obj"
 [ -z "$infinite_box" ] || expect_error "BoxWithInfinites.glb': vertex" "$walkthrough" --frames 1 \
     --strategies vfc --oracle off --png-every 0 --out "$dir/walk" --scene "$infinite_box" --route "$dir/box.route"
+expect_error "short.bsp': Quake III BSP: the file is 4 bytes" "$walkthrough" --frames 1 --scene "$dir/short.bsp"
+expect_error "lumps.bsp': Quake III BSP: lump 13 (faces): bytes 144 to 248 lie beyond the end" "$walkthrough" --frames 1 \
+    --scene "$dir/lumps.bsp"
+expect_error "no-such-level.bsp': No such file" "$walkthrough" --frames 1 --scene "$dir/no-such-level.bsp"
+expect_error "cannot open the archive '$dir/no-such.pk3'" "$walkthrough" --frames 1 --scene "$dir/no-such.pk3:maps/x.bsp"
+expect_error "holds no member 'maps/no-such-level.bsp'" "$walkthrough" --frames 1 --scene "$pak:maps/no-such-level.bsp"
+expect_error "route 'spawn': the scene is not a Quake III level" "$walkthrough" --frames 1 --route spawn
 expect_error "nan.route:2: tx is 'nan'" "$walkthrough" --frames 1 --route "$dir/nan.route"
 expect_error "inf.db:7: SY is 'inf'" "$walkthrough" --frames 1 --strategies om-mos --occluder-db "$dir/inf.db"
 expect_error "inf.db:7: SY is 'inf'" "$preprocess" views --out "$dir/x.route" "$dir/inf.db"

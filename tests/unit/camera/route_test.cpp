@@ -10,7 +10,34 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "scene/quake3_bsp.h"
+
 using namespace occu;
+
+namespace {
+
+// A level of two leaves split by the plane x = 0: in front of it (x >= 0)
+// open space, cluster 0; behind it solid, cluster -1. Two spawn points.
+Quake3Level half_open_level()
+{
+    Quake3Level level;
+    level.planes = {{{1, 0, 0}, 0.0f}};
+    level.nodes = {{0, {-1, -2}, Aabb::of({-10, 0, -10}, {10, 5, 10})}};
+    level.leaves = {{0, 0, Aabb::of({0, 0, -10}, {10, 5, 10}), 0, 0}, {-1, 0, Aabb::of({-10, 0, -10}, {0, 5, 10}), 0, 0}};
+    Quake3Spawn east, north;
+    east.classname = "info_player_deathmatch";
+    east.origin = {2, 1, 0};
+    east.eye = {2, 1.5f, 0};
+    east.direction = {1, 0, 0};
+    north = east;
+    north.classname = "team_CTF_redspawn";
+    north.eye = {5, 1.5f, 5};
+    north.direction = {0, 0, -1};   // Quake's yaw 90
+    level.spawns = {east, north};
+    return level;
+}
+
+}  // namespace
 
 TEST(Route, BuiltInRoutesHaveTheFramesAsked)
 {
@@ -194,4 +221,63 @@ TEST(Route, FileCameraWhoseViewDirectionOverflowsIsRefused)
     const std::string message = route_file_refusal("overflow.route", "# far apart\n3e38 0 0 -3e38 0 0\n", path);
     EXPECT_NE(message.find(path + ":2"), std::string::npos) << message;
     EXPECT_NE(message.find("too far apart"), std::string::npos) << message;
+}
+
+TEST(Route, SpawnRouteTurnsAtEverySpawnPointFromItsAngle)
+{
+    const Quake3Level level = half_open_level();
+    const Aabb box = Aabb::of({-10, 0, -10}, {10, 5, 10});
+    const auto route = make_route("spawn:4", box, CityOptions{}, 1, 1.0f, &level);
+    ASSERT_EQ(route.size(), 8u) << "4 views at each of the 2 spawn points, whatever the frame count";
+    // East, then turning left (counter-clockwise seen from above, as Quake's
+    // yaw turns): north (-z), west, south.
+    const glm::vec3 turns[4] = {{1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0, 0, 1}};
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_EQ(route[std::size_t(k)].position, level.spawns[0].eye);
+        const glm::vec3 view = glm::normalize(route[std::size_t(k)].target - route[std::size_t(k)].position);
+        EXPECT_NEAR(glm::length(view - turns[k]), 0.0f, 1e-5f) << "view " << k;
+        EXPECT_NEAR(route[std::size_t(k)].fovy_degrees, 90.0f, 1e-3f) << "Quake's 90 degrees across a square frame";
+        EXPECT_LT(route[std::size_t(k)].near_plane, 0.2f);
+        EXPECT_GT(route[std::size_t(k)].far_plane, glm::length(box.extent()));
+    }
+    EXPECT_EQ(route[4].position, level.spawns[1].eye);
+    EXPECT_NEAR(glm::length(glm::normalize(route[4].target - route[4].position) - glm::vec3(0, 0, -1)), 0.0f, 1e-5f);
+    EXPECT_EQ(make_route("spawn", box, CityOptions{}, 30, 1.0f, &level).size(), 16u) << "8 views a spawn point by default";
+    // A wide frame keeps the 90 degrees across: a narrower vertical field.
+    EXPECT_NEAR(make_route("spawn", box, CityOptions{}, 1, 2.0f, &level)[0].fovy_degrees,
+                2.0f * glm::degrees(std::atan(0.5f)), 1e-3f);
+}
+
+TEST(Route, SpawnRouteNeedsALevelWithSpawnPoints)
+{
+    const Aabb box = Aabb::of({-10, 0, -10}, {10, 5, 10});
+    EXPECT_THROW(make_route("spawn", box, CityOptions{}, 1, 1.0f), std::invalid_argument);
+    Quake3Level empty = half_open_level();
+    empty.spawns.clear();
+    EXPECT_THROW(make_route("spawn", box, CityOptions{}, 1, 1.0f, &empty), std::invalid_argument);
+    const Quake3Level level = half_open_level();
+    for (const char *bad : {"spawn:0", "spawn:x", "spawn:", "spawn:4:2", "spawn:361"})
+        EXPECT_THROW(make_route(bad, box, CityOptions{}, 1, 1.0f, &level), std::invalid_argument) << bad;
+}
+
+TEST(Route, RandomEyesInALevelLieInItsOpenLeaves)
+{
+    const Quake3Level level = half_open_level();
+    const Aabb box = Aabb::of({-10, 0, -10}, {10, 5, 10});
+    const auto route = make_route("random:200:3", box, CityOptions{}, 1, 1.0f, &level);
+    ASSERT_EQ(route.size(), 200u);
+    for (const Camera &c : route) {
+        EXPECT_GE(c.position.x, 0.0f) << "an eye in the solid half";
+        EXPECT_TRUE(box.contains(c.position));
+    }
+    // Without the level, about half the eyes fall in the solid half.
+    const auto anywhere = make_route("random:200:3", box, CityOptions{}, 1, 1.0f);
+    EXPECT_GT(std::count_if(anywhere.begin(), anywhere.end(), [](const Camera &c) { return c.position.x < 0.0f; }), 50);
+    // The same through random_views.
+    for (const Camera &c : random_views(box, 50, 3, 1.0f, 30.0f, 90.0f, &level))
+        EXPECT_GE(c.position.x, 0.0f);
+    // A level all solid: refused, not an endless search.
+    Quake3Level solid = level;
+    solid.leaves[0].cluster = -1;
+    EXPECT_THROW(make_route("random:5:3", box, CityOptions{}, 1, 1.0f, &solid), std::invalid_argument);
 }

@@ -1,0 +1,645 @@
+#include "scene/quake3_bsp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <stdexcept>
+
+#include "scene/palette.h"
+
+namespace occu {
+
+namespace {
+
+// The lump directory's order (Proudfoot, "Lumps").
+enum Lump {
+    entities_lump, textures_lump, planes_lump, nodes_lump, leaves_lump, leaf_faces_lump, leaf_brushes_lump,
+    models_lump, brushes_lump, brush_sides_lump, vertices_lump, meshverts_lump, effects_lump, faces_lump,
+    lightmaps_lump, light_volumes_lump, visdata_lump, lump_count
+};
+const char *const lump_names[lump_count] = {"entities", "textures", "planes", "nodes", "leafs", "leaffaces",
+                                            "leafbrushes", "models", "brushes", "brushsides", "vertexes",
+                                            "meshverts", "effects", "faces", "lightmaps", "lightvols", "visdata"};
+// Bytes a record; 1 for the lumps that are not arrays of records.
+const std::size_t record_sizes[lump_count] = {1, 72, 16, 36, 48, 4, 4, 40, 12, 8, 44, 4, 72, 104, 128 * 128 * 3, 8, 1};
+
+constexpr std::size_t header_bytes = 8 + 8 * lump_count;
+
+// Surface and content flags (Quake III's surfaceflags.h).
+constexpr std::uint32_t surf_sky = 0x4, surf_nodraw = 0x80, surf_alphashadow = 0x10000;
+constexpr std::uint32_t contents_water = 0x20, contents_fog = 0x40, contents_translucent = 0x20000000;
+
+constexpr int face_polygon = 1, face_patch = 2, face_mesh = 3, face_billboard = 4;
+
+// What a level may make at most: beyond it a file (or a patch level)
+// asks for more memory than a scene can use.
+// (About 40 times the largest of Debian's 100 levels at 8 patch segments;
+// the work of reaching it a second or two at worst.)
+constexpr std::uint64_t max_vertices = 1u << 22, max_indices = 3u << 22;
+
+// Quake's spawn lift and view height (its game code: SelectSpawnPoint
+// raises the player 9 units above the spot; DEFAULT_VIEWHEIGHT 26).
+constexpr float spawn_lift_units = 9.0f, view_height_units = 26.0f;
+
+bool finite(const glm::vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+class Reader {
+public:
+    Reader(const std::string &source, const std::vector<char> &bytes) : source_(source), bytes_(bytes) {}
+
+    [[noreturn]] void refuse(const std::string &why) const
+    {
+        throw std::runtime_error("cannot read scene '" + source_ + "': Quake III BSP: " + why);
+    }
+    [[noreturn]] void refuse(int lump, const std::string &why) const
+    {
+        refuse("lump " + std::to_string(lump) + " (" + lump_names[lump] + "): " + why);
+    }
+    [[noreturn]] void refuse(int lump, std::size_t record, const std::string &why) const
+    {
+        refuse(lump, "record " + std::to_string(record) + ": " + why);
+    }
+
+    void read_header()
+    {
+        if (bytes_.size() < 4 || std::memcmp(bytes_.data(), "IBSP", 4) != 0)
+            refuse("the file does not begin with 'IBSP'");
+        if (bytes_.size() < header_bytes)
+            refuse("the file is " + std::to_string(bytes_.size()) + " bytes, shorter than the header's " +
+                   std::to_string(header_bytes));
+        const std::int32_t version = i32(4);
+        if (version != 46)
+            refuse("version " + std::to_string(version) + " (0x" + hex(std::uint32_t(version)) +
+                   "); occu reads version 46 (Quake III Arena's, 0x2e)");
+        for (int l = 0; l < lump_count; ++l) {
+            const std::int64_t offset = i32(8 + 8 * std::size_t(l)), length = i32(12 + 8 * std::size_t(l));
+            if (offset < 0 || length < 0)
+                refuse(l, "a negative offset or length in the directory (" + std::to_string(offset) + ", " +
+                              std::to_string(length) + ")");
+            if (std::uint64_t(offset) + std::uint64_t(length) > bytes_.size())
+                refuse(l, "bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) +
+                              " lie beyond the end of the file (" + std::to_string(bytes_.size()) + " bytes)");
+            if (length % std::int64_t(record_sizes[l]) != 0)
+                refuse(l, std::to_string(length) + " bytes are not whole records of " +
+                              std::to_string(record_sizes[l]) + " bytes");
+            offsets_[l] = std::size_t(offset);
+            lengths_[l] = std::size_t(length);
+        }
+    }
+
+    std::size_t count(int lump) const { return lengths_[lump] / record_sizes[lump]; }
+    // Byte `at` of record `record` of `lump`, `size` bytes there.
+    std::size_t at(int lump, std::size_t record, std::size_t field) const
+    {
+        return offsets_[lump] + record * record_sizes[lump] + field;
+    }
+    std::size_t offset(int lump) const { return offsets_[lump]; }
+    std::size_t length(int lump) const { return lengths_[lump]; }
+
+    // Little-endian values at `at` (callers keep `at` + 4 inside the file:
+    // the header's checks and count()).
+    std::int32_t i32(std::size_t at) const
+    {
+        const auto *b = reinterpret_cast<const unsigned char *>(bytes_.data() + at);
+        return std::int32_t(std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
+                            std::uint32_t(b[3]) << 24);
+    }
+    float f32(std::size_t at) const
+    {
+        const std::uint32_t u = std::uint32_t(i32(at));
+        float f;
+        std::memcpy(&f, &u, 4);
+        return f;
+    }
+    glm::vec3 vec3(std::size_t at) const { return {f32(at), f32(at + 4), f32(at + 8)}; }
+    glm::vec3 ivec3(std::size_t at) const { return glm::vec3(float(i32(at)), float(i32(at + 4)), float(i32(at + 8))); }
+    const char *data() const { return bytes_.data(); }
+
+    // A range [first, first + n) that record `record` of `lump` gives into
+    // `target`'s records: both non-negative, inside it.
+    void require_range(int lump, std::size_t record, const char *what, std::int64_t first, std::int64_t n,
+                       int target) const
+    {
+        require_range(lump, record, what, first, n, count(target), lump_names[target]);
+    }
+    void require_range(int lump, std::size_t record, const char *what, std::int64_t first, std::int64_t n,
+                       std::size_t available, const std::string &of) const
+    {
+        if (first < 0 || n < 0 || std::uint64_t(first) + std::uint64_t(n) > available)
+            refuse(lump, record, std::string(what) + " " + std::to_string(first) + " to " + std::to_string(first + n) +
+                                     " lie outside the " + std::to_string(available) + " " + of);
+    }
+
+    static std::string hex(std::uint32_t v)
+    {
+        char s[16];
+        std::snprintf(s, sizeof s, "%x", v);
+        return s;
+    }
+
+private:
+    const std::string &source_;
+    const std::vector<char> &bytes_;
+    std::size_t offsets_[lump_count] = {}, lengths_[lump_count] = {};
+};
+
+// The entities lump: { "key" "value" ... } blocks.
+struct Entity {
+    std::vector<std::pair<std::string, std::string>> pairs;
+    const std::string *value(const char *key) const
+    {
+        for (const auto &[k, v] : pairs)
+            if (k == key)
+                return &v;
+        return nullptr;
+    }
+};
+
+std::vector<Entity> parse_entities(const Reader &r)
+{
+    const char *p = r.data() + r.offset(entities_lump);
+    const char *const begin = p, *const end = p + r.length(entities_lump);
+    std::vector<Entity> out;
+    auto where = [&](const char *q) { return "at byte " + std::to_string(q - begin) + ": "; };
+    auto skip_space = [&]() {
+        while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r'))
+            ++p;
+    };
+    auto quoted = [&](std::string &s) {
+        if (p == end || *p != '"')
+            r.refuse(entities_lump, where(p) + "a key or value does not begin with '\"'");
+        const char *q = static_cast<const char *>(std::memchr(p + 1, '"', std::size_t(end - p - 1)));
+        if (!q)
+            r.refuse(entities_lump, where(p) + "a string runs to the end of the lump without its closing '\"'");
+        s.assign(p + 1, q);
+        if (s.find('\0') != std::string::npos)
+            r.refuse(entities_lump, where(p) + "a string holds a NUL byte");
+        p = q + 1;
+    };
+    for (;;) {
+        skip_space();
+        // The compiler ends the text with a NUL.
+        if (p == end || (*p == '\0' && std::all_of(p, end, [](char c) { return c == '\0'; })))
+            break;
+        if (*p != '{')
+            r.refuse(entities_lump, where(p) + "expected '{' opening an entity");
+        ++p;
+        Entity e;
+        for (;;) {
+            skip_space();
+            if (p == end)
+                r.refuse(entities_lump, where(p) + "entity " + std::to_string(out.size()) + " has no closing '}'");
+            if (*p == '}') {
+                ++p;
+                break;
+            }
+            std::string key, value;
+            quoted(key);
+            skip_space();
+            quoted(value);
+            e.pairs.emplace_back(std::move(key), std::move(value));
+        }
+        out.push_back(std::move(e));
+    }
+    return out;
+}
+
+// `n` finite numbers separated by spaces, and nothing else.
+bool numbers(const std::string &text, float *values, int n)
+{
+    const char *p = text.c_str();
+    for (int i = 0; i < n; ++i) {
+        char *e = nullptr;
+        values[i] = std::strtof(p, &e);
+        if (e == p || !std::isfinite(values[i]))
+            return false;
+        p = e;
+    }
+    while (*p == ' ' || *p == '\t')
+        ++p;
+    return *p == '\0';
+}
+
+std::vector<Quake3Spawn> spawns_of(const Reader &r, const std::vector<Entity> &entities)
+{
+    static const char *const spawn_classes[] = {"info_player_deathmatch", "info_player_start", "team_CTF_redplayer",
+                                                "team_CTF_blueplayer", "team_CTF_redspawn", "team_CTF_bluespawn"};
+    std::vector<Quake3Spawn> out;
+    for (std::size_t i = 0; i < entities.size(); ++i) {
+        const std::string *classname = entities[i].value("classname");
+        if (!classname || std::none_of(std::begin(spawn_classes), std::end(spawn_classes),
+                                       [&](const char *c) { return *classname == c; }))
+            continue;
+        const std::string what = "entity " + std::to_string(i) + " (" + *classname + ")";
+        // Quake's defaults for a key the entity leaves out: origin 0 0 0, angle 0.
+        float origin[3] = {0, 0, 0}, yaw = 0;
+        if (const std::string *o = entities[i].value("origin"); o && !numbers(*o, origin, 3))
+            r.refuse(entities_lump, what + ": origin '" + o->substr(0, 60) + "' is not three finite numbers");
+        if (const std::string *a = entities[i].value("angles")) {
+            float angles[3];
+            if (!numbers(*a, angles, 3))
+                r.refuse(entities_lump, what + ": angles '" + a->substr(0, 60) + "' are not three finite numbers");
+            yaw = angles[1];
+        } else if (const std::string *a1 = entities[i].value("angle"); a1 && !numbers(*a1, &yaw, 1)) {
+            r.refuse(entities_lump, what + ": angle '" + a1->substr(0, 60) + "' is not a finite number");
+        }
+        Quake3Spawn s;
+        s.classname = *classname;
+        const glm::vec3 q(origin[0], origin[1], origin[2]);
+        s.origin = quake3_to_occu(q);
+        s.eye = quake3_to_occu(q + glm::vec3(0, 0, spawn_lift_units + view_height_units));
+        s.yaw_degrees = yaw;
+        const float radians = glm::radians(yaw);
+        s.direction = glm::normalize(quake3_to_occu(glm::vec3(std::cos(radians), std::sin(radians), 0.0f)));
+        out.push_back(s);
+    }
+    return out;
+}
+
+// One vertex of the file, in occu's coordinates.
+struct FileVertex {
+    glm::vec3 position, normal;
+};
+
+// Whether the curves of a patch's control grid along one direction are
+// all straight and evenly parameterized: along `n` points spaced `step`
+// apart, `lines` of them spaced `stride` apart, every middle point of a
+// piece (a, b, c) has a - 2b + c = 0 (to a millionth of the points'
+// magnitudes: the rounding of their conversion to metres): the quadratic
+// is then linear in its parameter.
+bool straight(const FileVertex *control, std::int64_t n, std::int64_t lines, std::int64_t step, std::int64_t stride)
+{
+    for (std::int64_t l = 0; l < lines; ++l)
+        for (std::int64_t k = 0; k + 2 < n; k += 2) {
+            const glm::vec3 &a = control[l * stride + k * step].position, &b = control[l * stride + (k + 1) * step].position,
+                            &c = control[l * stride + (k + 2) * step].position;
+            const float magnitude = glm::length(a) + 2.0f * glm::length(b) + glm::length(c);
+            if (!(glm::length(a - 2.0f * b + c) <= 1e-6f * magnitude))
+                return false;
+        }
+    return true;
+}
+
+// Quadratic Bernstein weights at t.
+glm::vec3 bernstein2(float t) { return {(1 - t) * (1 - t), 2 * t * (1 - t), t * t}; }
+
+}  // namespace
+
+std::int32_t Quake3Level::leaf_at(const glm::vec3 &p) const
+{
+    if (leaves.empty())
+        return -1;
+    if (nodes.empty())
+        return 0;
+    std::int32_t n = 0;
+    for (;;) {
+        const Node &node = nodes[std::size_t(n)];
+        const Plane &plane = planes[std::size_t(node.plane)];
+        const std::int32_t child = node.children[glm::dot(plane.normal, p) - plane.distance >= 0.0f ? 0 : 1];
+        if (child < 0)
+            return -(child + 1);
+        n = child;   // after n: the reader checked, so this ends
+    }
+}
+
+bool Quake3Level::cluster_sees(std::int32_t from, std::int32_t to) const
+{
+    if (from < 0 || to < 0 || cluster_count == 0 || from >= cluster_count || to >= cluster_count)
+        return true;
+    return (visibility[std::size_t(from) * std::size_t(bytes_per_cluster) + std::size_t(to) / 8] >> (to % 8)) & 1;
+}
+
+bool looks_like_ibsp(const std::vector<char> &bytes)
+{
+    return bytes.size() >= 4 && std::memcmp(bytes.data(), "IBSP", 4) == 0;
+}
+
+Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes, const Quake3Options &options,
+                      std::vector<std::string> &warnings)
+{
+    Reader r(source, bytes);
+    if (options.patch_segments < 1 || options.patch_segments > 64)
+        r.refuse("patch segments " + std::to_string(options.patch_segments) + " outside 1..64");
+    r.read_header();
+    auto level = std::make_shared<Quake3Level>();
+
+    // Textures: the flags that decide what is drawn and what hides.
+    for (std::size_t t = 0; t < r.count(textures_lump); ++t) {
+        const char *name = r.data() + r.at(textures_lump, t, 0);
+        Quake3Level::Texture tex;
+        tex.name.assign(name, static_cast<std::size_t>(std::find(name, name + 64, '\0') - name));
+        tex.surface_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 64)));
+        tex.content_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 68)));
+        tex.drawn = !(tex.surface_flags & (surf_nodraw | surf_sky));
+        tex.occluder = !(tex.content_flags & (contents_translucent | contents_water | contents_fog)) &&
+                       !(tex.surface_flags & surf_alphashadow);
+        level->textures.push_back(std::move(tex));
+    }
+
+    for (std::size_t i = 0; i < r.count(planes_lump); ++i) {
+        const glm::vec3 n = r.vec3(r.at(planes_lump, i, 0));
+        const float d = r.f32(r.at(planes_lump, i, 12));
+        if (!finite(n) || !std::isfinite(d))
+            r.refuse(planes_lump, i, "a normal or distance that is not finite");
+        // Rotated normal; the distance scales with the units.
+        level->planes.push_back({glm::vec3(n.x, n.z, -n.y), d * quake3_unit_metres});
+    }
+
+    const std::size_t node_count = r.count(nodes_lump), leaf_count = r.count(leaves_lump);
+    for (std::size_t i = 0; i < node_count; ++i) {
+        Quake3Level::Node node;
+        node.plane = r.i32(r.at(nodes_lump, i, 0));
+        r.require_range(nodes_lump, i, "plane", node.plane, 1, planes_lump);
+        for (int c = 0; c < 2; ++c) {
+            const std::int32_t child = r.i32(r.at(nodes_lump, i, 4 + 4 * std::size_t(c)));
+            node.children[c] = child;
+            if (child >= 0 && (std::size_t(child) <= i || std::size_t(child) >= node_count))
+                r.refuse(nodes_lump, i, "child node " + std::to_string(child) +
+                                            " does not lie after it among the " + std::to_string(node_count) +
+                                            " nodes (the tree would not end)");
+            if (child < 0 && std::uint64_t(-(std::int64_t(child) + 1)) >= leaf_count)
+                r.refuse(nodes_lump, i, "child leaf " + std::to_string(-(std::int64_t(child) + 1)) +
+                                            " lies outside the " + std::to_string(leaf_count) + " leafs");
+        }
+        node.bounds = Aabb::of(quake3_to_occu(r.ivec3(r.at(nodes_lump, i, 12))),
+                               quake3_to_occu(r.ivec3(r.at(nodes_lump, i, 24))));
+        level->nodes.push_back(node);
+    }
+
+    // Visibility before the leaves, whose clusters index it.
+    if (r.length(visdata_lump) > 0) {
+        if (r.length(visdata_lump) < 8)
+            r.refuse(visdata_lump, std::to_string(r.length(visdata_lump)) +
+                                       " bytes, fewer than its two counts (8 bytes)");
+        const std::int32_t n = r.i32(r.offset(visdata_lump)), size = r.i32(r.offset(visdata_lump) + 4);
+        if (n < 0 || size < 0 || std::uint64_t(n) * std::uint64_t(size) > r.length(visdata_lump) - 8)
+            r.refuse(visdata_lump, std::to_string(n) + " clusters of " + std::to_string(size) +
+                                       " bytes do not fit its " + std::to_string(r.length(visdata_lump) - 8) +
+                                       " bytes of bit vectors");
+        if (std::int64_t(size) * 8 < n)
+            r.refuse(visdata_lump, "vectors of " + std::to_string(size) + " bytes cannot hold a bit for each of " +
+                                       std::to_string(n) + " clusters");
+        level->cluster_count = n;
+        level->bytes_per_cluster = size;
+        const auto *v = reinterpret_cast<const std::uint8_t *>(r.data() + r.offset(visdata_lump) + 8);
+        level->visibility.assign(v, v + std::size_t(n) * std::size_t(size));
+    }
+
+    const std::size_t face_count = r.count(faces_lump);
+    for (std::size_t i = 0; i < leaf_count; ++i) {
+        Quake3Level::Leaf leaf;
+        leaf.cluster = r.i32(r.at(leaves_lump, i, 0));
+        leaf.area = r.i32(r.at(leaves_lump, i, 4));
+        if (leaf.cluster < -1 || (level->cluster_count > 0 && leaf.cluster >= level->cluster_count))
+            r.refuse(leaves_lump, i, "cluster " + std::to_string(leaf.cluster) + " is neither -1 (solid) nor one of the " +
+                                         std::to_string(level->cluster_count) + " clusters of the visdata");
+        leaf.bounds = Aabb::of(quake3_to_occu(r.ivec3(r.at(leaves_lump, i, 8))),
+                               quake3_to_occu(r.ivec3(r.at(leaves_lump, i, 20))));
+        const std::int32_t first = r.i32(r.at(leaves_lump, i, 32)), n = r.i32(r.at(leaves_lump, i, 36));
+        r.require_range(leaves_lump, i, "leaf faces", first, n, leaf_faces_lump);
+        r.require_range(leaves_lump, i, "leaf brushes", r.i32(r.at(leaves_lump, i, 40)), r.i32(r.at(leaves_lump, i, 44)),
+                        leaf_brushes_lump);
+        leaf.first_leaf_face = std::uint32_t(first);
+        leaf.leaf_face_count = std::uint32_t(n);
+        level->leaves.push_back(leaf);
+    }
+    for (std::size_t i = 0; i < r.count(leaf_faces_lump); ++i) {
+        const std::int32_t f = r.i32(r.at(leaf_faces_lump, i, 0));
+        r.require_range(leaf_faces_lump, i, "face", f, 1, faces_lump);
+        level->leaf_faces.push_back(std::uint32_t(f));
+    }
+
+    // Each model (the world, then the brush entities) owns a run of faces;
+    // the compiler writes them one after another. Overlapping runs are
+    // refused: a face of two models means nothing, and marking runs that
+    // overlap would cost models x faces.
+    std::vector<std::int32_t> face_model(face_count, -1);
+    std::vector<std::pair<std::int32_t, std::size_t>> runs;   // (first face, model) of non-empty runs
+    for (std::size_t m = 0; m < r.count(models_lump); ++m) {
+        const std::int32_t first = r.i32(r.at(models_lump, m, 24)), n = r.i32(r.at(models_lump, m, 28));
+        r.require_range(models_lump, m, "faces", first, n, faces_lump);
+        r.require_range(models_lump, m, "brushes", r.i32(r.at(models_lump, m, 32)), r.i32(r.at(models_lump, m, 36)),
+                        brushes_lump);
+        if (n > 0)
+            runs.emplace_back(first, m);
+    }
+    std::sort(runs.begin(), runs.end());
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        const std::size_t m = runs[k].second;
+        const std::int32_t first = runs[k].first, n = r.i32(r.at(models_lump, m, 28));
+        if (k + 1 < runs.size() && std::int64_t(first) + n > runs[k + 1].first)
+            r.refuse(models_lump, m, "faces " + std::to_string(first) + " to " + std::to_string(std::int64_t(first) + n) +
+                                         " overlap those of model " + std::to_string(runs[k + 1].second));
+        std::fill(face_model.begin() + first, face_model.begin() + first + n, std::int32_t(m));
+    }
+
+    const std::size_t vertex_count = r.count(vertices_lump);
+    std::vector<FileVertex> vertices(vertex_count);
+    for (std::size_t i = 0; i < vertex_count; ++i) {
+        const glm::vec3 p = r.vec3(r.at(vertices_lump, i, 0));
+        if (!finite(p))
+            r.refuse(vertices_lump, i, "position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
+                                           std::to_string(p.z) + ") is not finite");
+        const glm::vec3 n = r.vec3(r.at(vertices_lump, i, 28));
+        vertices[i] = {quake3_to_occu(p), glm::vec3(n.x, n.z, -n.y)};
+    }
+
+    // Faces into meshes, one a texture.
+    Scene scene;
+    std::vector<std::int32_t> texture_mesh(level->textures.size(), -1);
+    const int segments = options.patch_segments;
+    std::uint64_t made_vertices = 0, made_indices = 0;
+    std::size_t bad_normals = 0;
+    for (std::size_t i = 0; i < face_count; ++i) {
+        Quake3Level::Face face;
+        face.texture = r.i32(r.at(faces_lump, i, 0));
+        face.type = r.i32(r.at(faces_lump, i, 8));
+        face.model = face_model[i];
+        const std::int32_t first_vertex = r.i32(r.at(faces_lump, i, 12)), n_vertices = r.i32(r.at(faces_lump, i, 16));
+        const std::int32_t first_meshvert = r.i32(r.at(faces_lump, i, 20)), n_meshverts = r.i32(r.at(faces_lump, i, 24));
+        r.require_range(faces_lump, i, "texture", face.texture, 1, textures_lump);
+        if (face.type < face_polygon || face.type > face_billboard)
+            r.refuse(faces_lump, i, "type " + std::to_string(face.type) + " is none of 1 (polygon), 2 (patch), 3 (mesh), 4 (billboard)");
+        r.require_range(faces_lump, i, "vertices", first_vertex, n_vertices, vertices_lump);
+        if (face.type != face_billboard)
+            r.require_range(faces_lump, i, "meshverts", first_meshvert, n_meshverts, meshverts_lump);
+        const Quake3Level::Texture &texture = level->textures[std::size_t(face.texture)];
+
+        // The face's triangles (indices into the file's vertices) and, for
+        // a patch, the vertices it makes.
+        std::vector<FileVertex> made;
+        std::vector<std::uint32_t> triangles;   // into `made` when a patch, else file vertex numbers
+        if (face.type == face_polygon || face.type == face_mesh) {
+            if (n_meshverts % 3 != 0)
+                r.refuse(faces_lump, i, std::to_string(n_meshverts) + " meshverts are not whole triangles");
+            // Faces may share meshverts: what they make together is bounded, not the lump.
+            made_indices += std::uint64_t(n_meshverts);
+            if (made_indices > max_indices)
+                r.refuse(faces_lump, i, "the faces so far make more than " + std::to_string(max_indices / 3) + " triangles");
+            for (std::int32_t k = 0; k < n_meshverts; ++k) {
+                const std::int32_t offset = r.i32(r.at(meshverts_lump, std::size_t(first_meshvert + k), 0));
+                if (offset < 0 || offset >= n_vertices)
+                    r.refuse(faces_lump, i, "meshvert " + std::to_string(first_meshvert + k) + " is " +
+                                                std::to_string(offset) + ", outside the face's " +
+                                                std::to_string(n_vertices) + " vertices");
+                triangles.push_back(std::uint32_t(first_vertex + offset));
+            }
+        } else if (face.type == face_patch) {
+            ++level->patch_count;
+            const std::int32_t w = r.i32(r.at(faces_lump, i, 96)), h = r.i32(r.at(faces_lump, i, 100));
+            if (w < 3 || h < 3 || w % 2 == 0 || h % 2 == 0 || std::int64_t(w) * h != n_vertices)
+                r.refuse(faces_lump, i, "a patch of " + std::to_string(w) + " x " + std::to_string(h) +
+                                            " control points (odd sizes of at least 3, holding its " +
+                                            std::to_string(n_vertices) + " vertices, expected)");
+            if (!texture.drawn) {
+                // The compiler keeps patches it has made triangles of itself
+                // (q3map2 -patchmeta) as nodraw faces, for collision.
+                ++level->hidden_face_count;
+                level->faces.push_back(face);
+                continue;
+            }
+            const FileVertex *control = vertices.data() + first_vertex;
+            // A direction in which every piece is straight and evenly
+            // parameterized (each middle control point halfway between its
+            // neighbours) is exactly one segment a piece: more would add
+            // triangles, not shape.
+            const std::int64_t su = straight(control, w, h, 1, w) ? 1 : segments,
+                               sv = straight(control, h, w, w, 1) ? 1 : segments;
+            const std::int64_t columns = std::int64_t(w - 1) / 2 * su + 1, rows = std::int64_t(h - 1) / 2 * sv + 1;
+            made_vertices += std::uint64_t(columns * rows);
+            made_indices += 6 * std::uint64_t((columns - 1) * (rows - 1));
+            if (made_vertices > max_vertices || made_indices > max_indices)
+                r.refuse(faces_lump, i, "its patches at " + std::to_string(segments) +
+                                            " segments a piece make more than " + std::to_string(max_vertices) +
+                                            " vertices or " + std::to_string(max_indices / 3) +
+                                            " triangles (fewer segments make fewer)");
+            for (std::int64_t row = 0; row < rows; ++row) {
+                const std::int64_t pj = std::min<std::int64_t>(row / sv, (h - 1) / 2 - 1);
+                const glm::vec3 bv = bernstein2(float(row - pj * sv) / float(sv));
+                for (std::int64_t col = 0; col < columns; ++col) {
+                    const std::int64_t pi = std::min<std::int64_t>(col / su, (w - 1) / 2 - 1);
+                    const glm::vec3 bu = bernstein2(float(col - pi * su) / float(su));
+                    FileVertex v{glm::vec3(0.0f), glm::vec3(0.0f)};
+                    for (int b = 0; b < 3; ++b)
+                        for (int a = 0; a < 3; ++a) {
+                            const FileVertex &c = control[(2 * pj + b) * w + 2 * pi + a];
+                            v.position += bu[a] * bv[b] * c.position;
+                            v.normal += bu[a] * bv[b] * c.normal;
+                        }
+                    made.push_back(v);
+                }
+            }
+            for (std::int64_t row = 0; row + 1 < rows; ++row)
+                for (std::int64_t col = 0; col + 1 < columns; ++col) {
+                    const auto v00 = std::uint32_t(row * columns + col), v01 = v00 + 1,
+                               v10 = std::uint32_t(v00 + columns), v11 = v10 + 1;
+                    triangles.insert(triangles.end(), {v00, v01, v11, v00, v11, v10});
+                }
+        } else {
+            ++level->billboard_count;
+        }
+
+        if (!texture.drawn && face.type != face_billboard)
+            ++level->hidden_face_count;
+        if (face.type == face_billboard || !texture.drawn || triangles.empty()) {
+            level->faces.push_back(face);
+            continue;
+        }
+        if (!texture.occluder)
+            ++level->see_through_face_count;
+
+        std::int32_t &mesh_number = texture_mesh[std::size_t(face.texture)];
+        if (mesh_number < 0) {
+            mesh_number = std::int32_t(scene.meshes.size());
+            Mesh m;
+            m.name = texture.name;
+            m.color = building_colours(std::uint32_t(face.texture), 0.5f, 0.0f).wall;
+            m.occluder = texture.occluder;
+            scene.meshes.push_back(std::move(m));
+        }
+        Mesh &mesh = scene.meshes[std::size_t(mesh_number)];
+        face.mesh = mesh_number;
+        face.first_index = std::uint32_t(mesh.indices.size());
+        face.index_count = std::uint32_t(triangles.size());
+
+        // The face's vertices into the mesh (a polygon's or mesh's own
+        // range of the file's, a patch's made ones).
+        const auto base = std::uint32_t(mesh.positions.size());
+        if (face.type == face_patch) {
+            for (const FileVertex &v : made) {
+                mesh.positions.push_back(v.position);
+                mesh.normals.push_back(v.normal);
+            }
+            for (std::uint32_t t : triangles)
+                mesh.indices.push_back(base + t);
+        } else {
+            made_vertices += std::uint64_t(n_vertices);
+            if (made_vertices > max_vertices)
+                r.refuse(faces_lump, i, "the faces so far make more than " + std::to_string(max_vertices) + " vertices");
+            for (std::int32_t k = 0; k < n_vertices; ++k) {
+                mesh.positions.push_back(vertices[std::size_t(first_vertex + k)].position);
+                mesh.normals.push_back(vertices[std::size_t(first_vertex + k)].normal);
+            }
+            for (std::uint32_t t : triangles)
+                mesh.indices.push_back(base + t - std::uint32_t(first_vertex));
+        }
+
+        // Front faces counter-clockwise: the winding that agrees with the
+        // face's own vertex normals (the compiler's, or a patch's control
+        // points' interpolated).
+        float agreement = 0.0f;
+        for (std::size_t t = face.first_index; t < mesh.indices.size(); t += 3) {
+            const glm::vec3 &a = mesh.positions[mesh.indices[t]], &b = mesh.positions[mesh.indices[t + 1]],
+                            &c = mesh.positions[mesh.indices[t + 2]];
+            const glm::vec3 n = mesh.normals[mesh.indices[t]] + mesh.normals[mesh.indices[t + 1]] +
+                                mesh.normals[mesh.indices[t + 2]];
+            const float d = glm::dot(glm::cross(b - a, c - a), n);
+            if (std::isfinite(d))
+                agreement += d;
+        }
+        if (agreement < 0.0f)
+            for (std::size_t t = face.first_index; t < mesh.indices.size(); t += 3)
+                std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+
+        // Normals the file leaves zero or not finite: the face's own (the
+        // sum of its triangles' at the vertex).
+        std::vector<glm::vec3> own;
+        for (std::size_t v = base; v < mesh.normals.size(); ++v) {
+            glm::vec3 &n = mesh.normals[v];
+            const float length = glm::length(n);
+            if (length > 0.0f && std::isfinite(length)) {
+                n /= length;
+                continue;
+            }
+            ++bad_normals;
+            if (own.empty()) {
+                own.assign(mesh.normals.size() - base, glm::vec3(0.0f));
+                for (std::size_t t = face.first_index; t < mesh.indices.size(); t += 3) {
+                    const glm::vec3 &a = mesh.positions[mesh.indices[t]];
+                    const glm::vec3 n3 = glm::cross(mesh.positions[mesh.indices[t + 1]] - a,
+                                                    mesh.positions[mesh.indices[t + 2]] - a);
+                    for (int k = 0; k < 3; ++k)
+                        own[mesh.indices[t + std::size_t(k)] - base] += n3;
+                }
+            }
+            const float s = glm::length(own[v - base]);
+            n = s > 0.0f && std::isfinite(s) ? own[v - base] / s : glm::vec3(0.0f, 1.0f, 0.0f);
+        }
+        level->faces.push_back(face);
+    }
+    if (bad_normals)
+        warnings.push_back("scene '" + source + "': " + std::to_string(bad_normals) +
+                           " vertex normals of the level are zero or not finite; the faces' own instead");
+    if (scene.meshes.empty())
+        r.refuse(faces_lump, "none of its " + std::to_string(face_count) + " faces is drawn");
+
+    level->spawns = spawns_of(r, parse_entities(r));
+    scene.update_bounds();
+    scene.quake3 = std::move(level);
+    return scene;
+}
+
+}  // namespace occu

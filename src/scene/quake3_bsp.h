@@ -1,0 +1,171 @@
+// Quake III Arena levels (IBSP version 46, as id's q3map and its
+// successors write them and Debian's OpenArena data ships them) read by
+// occu itself. assimp 5.2.5's BSP importer makes meshes its own validation
+// refuses ("aiMesh::mFaces[0]::mIndices[0] is out of range") on OpenArena's
+// levels, and a level is more than triangles: its BSP tree, leaves,
+// clusters and the compiler's cluster-to-cluster visibility (the PVS) are
+// what a culler is judged against on such scenes.
+//
+// The format (from Kekoa Proudfoot's "Unofficial Quake 3 Map Specs"): a
+// header ("IBSP", version 46, a directory of 17 lumps, each an offset and
+// a length in bytes), then the lumps, little-endian records of 4-byte
+// ints and floats. Every read is bounded: a lump must lie inside the file
+// and hold whole records, and every index one record holds into another
+// lump (a face's texture, vertices and meshverts, a node's plane and
+// children, a leaf's faces, a model's faces) must lie inside that lump;
+// otherwise the level is refused with a message naming the file and the
+// lump (and the record). A vertex, plane or visdata record that is not
+// finite or not consistent is refused the same way; the file is never
+// partly used.
+//
+// What is drawn. Faces of type 1 (planar polygons) and 3 (triangle
+// meshes, misc_model geometry the compiler baked in) as the triangles
+// their meshverts list; faces of type 2 (Bezier patches: a grid of
+// width x height control points, odd sizes, read as (width-1)/2 x
+// (height-1)/2 biquadratic pieces of 3x3 points) tessellated into
+// `patch_segments` x `patch_segments` quads a piece (one segment along a
+// direction in which the whole patch is straight and evenly
+// parameterized, which is then exact: OpenArena's arches and pipes are
+// often curved one way only); faces of type 4
+// (billboards: flares, sprites) are not drawn, nor faces whose texture's
+// surface flags say SURF_NODRAW (0x80; clip, caulk, trigger and hint
+// brushes) or SURF_SKY (0x4: the sky is drawn at infinity, not where the
+// face is). Faces of every model are drawn, the world (model 0) and the
+// brush entities (doors, platforms: at their resting place).
+//
+// Translucency, from the format alone (a BSP records each texture's
+// compiled surface flags and content flags, not its shader's blending):
+// a face is see-through -- drawn, but never an occluder (Mesh::occluder
+// false) -- when its texture's content flags hold CONTENTS_TRANSLUCENT
+// (0x20000000: q3map sets it for `surfaceparm trans`, which every shader
+// drawn with blending or alpha testing must carry for the compiler's
+// visibility to see through it), CONTENTS_WATER (0x20) or CONTENTS_FOG
+// (0x40; water and fog volumes are drawn blended), or its surface flags
+// hold SURF_ALPHASHADOW (0x10000: the lighting compiler casts per-pixel
+// alpha-tested shadows from it). Lava and slime are opaque (Quake III's
+// MASK_OPAQUE). A shader that blends without any of these marks (a decal,
+// a flame) is taken as opaque: nothing in the BSP tells it apart.
+//
+// Coordinates. Quake's world is right-handed, z up, in game units (one
+// inch, by id's scale: a player stands 56 units tall); occu's is
+// right-handed, y up, in metres (geometry/aabb.h). A Quake point
+// (x, y, z) is occu's 0.0254 * (x, z, -y): a rotation (it keeps windings
+// and handedness) and a scale. Every position, plane, box and spawn point
+// of a Quake3Level is in occu's coordinates. Triangles are wound
+// counter-clockwise seen from their front (occu's convention; the file's
+// meshverts are clockwise, as Quake III's renderer culls).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "geometry/aabb.h"
+#include "scene/scene.h"
+
+namespace occu {
+
+// Metres per Quake unit.
+inline constexpr float quake3_unit_metres = 0.0254f;
+// A Quake point (x, y, z) in occu's coordinates.
+inline glm::vec3 quake3_to_occu(const glm::vec3 &q)
+{
+    return quake3_unit_metres * glm::vec3(q.x, q.z, -q.y);
+}
+
+struct Quake3Options {
+    // Quads along each direction of each 3x3 biquadratic patch piece,
+    // 1..64. 8 is the finest q3map2 makes of a curve when it turns
+    // patches into meshes itself (-patchmeta: up to 3 halvings a piece);
+    // Quake III's renderer subdivides until the chord is within 4 units
+    // of the curve, which for OpenArena's pillars and arches is 4 to 16.
+    int patch_segments = 8;
+};
+
+// A player spawn point (info_player_deathmatch, info_player_start and the
+// team spawns team_CTF_redplayer, team_CTF_blueplayer, team_CTF_redspawn,
+// team_CTF_bluespawn).
+struct Quake3Spawn {
+    std::string classname;
+    glm::vec3 origin;      // the entity's origin
+    glm::vec3 eye;         // where the game puts a player's eye: 9 units above the origin
+                           // (its spawn lift) plus the view height, 26 units
+    float yaw_degrees = 0; // "angle" (or the yaw of "angles"): counter-clockwise about Quake's z from its +x
+    glm::vec3 direction;   // the horizontal unit vector the yaw names
+};
+
+// The level's BSP, in occu's coordinates (planes: dot(normal, p) = distance).
+struct Quake3Level {
+    struct Plane {
+        glm::vec3 normal;
+        float distance;
+    };
+    struct Node {
+        std::int32_t plane;
+        // A child >= 0 is a node (always after its parent); < 0 is the leaf
+        // -(child + 1). Child 0 is in front of the plane, child 1 behind.
+        std::int32_t children[2];
+        Aabb bounds;
+    };
+    struct Leaf {
+        std::int32_t cluster;   // < 0: outside the level or inside a solid
+        std::int32_t area;
+        Aabb bounds;
+        std::uint32_t first_leaf_face, leaf_face_count;   // into leaf_faces
+    };
+    // Where a face of the file went: `mesh` of the scene (-1: not drawn) and
+    // its triangles' indices there, [first_index, first_index + index_count).
+    struct Face {
+        std::int32_t type;      // 1 polygon, 2 patch, 3 mesh, 4 billboard
+        std::int32_t texture;
+        std::int32_t model;     // 0: the world; others: brush entities
+        std::int32_t mesh = -1;
+        std::uint32_t first_index = 0, index_count = 0;
+    };
+    struct Texture {
+        std::string name;
+        std::uint32_t surface_flags, content_flags;
+        bool drawn;       // not SURF_NODRAW nor SURF_SKY
+        bool occluder;    // not see-through (the rule above)
+    };
+
+    std::vector<Texture> textures;
+    std::vector<Plane> planes;
+    std::vector<Node> nodes;        // nodes[0] the root of the world
+    std::vector<Leaf> leaves;
+    std::vector<std::uint32_t> leaf_faces;   // face indices
+    std::vector<Face> faces;
+    std::vector<Quake3Spawn> spawns;
+    // The compiler's potentially visible set: cluster_count bit vectors of
+    // bytes_per_cluster bytes. Empty (cluster_count 0) when the level was
+    // not vis'ed: then every cluster sees every other.
+    std::int32_t cluster_count = 0;
+    std::int32_t bytes_per_cluster = 0;
+    std::vector<std::uint8_t> visibility;
+
+    // Counts, for statistics.
+    std::size_t patch_count = 0, billboard_count = 0, hidden_face_count = 0, see_through_face_count = 0;
+
+    // The leaf holding `p`, by descending the tree from the root.
+    std::int32_t leaf_at(const glm::vec3 &p) const;
+    // Whether cluster `to` is in the PVS of cluster `from` (true when
+    // either is < 0 or the level has no visibility data).
+    bool cluster_sees(std::int32_t from, std::int32_t to) const;
+};
+
+// Reads a level from `bytes` (a .bsp file's, or a pk3 member's). `source`
+// names it in messages ("maps/x.bsp", "pak.pk3:maps/x.bsp"). Returns its
+// drawn faces as meshes of `scene` (one a texture, named by it, coloured
+// by the palette, `occluder` false for see-through textures; bounds
+// updated) and sets scene.quake3 to the level. Throws std::runtime_error
+// beginning "cannot read scene '<source>': Quake III BSP: " and naming the
+// lump. Warnings (normals replaced) go to `warnings`.
+Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes, const Quake3Options &options,
+                      std::vector<std::string> &warnings);
+
+// Whether `bytes` begins as an IBSP file ("IBSP" magic).
+bool looks_like_ibsp(const std::vector<char> &bytes);
+
+}  // namespace occu
