@@ -7,7 +7,7 @@
 //    pixels in the whole frame), while the same check finds hidden leaves
 //    in the city, so that it can fail;
 //  - every conservative strategy, with the walkthrough's policies across
-//    frames (temporal coherence, switch-off 0.5: evaluation/side_by_side.h),
+//    frames (temporal coherence, switch-off 0.5: evaluation/measurement_session.h),
 //    draws every frame of the route exactly as the unculled frame;
 //  - the switch-off engages: every strategy that has one tests no node in
 //    the frames between its probes (frames 25-39 here: it switches off
@@ -26,7 +26,7 @@
 #include "camera/route.h"
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
-#include "evaluation/side_by_side.h"
+#include "evaluation/measurement_session.h"
 #include "gl/gl_headers.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"

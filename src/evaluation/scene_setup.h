@@ -1,0 +1,62 @@
+// The scene a program measures, made in one place for every program and
+// test: its meshes (the procedural city, the field, or a file), the
+// hierarchy built over them (spatial/hierarchy.h) and the routes through
+// them (camera/route.h). Scene and hierarchy are shared by the copies of a
+// setup, and stay where they are for as long as one copy lives, so that a
+// renderer or a strategy made over them may hold on to them.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera/camera.h"
+#include "scene/city.h"
+#include "scene/scene.h"
+#include "spatial/hierarchy.h"
+
+namespace occu {
+
+// What a program's --scene (and its hierarchy options) name.
+struct SceneChoice {
+    // "city" (or empty): the procedural city of `city` (scene/city.h);
+    // "field": the flat field of small objects (scene/field.h); anything
+    // else a file read through assimp (scene/scene_file.h).
+    std::string name = "city";
+    CityOptions city;
+    HierarchyOptions hierarchy;
+};
+
+class SceneSetup {
+public:
+    // Generates or reads the scene, then builds its hierarchy. Throws
+    // std::runtime_error naming a scene file it cannot read (and saying
+    // when there is no such file) or whose contents it refuses.
+    explicit SceneSetup(const SceneChoice &choice);
+    // The same scene under a hierarchy of other options (a leaf size swept).
+    SceneSetup with_hierarchy(const HierarchyOptions &options) const;
+
+    // As the choice named it ("city" for the default).
+    const std::string &name() const { return name_; }
+    const Scene &scene() const { return *scene_; }
+    const Hierarchy &hierarchy() const { return *hierarchy_; }
+
+    // The route `route` (camera/route.h: dense, street, medium, open, orbit,
+    // overhead, random:N:SEED or a route file) of `frames` cameras; throws
+    // as make_route does.
+    std::vector<Camera> route(const std::string &route, int frames, float aspect = 1.0f) const;
+    // `count` random views (camera/route.h: random_views), each with a field
+    // of view in [fov_min, fov_max] degrees.
+    std::vector<Camera> random_views(long count, unsigned long seed, float fov_min, float fov_max,
+                                     float aspect = 1.0f) const;
+
+private:
+    SceneSetup(std::string name, const CityOptions &city, std::shared_ptr<const Scene> scene,
+               const HierarchyOptions &hierarchy);
+    std::string name_;
+    CityOptions city_;   // the routes of the city are laid out along its streets
+    std::shared_ptr<const Scene> scene_;
+    std::shared_ptr<const Hierarchy> hierarchy_;
+};
+
+}  // namespace occu
