@@ -79,6 +79,7 @@
 #include "camera/route.h"
 #include "cli/arguments.h"
 #include "cli/progress.h"
+#include "evaluation/scene_setup.h"
 #include "gl/extensions.h"
 #include "gl/offscreen_context.h"
 #include "preprocessing/occluder_database.h"
@@ -219,12 +220,13 @@ int build(const Options &o)
 {
     using namespace occu;
     gl::select_driver(gl::parse_driver(o.driver));
-    CityOptions city;
-    city.copies = o.city_copies;
-    const Scene scene = scene_by_name(o.scene, city);
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-    const Hierarchy hierarchy = Hierarchy::build(scene, ho);
+    SceneChoice choice;
+    choice.name = o.scene;
+    choice.city.copies = o.city_copies;
+    choice.hierarchy.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
+    const SceneSetup setup(choice);
+    const Scene &scene = setup.scene();
+    const Hierarchy &hierarchy = setup.hierarchy();
     OccluderDatabase db;
     db.provenance = DatabaseProvenance::current(hierarchy, o.pre.describe(), o.pre.stacks.resolution);
     OccluderGrid &g = db.grid;
@@ -335,12 +337,12 @@ int view_cells(const Options &o)
                                  "section 4.1), which only the generated city provides: '" + o.scene +
                                  "' is a loaded scene whose meshes do not say which are solid");
     gl::select_driver(gl::parse_driver(o.driver));
-    CityOptions city;
-    city.copies = o.city_copies;
-    const Scene scene = generate_city(city);
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-    const Hierarchy hierarchy = Hierarchy::build(scene, ho);
+    SceneChoice choice;
+    choice.city.copies = o.city_copies;
+    choice.hierarchy.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
+    const SceneSetup setup(choice);
+    const Scene &scene = setup.scene();
+    const Hierarchy &hierarchy = setup.hierarchy();
     const auto cells_start = std::chrono::steady_clock::now();
     const ViewCells cells({scene.bounds.min.x, scene.bounds.min.z}, {scene.bounds.max.x, scene.bounds.max.z},
                           scene.prism_occluders, o.cells);
@@ -370,7 +372,7 @@ int view_cells(const Options &o)
                                  std::to_string(cells.size()));
     std::vector<bool> on_route(cells.size(), o.route.empty());
     if (!o.route.empty()) {
-        for (const Camera &camera : make_route(o.route, scene.bounds, city, o.route_frames, 1.0f))
+        for (const Camera &camera : setup.route(o.route, o.route_frames))
             if (const auto c = cells.locate(camera.position))
                 on_route[*c] = true;
     }

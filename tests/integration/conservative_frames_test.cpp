@@ -26,6 +26,7 @@
 #include "traversal/traversal.h"
 
 #include "frame_comparison.h"
+#include "small_city.h"
 
 using namespace occu;
 using occu::integration::draw_frame;
@@ -33,30 +34,9 @@ using occu::integration::DrawnFrame;
 
 namespace {
 
-// A city of 4x4 blocks in leaves of at most 128 triangles, drawn into a
-// 128x128 context with depth test and back-face culling.
-struct SmallCity {
-    SmallCity()
-    {
-        city.blocks_x = city.blocks_z = 4;
-        scene = generate_city(city);
-        HierarchyOptions ho;
-        ho.max_leaf_triangles = 128;
-        h.emplace(Hierarchy::build(scene, ho));
-        renderer.emplace(scene, *h);
-        glEnable(GL_DEPTH_TEST);
-        glEnable(GL_CULL_FACE);
-    }
-    gl::OffscreenContext ctx{128, 128};
-    CityOptions city;
-    Scene scene;
-    std::optional<Hierarchy> h;
-    std::optional<SceneRenderer> renderer;
-};
-
 // A minimum-occluder-set database for the small city, made here (maps of
 // 32 x 32 for its 128 x 128 frames).
-std::string small_city_database(const SmallCity &small)
+std::string small_city_database(const integration::SmallCity &small)
 {
     OccluderDatabase db;
     db.grid.points = {5, 1, 5};
@@ -66,10 +46,10 @@ std::string small_city_database(const SmallCity &small)
     db.grid.spacing.y = 0.0f;
     PreprocessOptions pre;
     pre.stacks.resolution = 32;
-    db.provenance = DatabaseProvenance::current(*small.h, pre.describe(), 32);
+    db.provenance = DatabaseProvenance::current(small.h, pre.describe(), 32);
     const Camera lens = street_level_lens(small.scene.bounds, 1.0f);
     for (std::uint32_t v = 0; v < db.grid.view_count(); ++v)
-        db.views[v] = select_occluders_for_view(*small.renderer, *small.h, db.grid.view_camera(v, lens), pre);
+        db.views[v] = select_occluders_for_view(small.renderer, small.h, db.grid.view_camera(v, lens), pre);
     // Per process: meson runs this binary once per driver, at the same time.
     const std::string path = ::testing::TempDir() + "occu-small-city-occluders-" + std::to_string(getpid()) + ".db";
     db.save(path);
@@ -90,9 +70,10 @@ struct Variant {
 
 TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
 {
-    const SmallCity small;
-    const Hierarchy &h = *small.h;
-    const SceneRenderer &renderer = *small.renderer;
+    // A city of 4x4 blocks in leaves of at most 128 triangles, 128x128 frames.
+    const integration::SmallCity small(4, 128, 128);
+    const Hierarchy &h = small.h;
+    const SceneRenderer &renderer = small.renderer;
     const StrategyContext context{small.scene, h, renderer};
     const std::string database = small_city_database(small);
     glClearColor(0, 0, 0, 0);
@@ -131,7 +112,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
         // The city's routes, and random views from inside its bounds (eyes in
         // buildings and streets alike, looking anywhere).
         for (const char *route : {"dense", "medium", "open", "random:6:2026"}) {
-            const auto cameras = make_route(route, small.scene.bounds, small.city, 5, 1.0f);
+            const auto cameras = small.setup.route(route, 5);
             for (std::size_t f = 0; f < cameras.size(); ++f) {
                 const VisibilityTruth truth = oracle.see(cameras[f], 128, 128);
                 const Frame frame(cameras[f], 128, 128, &truth);
@@ -169,15 +150,14 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
 TEST(ConservativeCulling, FramesEqualUnculledFramesFarAway)
 {
     gl::OffscreenContext ctx(256, 256);
-    const CityOptions city;
-    const Scene scene = generate_city(city);
-    const Hierarchy h = Hierarchy::build(scene);
-    SceneRenderer renderer(scene, h);
+    const SceneSetup city{SceneChoice{}};
+    const Hierarchy &h = city.hierarchy();
+    SceneRenderer renderer(city.scene(), h);
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
-    const StrategyContext context{scene, h, renderer};
+    const StrategyContext context{city.scene(), h, renderer};
     const Strategy none = make_strategy("none", context), ou = make_strategy("ou:max-test-area=1", context);
-    const auto cameras = make_route("open", scene.bounds, city, 3, 1.0f);
+    const auto cameras = city.route("open", 3);
     std::uint64_t drawn_none = 0, drawn_ou = 0;
     for (std::size_t f = 0; f < cameras.size(); ++f) {
         const Frame frame(cameras[f], 256, 256);

@@ -13,19 +13,18 @@
 #include "gl/state.h"
 #include "scene/city.h"
 
+#include "small_city.h"
+
 using namespace occu;
 
 TEST(Cullers, LeaveTheCallersFramebufferAndStateAlone)
 {
-    gl::OffscreenContext ctx(96, 96);
-    CityOptions city;
-    city.blocks_x = city.blocks_z = 3;
-    const Scene scene = generate_city(city);
-    const Hierarchy h = Hierarchy::build(scene);
-    SceneRenderer renderer(scene, h);
-    const StrategyContext context{scene, h, renderer};
-    const Camera camera = make_route("dense", scene.bounds, city, 1, 1.0f)[0];
-    Oracle oracle(renderer, h);
+    const integration::SmallCity city(3, 256, 96);
+    const gl::OffscreenContext &ctx = city.ctx;
+    const Hierarchy &h = city.h;
+    const StrategyContext context = city.context();
+    const Camera camera = city.setup.route("dense", 1)[0];
+    Oracle oracle(city.renderer, h);
     const VisibilityTruth truth = oracle.see(camera, 96, 96);
     const Frame frame(camera, 96, 96, &truth);
 
