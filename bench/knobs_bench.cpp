@@ -66,6 +66,8 @@ struct Options {
     std::string driver = "llvmpipe";
     std::string out = "knobs-out";
     bool plots = true;
+    std::string databases = default_database_directory();
+    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -76,14 +78,16 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-knobs [--routes ROUTE,...] [--strategies NAME,...] [--knob SETTING=V1,V2,...]...\n"
                  "                        [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--out DIR]\n"
-                 "                        [--plots on|off]\n"
+                 "                        [--plots on|off] [--databases DIR] [--make-databases required|all]\n"
                  "Sweeps every approximation and cost setting of each strategy (default: every registered family\n"
                  "with one), and the common knobs batch and leaf-triangles, on each route (default\n"
                  "dense,medium,open; 20 frames, 512x512), beside vfc and ideal. --knob keeps only the named\n"
                  "settings (repeat it for several), with the given values. Writes DIR/knobs.csv and DIR/<strategy>.png\n"
                  "(default DIR knobs-out) and prints a table per strategy; exits 1 when an approximation knob has\n"
-                 "no value exact (0 wrong pixels) on every route.\n\nstrategies:\n%s",
-                 strategies_help().c_str());
+                 "no value exact (0 wrong pixels) on every route. The databases the variants require are made\n"
+                 "before their runs in --databases DIR (%s) and found there by later runs; --make-databases\n"
+                 "all makes every one they read (a whole PVS database per pvs variant: long).\n\nstrategies:\n%s",
+                 default_database_directory().c_str(), strategies_help().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
 
@@ -293,6 +297,8 @@ Options parse(int argc, char **argv)
         else if (a == "--driver") o.driver = v;
         else if (a == "--out") o.out = v;
         else if (a == "--plots") o.plots = switch_option(a, v);
+        else if (a == "--databases") o.databases = v;
+        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else
             return false;
         return true;
@@ -306,9 +312,6 @@ Options parse(int argc, char **argv)
             if (c.family->needs_truth || c.family->settings.empty() ||
                 !std::any_of(c.family->settings.begin(), c.family->settings.end(), sweeps))
                 usage("--strategies: " + s + " has no approximation or cost setting to sweep");
-            if (c.settings.knows("selection") && c.settings.text("selection") == "mos")
-                usage("--strategies: " + s + " needs an occluder database made by occu-preprocess build; "
-                      "occu-bench-knobs leaves it out");
         }
     } catch (const std::invalid_argument &e) {
         usage(e.what());
@@ -326,6 +329,8 @@ void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup 
     SessionOptions so;
     so.batch = default_batch;
     so.lost_pixels = SessionOptions::PixelCheck::all;
+    DatabaseProvider databases(o.databases, o.make_databases);
+    so.databases = &databases;
     MeasurementSession session(setup, ctx, so);
     std::vector<std::size_t> variant_of;   // per strategy of the session
     for (std::size_t i = 0; i < sweep.variants.size(); ++i) {

@@ -52,7 +52,8 @@ struct Options {
     int batch = 32;
     double switch_off = 0.5;
     bool coherence = true;
-    std::map<std::string, std::string> databases;   // scene -> occluder database (om-mos, pc-mos)
+    std::string databases = default_database_directory();
+    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::all;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -63,15 +64,17 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-no-occlusion [--strategies NAME,...] [--frames N] [--rounds R] [--size PIXELS]\n"
                  "                               [--driver llvmpipe|softpipe] [--batch N] [--switch-off F]\n"
-                 "                               [--coherence on|off] [--city-occluder-db FILE] [--field-occluder-db FILE]\n"
+                 "                               [--coherence on|off] [--databases DIR] [--make-databases required|all]\n"
                  "Runs every strategy (default: every name of the registry, a preset that repeats its family's\n"
                  "defaults once) side by side with vfc on the city's open route and on the field's overhead route\n"
                  "(default 120 frames each, 512x512, llvmpipe) and prints each one's frame time against vfc's with\n"
                  "PASS or OVER against %.2fx. --rounds R walks each route R times, the strategies made anew each\n"
                  "time (their first frame and probes included each time), and gives the figures of all frames\n"
-                 "with the least and greatest round's mean against vfc's. Strategies that need an occluder database (selection=mos) run on a\n"
-                 "scene only when one is given for it (occu-preprocess build --scene city|field --cache DIR).\n",
-                 target);
+                 "with the least and greatest round's mean against vfc's. The databases the strategies read are made\n"
+                 "before the runs in --databases DIR (%s) and found there by later runs (--make-databases\n"
+                 "all, the default here, so that no frame time includes making one). A strategy whose family\n"
+                 "refuses a scene is left out of it, with why.\n",
+                 target, default_database_directory().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
 
@@ -109,8 +112,8 @@ Options parse(int argc, char **argv)
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
         else if (a == "--coherence") o.coherence = switch_option(a, v);
-        else if (a == "--city-occluder-db") o.databases["city"] = v;
-        else if (a == "--field-occluder-db") o.databases["field"] = v;
+        else if (a == "--databases") o.databases = v;
+        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else
             return false;
         return true;
@@ -169,9 +172,7 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
     SceneResult out;
     out.scene = scene_name;
     out.route = route_name;
-    SceneChoice choice;
-    choice.name = scene_name;
-    const SceneSetup setup(choice);
+    const SceneSetup setup({scene_name, 1, HierarchyOptions{}.max_leaf_triangles});
     const std::vector<Camera> route = setup.route(route_name, o.frames);
     out.triangles = setup.scene().triangle_count();
     out.leaves = setup.hierarchy().leaf_count();
@@ -180,24 +181,19 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
     so.coherence = o.coherence;
     so.switch_off = o.switch_off;
     so.lost_pixels = SessionOptions::PixelCheck::none;
+    DatabaseProvider databases(o.databases, o.make_databases);
+    so.databases = &databases;
 
     // One walk of the route by every strategy, made anew in a session of its own.
     auto walk = [&](bool first) {
         auto session = std::make_unique<MeasurementSession>(setup, ctx, so);
         auto add = [&](const std::string &label, const std::string &spec) {
-            const StrategyChoice c = choose_strategy(spec);
-            std::vector<std::string> common;
-            if (c.settings.knows("selection") && c.settings.text("selection") == "mos") {
-                const auto db = o.databases.find(scene_name);
-                if (db == o.databases.end()) {
-                    if (first)
-                        out.left_out.push_back(spec + ": needs an occluder database for the " + scene_name + " (--" +
-                                               scene_name + "-occluder-db)");
-                    return;
-                }
-                common.push_back("database=" + db->second);
+            if (const std::string why = choose_strategy(spec).family->refusal(setup.scene()); !why.empty()) {
+                if (first)
+                    out.left_out.push_back(spec + ": " + why);
+                return;
             }
-            session->add(spec, common, label);
+            session->add(spec, {}, label);
         };
         for (const std::string &s : o.strategies) {
             add(s, s);

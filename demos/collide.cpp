@@ -205,11 +205,7 @@ int main(int argc, char **argv)
     const Options o = parse(argc, argv);
     try {
         gl::select_driver(gl::parse_driver(o.driver));
-        SceneChoice choice;
-        choice.name = o.scene;
-        choice.city.copies = o.city_copies;
-        choice.hierarchy.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-        const SceneSetup setup(choice);
+        const SceneSetup setup({o.scene, o.city_copies, std::uint32_t(o.leaf_triangles)});
         const Scene &scene = setup.scene();
         const Hierarchy &hierarchy = setup.hierarchy();
         const std::vector<Camera> route = setup.route(o.route, o.frames);

@@ -220,22 +220,13 @@ int build(const Options &o)
 {
     using namespace occu;
     gl::select_driver(gl::parse_driver(o.driver));
-    SceneChoice choice;
-    choice.name = o.scene;
-    choice.city.copies = o.city_copies;
-    choice.hierarchy.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-    const SceneSetup setup(choice);
+    const SceneSetup setup({o.scene, o.city_copies, std::uint32_t(o.leaf_triangles)});
     const Scene &scene = setup.scene();
     const Hierarchy &hierarchy = setup.hierarchy();
     OccluderDatabase db;
     db.provenance = DatabaseProvenance::current(hierarchy, o.pre.describe(), o.pre.stacks.resolution);
-    OccluderGrid &g = db.grid;
-    g.points = o.grid;
-    g.directions = o.directions;
-    const glm::vec3 lo = scene.bounds.min, size = scene.bounds.extent();
-    auto step = [](float extent, int n) { return n > 1 ? extent / float(n - 1) : 0.0f; };
-    g.spacing = {step(size.x, o.grid.x), step(size.y, o.grid.y), step(size.z, o.grid.z)};
-    g.origin = {lo.x, lo.y + o.eye_height, lo.z};
+    db.grid = OccluderGrid::over_scene(scene.bounds, o.grid, o.directions, o.eye_height);
+    const OccluderGrid &g = db.grid;
     const Camera lens = street_level_lens(scene.bounds, 1.0f);
 
     // With --cache the database is named by what it depends on, and made
@@ -337,10 +328,7 @@ int view_cells(const Options &o)
                                  "section 4.1), which only the generated city provides: '" + o.scene +
                                  "' is a loaded scene whose meshes do not say which are solid");
     gl::select_driver(gl::parse_driver(o.driver));
-    SceneChoice choice;
-    choice.city.copies = o.city_copies;
-    choice.hierarchy.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-    const SceneSetup setup(choice);
+    const SceneSetup setup({"city", o.city_copies, std::uint32_t(o.leaf_triangles)});
     const Scene &scene = setup.scene();
     const Hierarchy &hierarchy = setup.hierarchy();
     const auto cells_start = std::chrono::steady_clock::now();
@@ -354,15 +342,7 @@ int view_cells(const Options &o)
     ViewCellVisibility visibility(scene, hierarchy, cells, o.visibility);
 
     PvsDatabase db;
-    db.provenance.hierarchy = hierarchy.fingerprint();
-    db.provenance.leaves = hierarchy.leaf_count();
-    db.provenance.epsilon = o.visibility.epsilon;
-    db.provenance.pixel = o.visibility.pixel;
-    db.provenance.initial_extent = o.visibility.initial_extent;
-    db.provenance.max_edge = o.cells.max_edge;
-    db.provenance.clearance = o.cells.clearance;
-    db.provenance.bottom = o.cells.bottom;
-    db.provenance.top = o.cells.top;
+    db.provenance = PvsProvenance::current(hierarchy, o.cells, o.visibility);
     for (std::size_t c = 0; c < cells.size(); ++c)
         db.cells.push_back(cells.triangle(c));
 

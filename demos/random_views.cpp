@@ -31,7 +31,6 @@
 #include "culling/registry.h"
 #include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
-#include "preprocessing/view_preprocessing.h"
 
 namespace {
 
@@ -57,9 +56,10 @@ struct Options {
     bool coherence = false;
     double switch_off = 0.0;
     float fov_min = 20.0f, fov_max = 120.0f;
-    glm::ivec3 mos_grid{4, 2, 4};   // the databases made at start: cells of the bounds
-    int mos_headings = 4;
+    std::vector<std::string> common;   // --set key=value, for every strategy that has the key
     std::string out = "random-views-out";
+    std::string databases = default_database_directory();
+    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -71,20 +71,20 @@ struct Options {
                  "usage: occu-random-views [--scene city|field|FILE[,...]]... [--views N] [--seed S]\n"
                  "                         [--size PIXELS] [--strategies NAME[:key=value...],...]\n"
                  "                         [--driver llvmpipe|softpipe] [--fov MIN,MAX] [--leaf-triangles N]\n"
-                 "                         [--batch N] [--coherence on|off] [--switch-off F]\n"
-                 "                         [--mos-grid NX,NY,NZ/HEADINGS] [--out DIR]\n"
+                 "                         [--batch N] [--coherence on|off] [--switch-off F] [--set key=value]...\n"
+                 "                         [--databases DIR] [--make-databases required|all] [--out DIR]\n"
                  "Renders --views random cameras (300; shared evenly among the scenes) with every strategy and\n"
                  "counts the visible pixels each frame lost against the unculled frame of the same camera.\n"
                  "Scenes (default: city,%s,%s):\n"
                  "'city' is the procedural city; a FILE is read through assimp. Strategies (default: every\n"
-                 "conservative strategy of the registry, presets included; pvs runs only on the city, the one\n"
-                 "scene with 2.5D occluders). om-mos and pc-mos without database=FILE take an occluder database\n"
-                 "made at start for each scene: a view of each heading at the centre of each cell of the\n"
-                 "scene's bounds (--mos-grid, 4,2,4/4). --fov: vertical fields of view in degrees (20,120).\n"
-                 "--coherence (off) and\n"
+                 "conservative strategy of the registry, presets included; one whose family refuses a scene\n"
+                 "is left out of it, with why). --set applies to every strategy that has the setting. A database\n"
+                 "a strategy requires and was not given is made for each scene in --databases DIR (%s)\n"
+                 "and found there by later runs (--make-databases all: every database a strategy reads).\n"
+                 "--fov: vertical fields of view in degrees (20,120). --coherence (off) and\n"
                  "--switch-off (0: never) are walkthrough's traversal policies. Exit status 1 when a pixel\n"
                  "was lost, 2 on a bad option.\n\nstrategies:\n%s",
-                 default_models[0], default_models[1], strategies_help().c_str());
+                 default_models[0], default_models[1], default_database_directory().c_str(), strategies_help().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
 
@@ -96,13 +96,6 @@ std::vector<std::string> default_strategies()
         if (choose_strategy(name).conservative())
             names.push_back(name);
     return names;
-}
-
-// A strategy that takes its occluders from a minimum-occluder-set database
-// and was given none: the run makes one at start, per scene.
-bool needs_database(const StrategyChoice &c)
-{
-    return c.settings.knows("selection") && c.settings.text("selection") == "mos" && c.settings.text("database").empty();
 }
 
 Options parse(int argc, char **argv)
@@ -137,17 +130,9 @@ Options parse(int argc, char **argv)
             if (o.fov_min > o.fov_max)
                 usage("--fov is MIN,MAX: " + f[0] + " > " + f[1]);
         }
-        else if (a == "--mos-grid") {
-            std::istringstream in(v);
-            char c1 = 0, c2 = 0, slash = 0;
-            glm::ivec3 g;
-            int h = 0;
-            if (!(in >> g.x >> c1 >> g.y >> c2 >> g.z >> slash >> h) || c1 != ',' || c2 != ',' || slash != '/' ||
-                !in.eof() || g.x < 1 || g.y < 1 || g.z < 1 || h < 1 || h > 64 || g.x * g.y * g.z > 4096)
-                usage("--mos-grid is NX,NY,NZ/HEADINGS (at most 4096 points, 64 headings), got '" + v + "'");
-            o.mos_grid = g;
-            o.mos_headings = h;
-        }
+        else if (a == "--set") o.common.push_back(v);
+        else if (a == "--databases") o.databases = v;
+        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else if (a == "--out") o.out = v;
         else
             return false;
@@ -167,8 +152,10 @@ Options parse(int argc, char **argv)
     if (o.strategies.empty())
         o.strategies = default_strategies();
     try {
+        std::vector<StrategyChoice> chosen;
         for (const std::string &s : o.strategies)
-            choose_strategy(s);
+            chosen.push_back(choose_strategy(s, o.common));
+        check_common_settings(chosen, o.common);
     } catch (const std::invalid_argument &e) {
         usage(e.what());
     }
@@ -199,7 +186,7 @@ std::string csv_field(const std::string &text)
 }
 
 // One scene: its cameras through every strategy.
-void run_scene(const Options &o, std::size_t scene_index, const SceneSetup &setup, long views, unsigned long seed,
+void run_scene(const Options &o, const SceneSetup &setup, long views, unsigned long seed,
                std::ofstream &csv, std::ofstream &summary, Totals &totals)
 {
     const std::string &scene_name = setup.name();
@@ -212,53 +199,22 @@ void run_scene(const Options &o, std::size_t scene_index, const SceneSetup &setu
     so.coherence = o.coherence;
     so.switch_off = o.switch_off;
     so.lost_pixels = SessionOptions::PixelCheck::all;
+    DatabaseProvider databases(o.databases, o.make_databases);
+    so.databases = &databases;
     MeasurementSession session(setup, ctx, so);
-    // Occluder databases for the strategies that need one, one per map
-    // resolution (the frame's size / the strategy's map divisor).
-    std::map<int, std::string> databases;
-    for (const std::string &spec : o.strategies) {
-        const StrategyChoice c = choose_strategy(spec);
-        if (!needs_database(c))
-            continue;
-        const int resolution = o.size / int(c.settings.integer("map-divisor"));
-        if (databases.count(resolution))
-            continue;
-        const auto start = std::chrono::steady_clock::now();
-        PreprocessOptions pre;
-        pre.stacks.resolution = resolution;
-        pre.stacks.map_divisor = int(c.settings.integer("map-divisor"));
-        Camera lens;
-        lens.near_plane = 1e-3f * std::max(glm::length(scene.bounds.extent()), 1e-3f);
-        lens.far_plane = 2.0f * std::max(glm::length(scene.bounds.extent()), 1e-3f);
-        const OccluderDatabase db =
-            preprocess_database(session.renderer(), setup.hierarchy(), scene.bounds, o.mos_grid, o.mos_headings, lens, pre);
-        const std::string path = o.out + "/occluders-" + std::to_string(scene_index) + "-" +
-                                 std::to_string(resolution) + ".db";
-        db.save(path);
-        databases[resolution] = path;
-        std::printf("occluder database at start (for %s and the other mos strategies of its maps): %u views (%dx%dx%d points, %d headings), %dx%d maps, %.1f s: %s\n",
-                    spec.c_str(), db.grid.view_count(), o.mos_grid.x, o.mos_grid.y, o.mos_grid.z, o.mos_headings,
-                    resolution, resolution,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), path.c_str());
-    }
+    // A strategy whose family refuses the scene is left out, with why.
     std::vector<std::string> left_out;
     for (const std::string &spec : o.strategies) {
-        // pvs serves scenes with 2.5D occluders (the city's buildings) and refuses the others.
-        if (choose_strategy(spec).family->name == "pvs" && scene.prism_occluders.empty()) {
-            left_out.push_back(spec);
-            continue;
-        }
-        const StrategyChoice c = choose_strategy(spec);
-        std::vector<std::string> common;
-        if (needs_database(c))
-            common.push_back("database=" + databases.at(o.size / int(c.settings.integer("map-divisor"))));
-        session.add(spec, common);
+        if (const std::string why = choose_strategy(spec, o.common).family->refusal(scene); !why.empty())
+            left_out.push_back(spec + " (" + why + ")");
+        else
+            session.add(spec, o.common);
     }
     std::printf("\nscene %s: %zu triangles, %zu leaves; %ld random views (seed %lu), %dx%d, fov %g..%g, %s\n",
                 scene_name.c_str(), scene.triangle_count(), setup.hierarchy().leaf_count(), views, seed, o.size,
                 o.size, double(o.fov_min), double(o.fov_max), ctx.renderer().c_str());
     for (const std::string &s : left_out)
-        std::printf("left out: %s (it needs a scene with 2.5D occluders, as the city's buildings)\n", s.c_str());
+        std::printf("left out: %s\n", s.c_str());
     std::fflush(stdout);
 
     session.walk(cameras, "views of " + scene_name, [&](const SessionStrategy &s, const StrategyFrame &f) {
@@ -316,12 +272,8 @@ int main(int argc, char **argv)
         gl::select_driver(gl::parse_driver(o.driver));
         // Every scene is read before any is rendered: an unreadable one is named at once.
         std::vector<SceneSetup> scenes;
-        for (const std::string &s : o.scenes) {
-            SceneChoice choice;
-            choice.name = s;
-            choice.hierarchy.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-            scenes.emplace_back(choice);
-        }
+        for (const std::string &s : o.scenes)
+            scenes.emplace_back(SceneChoice(s, 1, std::uint32_t(o.leaf_triangles)));
         std::filesystem::create_directories(o.out);
         const std::string views_path = o.out + "/views.csv", summary_path = o.out + "/summary.csv";
         std::ofstream csv(views_path), summary(summary_path);
@@ -337,7 +289,7 @@ int main(int argc, char **argv)
         const auto start = std::chrono::steady_clock::now();
         for (std::size_t i = 0; i < o.scenes.size(); ++i) {
             const long share = o.views / long(o.scenes.size()) + (long(i) < o.views % long(o.scenes.size()) ? 1 : 0);
-            run_scene(o, i, scenes[i], share, o.seed + i, csv, summary, totals);
+            run_scene(o, scenes[i], share, o.seed + i, csv, summary, totals);
         }
         if (!csv.flush() || !summary.flush())
             throw std::runtime_error("cannot write '" + views_path + "' and '" + summary_path + "'");

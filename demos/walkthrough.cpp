@@ -51,6 +51,8 @@ struct Options {
     bool coherence = true;
     double switch_off = 0.5;
     std::string out = "walkthrough-out";
+    std::string databases = default_database_directory();
+    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
     bool report = true;                 // plots and index.html in `out` at the end
     std::vector<std::string> video;     // strategies of route.mp4; empty: none
 };
@@ -67,7 +69,7 @@ struct Options {
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--leaf-triangles N] [--batch N] [--coherence on|off] [--switch-off F]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
-                 "                   [--video STRATEGY,...]\n"
+                 "                   [--video STRATEGY,...] [--databases DIR] [--make-databases required|all]\n"
                  "--report (on) ends the run with the plots of frames.csv (tools/plot-walkthrough.sh, gnuplot)\n"
                  "and DIR/index.html, a page of the summary, the plots and the frames beside their top views\n"
                  "(tools/report-walkthrough.sh); --video makes DIR/route.mp4 of the named strategies' frames and\n"
@@ -75,7 +77,12 @@ struct Options {
                  "--set applies to every chosen strategy that has the setting. --coherence (temporal coherence)\n"
                  "applies to the strategies that query the rasterizer; --switch-off (least share of triangles\n"
                  "occlusion tests must cull; 0 never switches off) to those and to the strategies whose CPU\n"
-                 "work costs time each frame. ideal needs the oracle.\n\nstrategies:\n%s",
+                 "work costs time each frame. ideal needs the oracle.\n"
+                 "A database a strategy reads and was not given is made in --databases DIR (%s), named by\n"
+                 "everything it depends on, and found there by later runs: those a strategy requires, and with\n"
+                 "--make-databases all also those it would otherwise make during the run (inside its frame times).\n"
+                 "\nstrategies:\n%s",
+                 default_database_directory().c_str(),
                  strategies_help().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
@@ -105,6 +112,8 @@ Options parse(int argc, char **argv)
         else if (a == "--coherence") o.coherence = switch_option(a, v);
         else if (a == "--oracle") o.oracle = switch_option(a, v);
         else if (a == "--report") o.report = switch_option(a, v);
+        else if (a == "--databases") o.databases = v;
+        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else if (a == "--video") {
             o.video = list_items(v, ',');
             if (o.video.empty())
@@ -228,11 +237,7 @@ int main(int argc, char **argv)
     const Options o = parse(argc, argv);
     try {
         gl::select_driver(gl::parse_driver(o.driver));
-        SceneChoice choice;
-        choice.name = o.scene;
-        choice.city.copies = o.city_copies;
-        choice.hierarchy.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-        const SceneSetup setup(choice);
+        const SceneSetup setup({o.scene, o.city_copies, std::uint32_t(o.leaf_triangles)});
         const std::vector<Camera> route = setup.route(o.route, o.frames);
 
         gl::OffscreenContext ctx(o.size, o.size);
@@ -241,6 +246,8 @@ int main(int argc, char **argv)
         so.coherence = o.coherence;
         so.switch_off = o.switch_off;
         so.oracle = o.oracle;
+        DatabaseProvider databases(o.databases, o.make_databases);
+        so.databases = &databases;
         MeasurementSession session(setup, ctx, so);
         for (const std::string &spec : o.strategies)
             session.add(spec, o.common);

@@ -37,11 +37,11 @@ std::uint64_t next_random(std::uint64_t &state)
 
 TraversalPolicies::TraversalPolicies(const StrategyFamily &family, bool coherence_on, double min_gain)
 {
-    if (family.queries_rasterizer && coherence_on)
+    if (family.traversal.coherence && coherence_on)
         coherence.emplace();
-    if ((family.queries_rasterizer || family.costs_per_frame) && min_gain > 0.0) {
+    if (family.traversal.switch_off && min_gain > 0.0) {
         SwitchOff::Settings s;
-        s.min_gain = min_gain * family.switch_off_share;
+        s.min_gain = min_gain * family.traversal.switch_off_share;
         switch_off.emplace(s);
     }
 }
@@ -117,10 +117,16 @@ SessionStrategy &MeasurementSession::add(const std::string &spec, const std::vec
     const StrategyChoice choice = choose_strategy(spec, common);
     if (choice.family->needs_truth && !oracle_)
         throw std::invalid_argument(spec + " needs the oracle");
+    if (const std::string why = choice.family->refusal(scene_.scene()); !why.empty())
+        throw std::invalid_argument(why);
+    std::vector<std::string> settings = common;
+    if (options_.databases)
+        for (const std::string &s : options_.databases->settings_for(choice, context(), width_, height_))
+            settings.push_back(s);
     const bool checks_pixels =
         options_.lost_pixels == SessionOptions::PixelCheck::all ||
         (options_.lost_pixels == SessionOptions::PixelCheck::approximate && !choice.conservative());
-    SessionStrategy s{label.empty() ? spec : label, make_strategy(spec, context(), common), {}, batch ? batch : options_.batch,
+    SessionStrategy s{label.empty() ? spec : label, make_strategy(spec, context(), settings), {}, batch ? batch : options_.batch,
                       checks_pixels, {}};
     s.policies = TraversalPolicies(*s.strategy.choice.family, options_.coherence, options_.switch_off);
     strategies_.push_back(std::move(s));

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "culling/databases.h"
 #include "culling/registry.h"
 #include "evaluation/lost_pixels.h"
 #include "evaluation/oracle.h"
@@ -43,11 +44,10 @@ namespace gl {
 class OffscreenContext;
 }
 
-// A strategy's traversal policies (traversal/policies.h): temporal
-// coherence for the families whose tests query the rasterizer (when
-// `coherence`), switch-off for those and for the families whose CPU work
-// costs time every frame (when `switch_off`, the least share of triangles
-// occlusion tests must cull, is above 0).
+// A strategy's traversal policies (traversal/policies.h), those its family
+// wants (StrategyFamily::traversal): temporal coherence when `coherence`,
+// switch-off when `switch_off` (the least share of triangles occlusion
+// tests must cull) is above 0.
 struct TraversalPolicies {
     std::optional<VisibleNodeList> coherence;
     std::optional<SwitchOff> switch_off;
@@ -70,6 +70,10 @@ struct SessionOptions {
     PixelCheck lost_pixels = PixelCheck::approximate;
     std::uint64_t order_seed = 1998;   // the strategies' shuffled order in each frame
     float clear_colour[4] = {0.55f, 0.7f, 0.9f, 1.0f};
+    // Makes or finds the databases the strategies read and were not given
+    // (culling/databases.h); none: a strategy that requires one and was
+    // not given it refuses to be made.
+    DatabaseProvider *databases = nullptr;
 };
 
 // What one strategy measured over the frames it drew.
@@ -128,11 +132,12 @@ public:
     MeasurementSession &operator=(const MeasurementSession &) = delete;
 
     // Makes the strategy `spec` (NAME[:key=value...]) with the `common`
-    // settings that it has, named `label` in the results (default: spec),
-    // traversed `batch` nodes at a time (0: the options'). Throws
-    // std::invalid_argument as make_strategy does, and when the strategy
-    // needs the oracle and the session has none; a strategy that refuses
-    // the scene or its settings throws what it throws.
+    // settings that it has and the databases the options' provider gives
+    // it, named `label` in the results (default: spec), traversed `batch`
+    // nodes at a time (0: the options'). Throws std::invalid_argument as
+    // make_strategy does (a scene the family refuses among it), and when
+    // the strategy needs the oracle and the session has none; a strategy
+    // that refuses its settings throws what it throws.
     SessionStrategy &add(const std::string &spec, const std::vector<std::string> &common = {},
                          const std::string &label = {}, std::size_t batch = 0);
 

@@ -6,6 +6,7 @@
 // renderer or a strategy made over them may hold on to them.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +26,14 @@ struct SceneChoice {
     std::string name = "city";
     CityOptions city;
     HierarchyOptions hierarchy;
+
+    SceneChoice() = default;
+    // A program's --scene, --city-copies and --leaf-triangles.
+    SceneChoice(std::string scene, int city_copies, std::uint32_t leaf_triangles) : name(std::move(scene))
+    {
+        city.copies = city_copies;
+        hierarchy.max_leaf_triangles = leaf_triangles;
+    }
 };
 
 class SceneSetup {

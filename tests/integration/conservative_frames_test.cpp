@@ -1,8 +1,8 @@
 // Conservative strategies never remove a visible pixel: on short routes of
 // a small city and random views inside it, every frame of every conservative strategy in the registry
 // (and of its traversal variants: strictly front to back, in batches, with
-// temporal coherence, leaves tested by their triangles, from a minimum
-// occluder set database preprocessed here) equals the unculled frame byte
+// temporal coherence, leaves tested by their triangles, from the databases
+// they require, made here) equals the unculled frame byte
 // for byte, while the occlusion strategies draw fewer triangles (so the
 // comparison can fail). Runs on the driver meson selects with GALLIUM_DRIVER.
 #include <gtest/gtest.h>
@@ -11,17 +11,17 @@
 
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <vector>
 
 #include "camera/route.h"
+#include "culling/databases.h"
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
-#include "preprocessing/occluder_database.h"
-#include "preprocessing/view_preprocessing.h"
 #include "scene/city.h"
 #include "traversal/traversal.h"
 
@@ -34,27 +34,10 @@ using occu::integration::DrawnFrame;
 
 namespace {
 
-// A minimum-occluder-set database for the small city, made here (maps of
-// 32 x 32 for its 128 x 128 frames).
-std::string small_city_database(const integration::SmallCity &small)
-{
-    OccluderDatabase db;
-    db.grid.points = {5, 1, 5};
-    db.grid.directions = 4;
-    db.grid.origin = small.scene.bounds.min + glm::vec3(0.0f, 1.7f, 0.0f);
-    db.grid.spacing = small.scene.bounds.extent() / 4.0f;
-    db.grid.spacing.y = 0.0f;
-    PreprocessOptions pre;
-    pre.stacks.resolution = 32;
-    db.provenance = DatabaseProvenance::current(small.h, pre.describe(), 32);
-    const Camera lens = street_level_lens(small.scene.bounds, 1.0f);
-    for (std::uint32_t v = 0; v < db.grid.view_count(); ++v)
-        db.views[v] = select_occluders_for_view(small.renderer, small.h, db.grid.view_camera(v, lens), pre);
-    // Per process: meson runs this binary once per driver, at the same time.
-    const std::string path = ::testing::TempDir() + "occu-small-city-occluders-" + std::to_string(getpid()) + ".db";
-    db.save(path);
-    return path;
-}
+// The databases the strategies require, made by the database provider
+// (culling/databases.h) for the small city, smaller than by default: 5 x 5
+// grid points, 4 headings each, maps of 32 x 32 for the 128 x 128 frames.
+const std::vector<std::string> small_databases = {"database-grid=5", "database-headings=4"};
 
 struct Variant {
     std::string spec;
@@ -75,7 +58,9 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     const Hierarchy &h = small.h;
     const SceneRenderer &renderer = small.renderer;
     const StrategyContext context{small.scene, h, renderer};
-    const std::string database = small_city_database(small);
+    // Per process: meson runs this binary once per driver, at the same time.
+    DatabaseProvider databases(::testing::TempDir() + "occu-small-city-databases-" + std::to_string(getpid()),
+                               DatabaseProvider::Makes::required, nullptr);
     glClearColor(0, 0, 0, 0);
 
     // Every listed strategy, and the traversal variants of the occlusion unit.
@@ -97,7 +82,10 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     std::uint64_t drawn_none = 0;
     for (const Variant &v : variants) {
         SCOPED_TRACE(v.spec);
-        Strategy s = make_strategy(v.spec, context, {"database=" + database});
+        std::vector<std::string> settings = small_databases;
+        for (const std::string &d : databases.settings_for(choose_strategy(v.spec, small_databases), context, 128, 128))
+            settings.push_back(d);
+        Strategy s = make_strategy(v.spec, context, settings);
         VisibleNodeList coherence(3);
         TraversalOptions options;
         options.batch = v.batch;
@@ -139,7 +127,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     EXPECT_LE(drawn["ou:proxy=triangles:max-test-area=1/16"], drawn["ou:max-test-area=1/16"])
         << "triangles as proxies should cull at least what boxes do";
     EXPECT_LE(drawn["ideal/16"], drawn["ou:max-test-area=1/1"]) << "nothing culls more than the floor";
-    std::remove(database.c_str());
+    std::filesystem::remove_all(databases.directory());
     // A query counts the whole grown proxy, a tile only the box's footprint:
     // hp sees at least the fragments ou does, so it draws about as much or more.
     EXPECT_GE(drawn["hp/16"], drawn["ou:max-test-area=1/16"] * 99 / 100);

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "camera/route.h"
+#include "culling/databases.h"
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
 #include "evaluation/measurement_session.h"
@@ -141,9 +142,11 @@ TEST(NoOcclusionField, EveryStrategyDrawsUnculledFramesAndSwitchesOff)
     std::size_t with_switch_off = 0;
     for (const std::string &name : strategy_names()) {
         const StrategyChoice choice = choose_strategy(name);
-        // The minimum-occluder-set strategies need a database made for the
-        // scene; their switch-off is om-ps's and pc-ps's.
-        if (!choice.conservative() || (choice.settings.knows("selection") && choice.settings.text("selection") == "mos"))
+        // Strategies that require a database (made for the scene) switch
+        // off as the same family without one does.
+        const auto read = databases_read(choice);
+        if (!choice.conservative() ||
+            std::any_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->required; }))
             continue;
         SCOPED_TRACE(name);
         Strategy s = make_strategy(name, context);
