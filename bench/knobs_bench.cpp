@@ -86,7 +86,7 @@ struct Options {
                  "(default DIR knobs-out) and prints a table per strategy; exits 1 when an approximation knob has\n"
                  "no value exact (0 wrong pixels) on every route. The databases the variants require are made\n"
                  "before their runs in --databases DIR (%s) and found there by later runs; --make-databases\n"
-                 "all makes every one they read (a whole PVS database per pvs variant: long).\n\nstrategies:\n%s",
+                 "all makes every one they read (a whole database per variant that reads one: long for some).\n\nstrategies:\n%s",
                  default_database_directory().c_str(), strategies_help().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
