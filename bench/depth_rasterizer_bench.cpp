@@ -23,12 +23,10 @@
 #include <thread>
 #include <vector>
 
-#include "camera/route.h"
 #include "culling/culler.h"
-#include "raster/depth_rasterizer.h"
-#include "scene/city.h"
-#include "spatial/hierarchy.h"
+#include "evaluation/scene_setup.h"
 #include "strategies/leone_occluder_skins/skin_occluders.h"
+#include "raster/depth_rasterizer.h"
 
 namespace {
 
@@ -45,9 +43,9 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "usage: occu-bench-raster [FRAMES >= 1] [SIZE >= 1]\n");
         return 2;
     }
-    const occu::CityOptions city;
-    const occu::Scene scene = occu::generate_city(city);
-    const occu::Hierarchy hierarchy = occu::Hierarchy::build(scene);
+    const occu::SceneSetup setup{occu::SceneChoice{}};
+    const occu::Scene &scene = setup.scene();
+    const occu::Hierarchy &hierarchy = setup.hierarchy();
     occu::SkinOccluders skins(scene, "", 8);
     std::vector<DepthRasterizer::Isa> isas{DepthRasterizer::Isa::scalar};
     if (DepthRasterizer::avx2_supported())
@@ -55,7 +53,7 @@ int main(int argc, char **argv)
 
     std::printf("route,load,divisor,isa,polygons,ms_per_frame,million_polygons_per_second\n");
     for (const char *route : {"dense", "street", "medium", "open"}) {
-        const auto cameras = occu::make_route(route, scene.bounds, city, frames, 1.0f);
+        const auto cameras = setup.route(route, frames);
         // Per frame, the triangles of the leaves in the frustum, gathered
         // once: positions and indices of one mesh at a time.
         struct Batch {

@@ -7,8 +7,9 @@
 // the traversal's batch (nodes tested together) and the hierarchy's leaf
 // size (triangles per leaf). Each variant is the strategy spec
 // "NAME:setting=value", run side by side frame by frame with vfc and ideal
-// (the floor) in one walkthrough-style run per route (leaf sizes: one run
-// per route and size, every strategy at its default). Wrong pixels are
+// (the floor) in one measurement session per route
+// (evaluation/measurement_session.h; leaf sizes: one per route and size,
+// every strategy at its default). Wrong pixels are
 // counted for every variant, exact or not, against the unculled frame
 // (evaluation/lost_pixels.h: depth ties are not wrong); efficiency is
 // occluded leaves culled / occluded leaves against the oracle.
@@ -40,22 +41,13 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "camera/route.h"
 #include "cli/arguments.h"
-#include "cli/progress.h"
 #include "culling/registry.h"
-#include "evaluation/lost_pixels.h"
-#include "evaluation/oracle.h"
-#include "evaluation/side_by_side.h"
-#include "gl/gl_headers.h"
+#include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
-#include "gl/state.h"
-#include "scene/city.h"
-#include "traversal/traversal.h"
 
 namespace {
 
@@ -74,6 +66,8 @@ struct Options {
     std::string driver = "llvmpipe";
     std::string out = "knobs-out";
     bool plots = true;
+    std::string databases = default_database_directory();
+    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -84,14 +78,16 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-knobs [--routes ROUTE,...] [--strategies NAME,...] [--knob SETTING=V1,V2,...]...\n"
                  "                        [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--out DIR]\n"
-                 "                        [--plots on|off]\n"
+                 "                        [--plots on|off] [--databases DIR] [--make-databases required|all]\n"
                  "Sweeps every approximation and cost setting of each strategy (default: every registered family\n"
                  "with one), and the common knobs batch and leaf-triangles, on each route (default\n"
                  "dense,medium,open; 20 frames, 512x512), beside vfc and ideal. --knob keeps only the named\n"
                  "settings (repeat it for several), with the given values. Writes DIR/knobs.csv and DIR/<strategy>.png\n"
                  "(default DIR knobs-out) and prints a table per strategy; exits 1 when an approximation knob has\n"
-                 "no value exact (0 wrong pixels) on every route.\n\nstrategies:\n%s",
-                 strategies_help().c_str());
+                 "no value exact (0 wrong pixels) on every route. The databases the variants require are made\n"
+                 "before their runs in --databases DIR (%s) and found there by later runs; --make-databases\n"
+                 "all makes every one they read (a whole database per variant that reads one: long for some).\n\nstrategies:\n%s",
+                 default_database_directory().c_str(), strategies_help().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
 
@@ -180,15 +176,6 @@ struct Variant {
     bool baseline = false;  // vfc or ideal
     std::string refused;    // why the strategy refused these settings when built (settings that must agree)
     // What it measured, per route.
-    struct Measured {
-        std::vector<double> ms;
-        double triangles = 0;
-        std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0, wrong = 0, max_wrong = 0;
-        double mean_ms() const { return occu::mean_ms(ms); }
-        double median_ms() const { return occu::median_ms(ms); }
-        double wrong_per_frame() const { return ms.empty() ? 0.0 : double(wrong) / double(ms.size()); }
-        double efficiency() const { return occluded ? 100.0 * double(occluded_culled) / double(occluded) : 100.0; }
-    };
     std::vector<Measured> routes;
 };
 
@@ -310,6 +297,8 @@ Options parse(int argc, char **argv)
         else if (a == "--driver") o.driver = v;
         else if (a == "--out") o.out = v;
         else if (a == "--plots") o.plots = switch_option(a, v);
+        else if (a == "--databases") o.databases = v;
+        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else
             return false;
         return true;
@@ -323,9 +312,6 @@ Options parse(int argc, char **argv)
             if (c.family->needs_truth || c.family->settings.empty() ||
                 !std::any_of(c.family->settings.begin(), c.family->settings.end(), sweeps))
                 usage("--strategies: " + s + " has no approximation or cost setting to sweep");
-            if (c.settings.knows("selection") && c.settings.text("selection") == "mos")
-                usage("--strategies: " + s + " needs an occluder database made by occu-preprocess build; "
-                      "occu-bench-knobs leaves it out");
         }
     } catch (const std::invalid_argument &e) {
         usage(e.what());
@@ -333,82 +319,44 @@ Options parse(int argc, char **argv)
     return o;
 }
 
-// One side-by-side run over a route: the variants of `leaf` triangles per
-// leaf, frame by frame, their order rotating, as walkthrough runs them.
-void walk(const Options &o, std::size_t route_index, int leaf, Sweep &sweep, const Scene &scene,
-          const CityOptions &city, gl::OffscreenContext &ctx, std::set<std::string> &notes)
+// One measurement session over a route: the variants of `leaf` triangles
+// per leaf, frame by frame, as walkthrough runs them.
+void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup &setup, Sweep &sweep,
+          gl::OffscreenContext &ctx, std::set<std::string> &notes)
 {
     const std::string &route_name = o.routes[route_index];
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = std::uint32_t(leaf);
-    const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-    const std::vector<Camera> route = make_route(route_name, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
-    SceneRenderer renderer(scene, hierarchy);
-    const StrategyContext context{scene, hierarchy, renderer};
-    struct Live {
-        std::size_t variant;
-        Strategy strategy;
-        TraversalPolicies policies;
-    };
-    std::vector<Live> live;
+    const std::vector<Camera> route = setup.route(route_name, o.frames);
+    SessionOptions so;
+    so.batch = default_batch;
+    so.lost_pixels = SessionOptions::PixelCheck::all;
+    DatabaseProvider databases(o.databases, o.make_databases);
+    so.databases = &databases;
+    MeasurementSession session(setup, ctx, so);
+    std::vector<std::size_t> variant_of;   // per strategy of the session
     for (std::size_t i = 0; i < sweep.variants.size(); ++i) {
-        const Variant &v = sweep.variants[i];
+        Variant &v = sweep.variants[i];
         if (v.leaf != leaf || !v.refused.empty())
             continue;
-        std::optional<Strategy> made;
         try {
-            made.emplace(make_strategy(v.spec, context));
+            session.add(v.spec, {}, v.spec, std::size_t(v.batch));
+            variant_of.push_back(i);
         } catch (const std::exception &e) {
             // Settings that must agree with each other (pvs: epsilon and pixel).
-            sweep.variants[i].refused = e.what();
-            continue;
+            v.refused = e.what();
         }
-        Live l{i, std::move(*made), {}};
-        l.policies = TraversalPolicies(*l.strategy.choice.family, true, 0.5);
-        live.push_back(std::move(l));
     }
-    const Strategy none = make_strategy("none", context);
-    Oracle oracle(renderer, hierarchy);
     std::printf("route %s, leaves of %d triangles (%zu leaves): %zu variants, %zu frames\n", route_name.c_str(), leaf,
-                hierarchy.leaf_count(), live.size(), route.size());
+                setup.hierarchy().leaf_count(), variant_of.size(), route.size());
     std::fflush(stdout);
-    const std::size_t pixels = std::size_t(o.size) * std::size_t(o.size);
-    std::vector<std::uint8_t> unculled(pixels * 4);
-    glEnable(GL_DEPTH_TEST);
-    glEnable(GL_CULL_FACE);
-    glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
-    for (std::size_t f = 0; f < route.size(); ++f) {
-        const VisibilityTruth truth = oracle.see(route[f], o.size, o.size);
-        const Frame frame(route[f], o.size, o.size, &truth);
-        TraversalOptions plain;
-        plain.batch = default_batch;
-        draw_timed_frame(renderer, hierarchy, *none.culler, frame, plain);
-        std::memcpy(unculled.data(), ctx.pixels(), pixels * 4);
-        for (std::size_t k = 0; k < live.size(); ++k) {
-            Live &l = live[(k + f) % live.size()];
-            Variant &v = sweep.variants[l.variant];
-            const TimedFrame d =
-                draw_timed_frame(renderer, hierarchy, *l.strategy.culler, frame, l.policies.options(std::size_t(v.batch)));
-            const PixelLoss loss =
-                count_lost_pixels(renderer, hierarchy, route[f], d.stats.drawn,
-                                  l.strategy.culler->orders_frame() ? nullptr : unculled.data(), ctx.pixels(), pixels);
-            const CullingQuality q = compare_with_truth(truth, d.stats.drawn);
-            Variant::Measured &m = v.routes[route_index];
-            m.ms.push_back(d.ms);
-            m.triangles += double(d.stats.triangles);
-            m.occluded += q.occluded;
-            m.occluded_culled += q.occluded_culled;
-            m.visible_culled += q.visible_culled;
-            m.wrong += loss.lost;
-            m.max_wrong = std::max(m.max_wrong, loss.lost);
-        }
-        progress("frames", long(f + 1), long(route.size()));
+    session.walk(route, "frames");
+    for (std::size_t k = 0; k < variant_of.size(); ++k) {
+        const SessionStrategy &s = session.strategies()[k];
+        Variant &v = sweep.variants[variant_of[k]];
+        v.routes[route_index] = s.measured;
+        if (s.strategy.culler->orders_frame() && v.batch != default_batch)
+            notes.insert(v.spec + " at batch " + std::to_string(v.batch) +
+                         ": orders its frame itself, the traversal's batch does not apply (its own `batch` setting does)");
     }
-    for (const Live &l : live)
-        if (l.strategy.culler->orders_frame() && sweep.variants[l.variant].batch != default_batch)
-            notes.insert(sweep.variants[l.variant].spec + " at batch " +
-                            std::to_string(sweep.variants[l.variant].batch) +
-                            ": orders its frame itself, the traversal's batch does not apply (its own `batch` setting does)");
 }
 
 // Per variant over the routes: the means of the routes' figures, and the most wrong pixels of a route.
@@ -423,17 +371,17 @@ Figures figures(const Variant &v, std::optional<std::size_t> route)
     Figures f;
     int n = 0;
     for (std::size_t r = 0; r < v.routes.size(); ++r) {
-        const Variant::Measured &m = v.routes[r];
+        const Measured &m = v.routes[r];
         if ((route && r != *route) || m.ms.empty())
             continue;
         ++n;
         f.ms += m.mean_ms();
         f.median += m.median_ms();
-        f.wrong += m.wrong_per_frame();
-        f.efficiency += m.efficiency();
-        f.triangles += m.triangles / double(m.ms.size());
+        f.wrong += m.per_frame(double(m.lost_pixels));
+        f.efficiency += m.efficiency_percent().value_or(100.0);
+        f.triangles += m.per_frame(m.triangles);
         f.visible_culled += double(m.visible_culled);
-        f.max_wrong = std::max(f.max_wrong, m.wrong);
+        f.max_wrong = std::max(f.max_wrong, m.lost_pixels);
     }
     if (n) {
         f.any = true;
@@ -601,14 +549,23 @@ int main(int argc, char **argv)
         gl::select_driver(gl::parse_driver(o.driver));
         for (Variant &v : sweep.variants)
             v.routes.resize(o.routes.size());
-        CityOptions city;
-        const Scene scene = generate_city(city);
+        // The city, its hierarchy for each leaf size swept.
+        std::map<int, SceneSetup> setups;
+        for (const Variant &v : sweep.variants)
+            if (!setups.count(v.leaf)) {
+                HierarchyOptions leaf;
+                leaf.max_leaf_triangles = std::uint32_t(v.leaf);
+                if (setups.empty()) {
+                    SceneChoice city;
+                    city.hierarchy = leaf;
+                    setups.emplace(v.leaf, SceneSetup(city));
+                } else {
+                    setups.emplace(v.leaf, setups.begin()->second.with_hierarchy(leaf));
+                }
+            }
         // Routes are checked before any run.
         for (const std::string &r : o.routes)
-            make_route(r, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
-        std::set<int> leaves;
-        for (const Variant &v : sweep.variants)
-            leaves.insert(v.leaf);
+            setups.begin()->second.route(r, o.frames);
         gl::OffscreenContext ctx(o.size, o.size);
         std::filesystem::create_directories(o.out);
         std::printf("occu-bench-knobs: %zu variants of %zu strategies, routes", sweep.variants.size() - 2,
@@ -620,8 +577,8 @@ int main(int argc, char **argv)
             std::printf("left out: %s\n", l.c_str());
         std::set<std::string> notes;
         for (std::size_t r = 0; r < o.routes.size(); ++r)
-            for (int leaf : leaves)
-                walk(o, r, leaf, sweep, scene, city, ctx, notes);
+            for (const auto &[leaf, setup] : setups)
+                walk(o, r, leaf, setup, sweep, ctx, notes);
 
         // The CSV: per row and route, then the means over the routes.
         const std::string path = o.out + "/knobs.csv";

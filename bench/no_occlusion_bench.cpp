@@ -6,13 +6,14 @@
 // `overhead` route, where nothing hides anything). The target: no strategy
 // slower than 1.05x vfc on either, by switching its tests off or otherwise.
 //
-// Per scene one side-by-side run (evaluation/side_by_side.h): every
-// strategy draws frame f before any draws frame f + 1, in an order that
-// rotates from frame to frame, so the machine's drifting load weighs on
-// all alike; a second vfc ("vfc again") runs beside the first, so that the
-// table shows the noise of a ratio between two identical strategies.
-// Traversal policies as the walkthrough's defaults: temporal coherence and
-// switch-off 0.5 where the family takes them (side_by_side.h).
+// Per scene and round one measurement session
+// (evaluation/measurement_session.h): every strategy draws frame f before
+// any draws frame f + 1, in an order shuffled per frame, so the machine's
+// drifting load and what one frame leaves to the next weigh on all alike;
+// a second vfc ("vfc again") runs beside the first, so that the table
+// shows the noise of a ratio between two identical strategies. Traversal
+// policies as the walkthrough's defaults: temporal coherence and
+// switch-off 0.5 where the family takes them.
 //
 // Prints per scene and strategy the mean, median and least frame ms, mean /
 // vfc's mean ("x vfc"), median / vfc's median, culling efficiency against
@@ -27,23 +28,14 @@
 #include <cstdlib>
 #include <exception>
 #include <map>
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "camera/route.h"
 #include "cli/arguments.h"
-#include "cli/progress.h"
 #include "culling/registry.h"
-#include "evaluation/oracle.h"
-#include "evaluation/side_by_side.h"
-#include "gl/gl_headers.h"
+#include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
-#include "gl/state.h"
-#include "scene/city.h"
-#include "scene/field.h"
-#include "scene/scene_file.h"
-#include "traversal/traversal.h"
 
 namespace {
 
@@ -60,7 +52,8 @@ struct Options {
     int batch = 32;
     double switch_off = 0.5;
     bool coherence = true;
-    std::map<std::string, std::string> databases;   // scene -> occluder database (om-mos, pc-mos)
+    std::string databases = default_database_directory();
+    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::all;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -71,15 +64,17 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-no-occlusion [--strategies NAME,...] [--frames N] [--rounds R] [--size PIXELS]\n"
                  "                               [--driver llvmpipe|softpipe] [--batch N] [--switch-off F]\n"
-                 "                               [--coherence on|off] [--city-occluder-db FILE] [--field-occluder-db FILE]\n"
+                 "                               [--coherence on|off] [--databases DIR] [--make-databases required|all]\n"
                  "Runs every strategy (default: every name of the registry, a preset that repeats its family's\n"
                  "defaults once) side by side with vfc on the city's open route and on the field's overhead route\n"
                  "(default 120 frames each, 512x512, llvmpipe) and prints each one's frame time against vfc's with\n"
                  "PASS or OVER against %.2fx. --rounds R walks each route R times, the strategies made anew each\n"
                  "time (their first frame and probes included each time), and gives the figures of all frames\n"
-                 "with the least and greatest round's mean against vfc's. Strategies that need an occluder database (selection=mos) run on a\n"
-                 "scene only when one is given for it (occu-preprocess build --scene city|field --cache DIR).\n",
-                 target);
+                 "with the least and greatest round's mean against vfc's. The databases the strategies read are made\n"
+                 "before the runs in --databases DIR (%s) and found there by later runs (--make-databases\n"
+                 "all, the default here, so that no frame time includes making one). A strategy whose family\n"
+                 "refuses a scene is left out of it, with why.\n",
+                 target, default_database_directory().c_str());
     std::exit(error.empty() ? 0 : 2);
 }
 
@@ -117,8 +112,8 @@ Options parse(int argc, char **argv)
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
         else if (a == "--coherence") o.coherence = switch_option(a, v);
-        else if (a == "--city-occluder-db") o.databases["city"] = v;
-        else if (a == "--field-occluder-db") o.databases["field"] = v;
+        else if (a == "--databases") o.databases = v;
+        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else
             return false;
         return true;
@@ -134,22 +129,6 @@ Options parse(int argc, char **argv)
     }
     return o;
 }
-
-// One strategy on one scene: what it measured.
-struct Run {
-    std::string label;
-    Strategy strategy;
-    TraversalPolicies policies;
-    std::vector<double> ms;
-    std::vector<std::uint32_t> tests;   // node tests per frame
-    std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0;
-    double triangles = 0;
-    bool baseline() const
-    {
-        const std::string &f = strategy.choice.family->name;
-        return f == "none" || f == "ideal" || label == "vfc";
-    }
-};
 
 struct Result {
     std::string label;
@@ -180,139 +159,119 @@ struct SceneResult {
     std::vector<std::string> left_out;
 };
 
+// Whether `s` is a reference rather than a strategy judged against vfc.
+bool baseline(const SessionStrategy &s)
+{
+    const std::string &f = s.strategy.choice.family->name;
+    return f == "none" || f == "ideal" || s.label == "vfc";
+}
+
 SceneResult run_scene(const Options &o, const std::string &scene_name, const std::string &route_name,
                       gl::OffscreenContext &ctx)
 {
     SceneResult out;
     out.scene = scene_name;
     out.route = route_name;
-    const CityOptions city;
-    const Scene scene = scene_by_name(scene_name, city);
-    const Hierarchy hierarchy = Hierarchy::build(scene);
-    const std::vector<Camera> route = make_route(route_name, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
-    SceneRenderer renderer(scene, hierarchy);
-    const StrategyContext context{scene, hierarchy, renderer};
-    out.triangles = scene.triangle_count();
-    out.leaves = hierarchy.leaf_count();
-    glEnable(GL_DEPTH_TEST);
-    glEnable(GL_CULL_FACE);
+    const SceneSetup setup({scene_name, 1, HierarchyOptions{}.max_leaf_triangles});
+    const std::vector<Camera> route = setup.route(route_name, o.frames);
+    out.triangles = setup.scene().triangle_count();
+    out.leaves = setup.hierarchy().leaf_count();
+    SessionOptions so;
+    so.batch = std::size_t(o.batch);
+    so.coherence = o.coherence;
+    so.switch_off = o.switch_off;
+    so.lost_pixels = SessionOptions::PixelCheck::none;
+    DatabaseProvider databases(o.databases, o.make_databases);
+    so.databases = &databases;
 
-    // The oracle's answers once: the frames are the same in every round.
-    Oracle oracle(renderer, hierarchy);
-    std::vector<VisibilityTruth> truth;
-    for (const Camera &c : route)
-        truth.push_back(oracle.see(c, o.size, o.size));
-
-    // One walk of the route by every strategy, made anew.
+    // One walk of the route by every strategy, made anew in a session of its own.
     auto walk = [&](bool first) {
-        std::vector<Run> runs;
+        auto session = std::make_unique<MeasurementSession>(setup, ctx, so);
         auto add = [&](const std::string &label, const std::string &spec) {
-            const StrategyChoice c = choose_strategy(spec);
-            std::vector<std::string> common;
-            if (c.settings.knows("selection") && c.settings.text("selection") == "mos") {
-                const auto db = o.databases.find(scene_name);
-                if (db == o.databases.end()) {
-                    if (first)
-                        out.left_out.push_back(spec + ": needs an occluder database for the " + scene_name + " (--" +
-                                               scene_name + "-occluder-db)");
-                    return;
-                }
-                common.push_back("database=" + db->second);
+            if (const std::string why = choose_strategy(spec).family->refusal(setup.scene()); !why.empty()) {
+                if (first)
+                    out.left_out.push_back(spec + ": " + why);
+                return;
             }
-            Run r{label, make_strategy(spec, context, common), {}, {}, {}};
-            r.policies = TraversalPolicies(*r.strategy.choice.family, o.coherence, o.switch_off);
-            runs.push_back(std::move(r));
+            session->add(spec, {}, label);
         };
         for (const std::string &s : o.strategies) {
             add(s, s);
             if (s == "vfc")
                 add("vfc again", "vfc");
         }
-        if (std::none_of(runs.begin(), runs.end(), [](const Run &r) { return r.label == "vfc"; }))
+        const auto &made = session->strategies();
+        if (std::none_of(made.begin(), made.end(), [](const SessionStrategy &s) { return s.label == "vfc"; }))
             add("vfc", "vfc");
         if (first) {
             std::printf("%s (%zu triangles, %zu leaves), route %s: %zu strategies, %zu frames, %d round(s), %dx%d, %s\n",
-                        scene_name.c_str(), out.triangles, out.leaves, route_name.c_str(), runs.size(), route.size(),
+                        scene_name.c_str(), out.triangles, out.leaves, route_name.c_str(), made.size(), route.size(),
                         o.rounds, o.size, o.size, ctx.renderer().c_str());
             for (const std::string &l : out.left_out)
                 std::printf("left out: %s\n", l.c_str());
             std::fflush(stdout);
         }
-        glEnable(GL_DEPTH_TEST);
-        glEnable(GL_CULL_FACE);
-        glClearColor(0.55f, 0.7f, 0.9f, 1.0f);
-        for (std::size_t f = 0; f < route.size(); ++f) {
-            const VisibilityTruth &t = truth[f];
-            const Frame frame(route[f], o.size, o.size, &t);
-            for (std::size_t k = 0; k < runs.size(); ++k) {
-                Run &r = runs[(k + f) % runs.size()];
-                const TimedFrame d = draw_timed_frame(renderer, hierarchy, *r.strategy.culler, frame,
-                                                      r.policies.options(std::size_t(o.batch)));
-                r.ms.push_back(d.ms);
-                r.tests.push_back(d.stats.nodes_tested);
-                r.triangles += double(d.stats.triangles);
-                const CullingQuality q = compare_with_truth(t, d.stats.drawn);
-                r.occluded += q.occluded;
-                r.occluded_culled += q.occluded_culled;
-                r.visible_culled += q.visible_culled;
-            }
-            progress(scene_name, long(f + 1), long(route.size()));
-        }
-        return runs;
+        session->walk(route, scene_name);
+        return session;
     };
 
     // Every round's frames pooled; per round its mean against vfc's, and
     // the node tests per frame over the route and over its last quarter.
-    std::vector<Run> runs;
+    std::vector<std::string> labels;
+    std::vector<Measured> pooled;
+    std::unique_ptr<MeasurementSession> first_round;
     std::map<std::string, std::vector<double>> round_ratio;
     std::map<std::string, double> tests, tests_last;
+    std::vector<bool> baselines;
     for (int round = 0; round < o.rounds; ++round) {
-        std::vector<Run> done = walk(round == 0);
+        std::unique_ptr<MeasurementSession> done = walk(round == 0);
+        const auto &strategies = done->strategies();
         const double vfc_round =
-            mean_ms(std::find_if(done.begin(), done.end(), [](const Run &r) { return r.label == "vfc"; })->ms);
-        for (std::size_t i = 0; i < done.size(); ++i) {
-            Run &r = done[i];
-            round_ratio[r.label].push_back(mean_ms(r.ms) / vfc_round);
-            const std::size_t n = r.tests.size(), last = std::max<std::size_t>(1, n / 4);
+            std::find_if(strategies.begin(), strategies.end(), [](const SessionStrategy &s) { return s.label == "vfc"; })
+                ->measured.mean_ms();
+        for (std::size_t i = 0; i < strategies.size(); ++i) {
+            const SessionStrategy &s = strategies[i];
+            const Measured &m = s.measured;
+            round_ratio[s.label].push_back(m.mean_ms() / vfc_round);
+            const std::size_t n = m.nodes_tested.size(), last = std::max<std::size_t>(1, n / 4);
             double all = 0, tail = 0;
             for (std::size_t j = 0; j < n; ++j) {
-                all += r.tests[j];
+                all += m.nodes_tested[j];
                 if (j >= n - last)
-                    tail += r.tests[j];
+                    tail += m.nodes_tested[j];
             }
-            tests[r.label] += all / double(n) / double(o.rounds);
-            tests_last[r.label] += tail / double(last) / double(o.rounds);
+            tests[s.label] += all / double(n) / double(o.rounds);
+            tests_last[s.label] += tail / double(last) / double(o.rounds);
             if (round == 0) {
-                runs.push_back(std::move(r));
-                continue;
+                labels.push_back(s.label);
+                baselines.push_back(baseline(s));
+                pooled.push_back(m);
+            } else {
+                pooled[i].pool(m);
             }
-            Run &p = runs[i];
-            p.ms.insert(p.ms.end(), r.ms.begin(), r.ms.end());
-            p.triangles += r.triangles;
-            p.occluded += r.occluded;
-            p.occluded_culled += r.occluded_culled;
-            p.visible_culled += r.visible_culled;
         }
+        if (round == 0)
+            first_round = std::move(done);
     }
 
-    const Run &vfc = *std::find_if(runs.begin(), runs.end(), [](const Run &r) { return r.label == "vfc"; });
-    const double vfc_mean = mean_ms(vfc.ms), vfc_median = median_ms(vfc.ms);
-    for (const Run &r : runs) {
+    const std::size_t vfc = std::size_t(std::find(labels.begin(), labels.end(), "vfc") - labels.begin());
+    const double vfc_mean = pooled[vfc].mean_ms(), vfc_median = pooled[vfc].median_ms();
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        const Measured &m = pooled[i];
         Result x;
-        x.label = r.label;
-        x.baseline = r.baseline();
-        x.mean = mean_ms(r.ms);
-        x.median = median_ms(r.ms);
-        x.least = *std::min_element(r.ms.begin(), r.ms.end());
+        x.label = labels[i];
+        x.baseline = baselines[i];
+        x.mean = m.mean_ms();
+        x.median = m.median_ms();
+        x.least = m.least_ms();
         x.x_vfc = x.mean / vfc_mean;
         x.median_x_vfc = x.median / vfc_median;
-        if (r.occluded)
-            x.efficiency = 100.0 * double(r.occluded_culled) / double(r.occluded);
-        x.tests = tests[r.label];
-        x.tests_last = tests_last[r.label];
-        x.triangles = r.triangles / double(r.ms.size());
-        x.visible_culled = r.visible_culled;
-        x.round_x_vfc = round_ratio[r.label];
+        x.efficiency = m.efficiency_percent().value_or(-1.0);
+        x.tests = tests[x.label];
+        x.tests_last = tests_last[x.label];
+        x.triangles = m.per_frame(m.triangles);
+        x.visible_culled = m.visible_culled;
+        x.round_x_vfc = round_ratio[x.label];
         out.results.push_back(x);
     }
     std::printf("\n%-16s %9s %9s %9s %7s %9s %15s %10s %10s %10s %9s  %s\n", "strategy", "mean ms", "median", "least",
@@ -328,9 +287,8 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
                     x.median, x.least, x.x_vfc, x.median_x_vfc, rounds, efficiency, x.tests, x.tests_last, x.triangles,
                     x.mark().c_str());
     }
-    for (const Run &r : runs)   // the first round's
-        if (const std::string note = r.strategy.culler->note(); !note.empty())
-            std::printf("%s: %s\n", r.label.c_str(), note.c_str());
+    for (const std::string &note : first_round->notes())
+        std::printf("%s\n", note.c_str());
     for (const Result &x : out.results)
         if (x.visible_culled && x.label != "ideal")
             std::printf("note: %s culled %llu visible leaves\n", x.label.c_str(), (unsigned long long)x.visible_culled);

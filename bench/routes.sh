@@ -9,11 +9,6 @@ source "$(dirname "$0")/lib.sh"
 frames=${1:-120}
 strategies=${2:-none,vfc,ideal,ou-shared,hp,om-ps,om-mos,skins,hzb,hom,shadow}
 "$OCCU_ROOT/tools/build.sh" bench >/dev/null
-# The occluder database, only when a strategy reads one (om-mos, pc-mos).
-db_args=()
-[[ $strategies != *mos* ]] || db_args=(--occluder-db "$(occluder_db 2>/dev/null)")
-read -r -a skins <<<"$(skin_args "$strategies")"
-read -r -a pvs <<<"$(pvs_args "$strategies")"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 IFS=, read -r -a names <<<"$strategies"
@@ -23,7 +18,7 @@ printf '| route |'; printf ' %s |' "${names[@]}"; echo
 printf '|---|'; printf -- '---|%.0s' "${names[@]}"; echo
 for route in dense street medium open; do
     "$OCCU_ROOT/build/demos/walkthrough" --route "$route" --frames "$frames" --png-every 0 \
-        --strategies "$strategies" "${db_args[@]}" "${skins[@]}" "${pvs[@]}" --out "$out/$route" >/dev/null
+        --strategies "$strategies" "${databases[@]}" --out "$out/$route" >/dev/null
     s=$out/$route/summary.csv
     printf '| %s |' "$route"
     for n in "${names[@]}"; do

@@ -21,15 +21,12 @@ IFS=, read -r -a values <<<"$3"
 route=${4:-dense}
 frames=${5:-30}
 "$OCCU_ROOT/tools/build.sh" bench >/dev/null
-db_args=()
-[[ $strategy != *mos* ]] || db_args=(--occluder-db "$(occluder_db 2>/dev/null)")
-read -r -a skins <<<"$(skin_args "$strategy")"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 strategies=vfc,ideal
 for v in "${values[@]}"; do strategies+=",$strategy:$setting=$v"; done
 "$OCCU_ROOT/build/demos/walkthrough" --route "$route" --frames "$frames" --png-every 0 \
-    --strategies "$strategies" "${db_args[@]}" "${skins[@]}" --out "$out" >/dev/null
+    --strategies "$strategies" "${databases[@]}" --out "$out" >/dev/null
 s=$out/summary.csv
 echo "## $strategy: $setting on the $route route (llvmpipe, 512x512, $frames frames, one run)"
 echo

@@ -24,13 +24,11 @@
 #include <vector>
 
 #include "applications/collision_detection.h"
-#include "camera/route.h"
 #include "cli/arguments.h"
 #include "cli/progress.h"
+#include "evaluation/scene_setup.h"
 #include "gl/offscreen_context.h"
 #include "image/png.h"
-#include "scene/city.h"
-#include "scene/scene_file.h"
 
 namespace {
 
@@ -208,13 +206,10 @@ int main(int argc, char **argv)
     const Options o = parse(argc, argv);
     try {
         gl::select_driver(gl::parse_driver(o.driver));
-        CityOptions city;
-        city.copies = o.city_copies;
-        const Scene scene = scene_by_name(o.scene, city);
-        HierarchyOptions ho;
-        ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-        const Hierarchy hierarchy = Hierarchy::build(scene, ho);
-        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
+        const SceneSetup setup({o.scene, o.city_copies, std::uint32_t(o.leaf_triangles)});
+        const Scene &scene = setup.scene();
+        const Hierarchy &hierarchy = setup.hierarchy();
+        const std::vector<Camera> route = setup.route(o.route, o.frames);
         // Every camera must have a check volume for the step, before any work.
         for (std::size_t f = 0; f < route.size(); ++f)
             if (!(o.step > double(route[f].near_plane)) || !(o.step < double(route[f].far_plane))) {

@@ -80,6 +80,7 @@
 #include "camera/route.h"
 #include "cli/arguments.h"
 #include "cli/progress.h"
+#include "evaluation/scene_setup.h"
 #include "gl/extensions.h"
 #include "gl/offscreen_context.h"
 #include "render/scene_renderer.h"
@@ -220,21 +221,13 @@ int build(const Options &o)
 {
     using namespace occu;
     gl::select_driver(gl::parse_driver(o.driver));
-    CityOptions city;
-    city.copies = o.city_copies;
-    const Scene scene = scene_by_name(o.scene, city);
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-    const Hierarchy hierarchy = Hierarchy::build(scene, ho);
+    const SceneSetup setup({o.scene, o.city_copies, std::uint32_t(o.leaf_triangles)});
+    const Scene &scene = setup.scene();
+    const Hierarchy &hierarchy = setup.hierarchy();
     OccluderDatabase db;
     db.provenance = DatabaseProvenance::current(hierarchy, o.pre.describe(), o.pre.stacks.resolution);
-    OccluderGrid &g = db.grid;
-    g.points = o.grid;
-    g.directions = o.directions;
-    const glm::vec3 lo = scene.bounds.min, size = scene.bounds.extent();
-    auto step = [](float extent, int n) { return n > 1 ? extent / float(n - 1) : 0.0f; };
-    g.spacing = {step(size.x, o.grid.x), step(size.y, o.grid.y), step(size.z, o.grid.z)};
-    g.origin = {lo.x, lo.y + o.eye_height, lo.z};
+    db.grid = OccluderGrid::over_scene(scene.bounds, o.grid, o.directions, o.eye_height);
+    const OccluderGrid &g = db.grid;
     const Camera lens = street_level_lens(scene.bounds, 1.0f);
 
     // With --cache the database is named by what it depends on, and made
@@ -336,12 +329,9 @@ int view_cells(const Options &o)
                                  "section 4.1), which only the generated city provides: '" + o.scene +
                                  "' is a loaded scene whose meshes do not say which are solid");
     gl::select_driver(gl::parse_driver(o.driver));
-    CityOptions city;
-    city.copies = o.city_copies;
-    const Scene scene = generate_city(city);
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = std::uint32_t(o.leaf_triangles);
-    const Hierarchy hierarchy = Hierarchy::build(scene, ho);
+    const SceneSetup setup({"city", o.city_copies, std::uint32_t(o.leaf_triangles)});
+    const Scene &scene = setup.scene();
+    const Hierarchy &hierarchy = setup.hierarchy();
     const auto cells_start = std::chrono::steady_clock::now();
     const ViewCells cells({scene.bounds.min.x, scene.bounds.min.z}, {scene.bounds.max.x, scene.bounds.max.z},
                           scene.prism_occluders, o.cells);
@@ -353,15 +343,7 @@ int view_cells(const Options &o)
     ViewCellVisibility visibility(scene, hierarchy, cells, o.visibility);
 
     PvsDatabase db;
-    db.provenance.hierarchy = hierarchy.fingerprint();
-    db.provenance.leaves = hierarchy.leaf_count();
-    db.provenance.epsilon = o.visibility.epsilon;
-    db.provenance.pixel = o.visibility.pixel;
-    db.provenance.initial_extent = o.visibility.initial_extent;
-    db.provenance.max_edge = o.cells.max_edge;
-    db.provenance.clearance = o.cells.clearance;
-    db.provenance.bottom = o.cells.bottom;
-    db.provenance.top = o.cells.top;
+    db.provenance = PvsProvenance::current(hierarchy, o.cells, o.visibility);
     for (std::size_t c = 0; c < cells.size(); ++c)
         db.cells.push_back(cells.triangle(c));
 
@@ -371,7 +353,7 @@ int view_cells(const Options &o)
                                  std::to_string(cells.size()));
     std::vector<bool> on_route(cells.size(), o.route.empty());
     if (!o.route.empty()) {
-        for (const Camera &camera : make_route(o.route, scene.bounds, city, o.route_frames, 1.0f, scene.quake3.get()))
+        for (const Camera &camera : setup.route(o.route, o.route_frames))
             if (const auto c = cells.locate(camera.position))
                 on_route[*c] = true;
     }

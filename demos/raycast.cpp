@@ -25,8 +25,8 @@
 
 #include "applications/ray_casting.h"
 #include "camera/footprint.h"
-#include "camera/route.h"
 #include "cli/arguments.h"
+#include "evaluation/scene_setup.h"
 #include "gl/offscreen_context.h"
 #include "image/png.h"
 #include "scene/city.h"
@@ -140,10 +140,11 @@ int main(int argc, char **argv)
     const Options o = parse(argc, argv);
     try {
         gl::select_driver(gl::parse_driver(o.driver));
+        const SceneSetup setup{SceneChoice{}};
+        const Scene &scene = setup.scene();
+        const Hierarchy &hierarchy = setup.hierarchy();
         const CityOptions city;
-        const Scene scene = generate_city(city);
-        const Hierarchy hierarchy = Hierarchy::build(scene, HierarchyOptions{});
-        const std::vector<Camera> route = make_route(o.route, scene.bounds, city, o.frames, 1.0f, scene.quake3.get());
+        const std::vector<Camera> route = setup.route(o.route, o.frames);
         const DensityVolume volume = smoke_above_block(o.block_x, o.block_z, city.block_size);
 
         gl::OffscreenContext ctx(o.size, o.size);

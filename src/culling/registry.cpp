@@ -29,9 +29,14 @@ Found find(const std::string &name)
 // A family's flags in words, as help and the markdown table list them.
 std::string properties(const StrategyFamily &f)
 {
-    return std::string(f.conservative ? "conservative" : "approximate") +
-           (f.queries_rasterizer ? ", queries the rasterizer" : "") +
-           (f.costs_per_frame ? ", costs time each frame" : "") + (f.needs_truth ? ", needs the oracle" : "");
+    std::string p = std::string(f.conservative ? "conservative" : "approximate") +
+                    (f.traversal.coherence ? ", temporal coherence" : "") +
+                    (f.traversal.switch_off ? ", switch-off" : "") + (f.needs_truth ? ", needs the oracle" : "");
+    for (const SceneRequirement &r : f.scene_requirements)
+        p += ", needs " + r.what;
+    for (const DatabaseNeed &d : f.databases)
+        p += ", reads " + d.setting;
+    return p;
 }
 
 // A markdown table cell: a '|' would end the cell.
@@ -88,9 +93,19 @@ void check_common_settings(const std::vector<StrategyChoice> &chosen, const std:
     }
 }
 
+std::string StrategyFamily::refusal(const Scene &scene) const
+{
+    for (const SceneRequirement &r : scene_requirements)
+        if (!r.met(scene))
+            return name + " needs " + r.what + "; this scene has none";
+    return "";
+}
+
 Strategy make_strategy(const std::string &spec, const StrategyContext &context, const std::vector<std::string> &common)
 {
     StrategyChoice choice = choose_strategy(spec, common);
+    if (const std::string why = choice.family->refusal(context.scene); !why.empty())
+        throw std::invalid_argument(why);
     std::unique_ptr<Culler> culler = choice.family->make(context, choice.settings);
     return {std::move(choice), std::move(culler)};
 }
@@ -112,6 +127,10 @@ std::string strategies_help()
     std::string h;
     for (const StrategyFamily &f : strategy_families()) {
         h += "  " + f.name + ": " + f.summary + "\n      " + f.paper + "; " + properties(f) + "\n";
+        for (const SceneRequirement &r : f.scene_requirements)
+            h += "      needs " + r.what + "\n";
+        for (const DatabaseNeed &d : f.databases)
+            h += "      reads " + d.setting + " (" + d.name + (d.required ? ", made when not given" : ", made with --make-databases all") + ")\n";
         std::string former;
         for (const StrategyPreset &p : f.presets) {
             if (!p.former_name)

@@ -34,31 +34,79 @@ struct StrategyPreset {
     bool former_name = false;   // an older name kept working; not listed in help
 };
 
-struct StrategyFamily {
-    std::string name;
-    std::string paper;     // the paper and sections it implements
-    std::string summary;
-    bool conservative = true;      // never removes a visible pixel with tolerance=0
-    // Its tests are occlusion queries the rasterizer answers, each waiting
-    // for the frame drawn so far: the traversal's temporal coherence and
-    // adaptive switch-off (traversal/policies.h), which save tests, apply.
-    // Tests on the CPU cost too little to trade culling for.
-    bool queries_rasterizer = false;
-    // Its occlusion work costs time every frame on the CPU (occluders
-    // drawn in begin_frame, or tests that are not cheap): the adaptive
-    // switch-off, which saves that work where occlusion culls little,
-    // applies.
-    bool costs_per_frame = false;
+// The traversal's policies across frames (traversal/policies.h) a family
+// wants; the programs apply them where their options allow.
+struct TraversalWants {
+    // Temporal coherence (the visible node list): for tests that are
+    // occlusion queries the rasterizer answers, each waiting for the frame
+    // drawn so far; it saves tests. Tests on the CPU cost too little to
+    // trade culling for.
+    bool coherence = false;
+    // The adaptive switch-off: for those, and for families whose occlusion
+    // work costs time every frame on the CPU (occluders drawn in
+    // begin_frame, or tests that are not cheap); it saves that work where
+    // occlusion culls little.
+    bool switch_off = false;
     // The share of the switch-off's least gain (--switch-off F: the
     // triangles occlusion tests must cull, as a share of those drawn) that
     // this family's tests must reach to stay on: 1 for tests that stall
     // drawing while they wait for their answers; less for tests whose
     // answers come while drawing goes on (chc), which pay at a smaller gain.
     double switch_off_share = 1.0;
+};
+
+// A property a scene must have for a family to run on it.
+struct SceneRequirement {
+    std::string what;   // "2.5D occluders (...)": said when a scene lacks it
+    bool (*met)(const Scene &scene) = nullptr;
+};
+
+// What a database is made for: a strategy's settings, on its scene, for
+// frames of width x height.
+struct DatabaseRequest {
+    const StrategyContext &context;
+    const Settings &settings;
+    int width, height;
+};
+
+// A database a family reads, named by one of its path settings. When that
+// setting is empty, a strategy that requires the database cannot run; one
+// that does not makes what it needs itself, at start or during the run
+// (a cost the figures then include). The resource provider
+// (culling/databases.h) makes or finds one by its provenance.
+struct DatabaseNeed {
+    std::string setting;      // the path setting
+    std::string name;         // what it is, for messages ("occluder database")
+    bool required = false;
+    // Whether a strategy of these settings reads it (null: every one).
+    bool (*read_by)(const Settings &settings) = nullptr;
+    // Everything the database's contents depend on besides the library's
+    // code and the Mesa build (the provider adds those): its algorithm, the
+    // settings it is made with and the scene and hierarchy it serves. Two
+    // databases of one provenance are the same database.
+    std::string (*provenance)(const DatabaseRequest &request) = nullptr;
+    // Makes it and writes it to `path`; may draw with the context's GL.
+    void (*make)(const DatabaseRequest &request, const std::string &path) = nullptr;
+
+    bool read_by_settings(const Settings &settings) const { return !read_by || read_by(settings); }
+};
+
+struct StrategyFamily {
+    std::string name;
+    std::string paper;     // the paper and sections it implements
+    std::string summary;
+    bool conservative = true;      // never removes a visible pixel with tolerance=0
     bool needs_truth = false;      // culls with the oracle's answer (Frame::truth)
+    TraversalWants traversal;
+    std::vector<SceneRequirement> scene_requirements;
+    std::vector<DatabaseNeed> databases;
     std::vector<SettingSpec> settings;
     std::vector<StrategyPreset> presets;
     std::unique_ptr<Culler> (*make)(const StrategyContext &context, const Settings &settings) = nullptr;
+
+    // Why the family cannot run on `scene` ("pvs needs 2.5D occluders
+    // (...); this scene has none"); empty when it can.
+    std::string refusal(const Scene &scene) const;
 };
 
 const std::vector<StrategyFamily> &strategy_families();
@@ -85,6 +133,10 @@ struct Strategy {
     StrategyChoice choice;
     std::unique_ptr<Culler> culler;
 };
+// Makes the strategy `spec` for `context`. Throws std::invalid_argument as
+// choose_strategy does, and naming what the scene lacks when the family
+// refuses it (StrategyFamily::refusal); a family's own checks throw what
+// they throw (a required database not given: std::invalid_argument).
 Strategy make_strategy(const std::string &spec, const StrategyContext &context,
                        const std::vector<std::string> &common = {});
 

@@ -1,8 +1,8 @@
 // Conservative strategies never remove a visible pixel: on short routes of
 // a small city and random views inside it, every frame of every conservative strategy in the registry
 // (and of its traversal variants: strictly front to back, in batches, with
-// temporal coherence, leaves tested by their triangles, from a minimum
-// occluder set database preprocessed here) equals the unculled frame byte
+// temporal coherence, leaves tested by their triangles, from the databases
+// they require, made here) equals the unculled frame byte
 // for byte, while the occlusion strategies draw fewer triangles (so the
 // comparison can fail). Runs on the driver meson selects with GALLIUM_DRIVER.
 #include <gtest/gtest.h>
@@ -11,11 +11,13 @@
 
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <vector>
 
 #include "camera/route.h"
+#include "culling/databases.h"
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
@@ -26,6 +28,7 @@
 #include "traversal/traversal.h"
 
 #include "frame_comparison.h"
+#include "small_city.h"
 
 using namespace occu;
 using occu::integration::draw_frame;
@@ -33,48 +36,10 @@ using occu::integration::DrawnFrame;
 
 namespace {
 
-// A city of 4x4 blocks in leaves of at most 128 triangles, drawn into a
-// 128x128 context with depth test and back-face culling.
-struct SmallCity {
-    SmallCity()
-    {
-        city.blocks_x = city.blocks_z = 4;
-        scene = generate_city(city);
-        HierarchyOptions ho;
-        ho.max_leaf_triangles = 128;
-        h.emplace(Hierarchy::build(scene, ho));
-        renderer.emplace(scene, *h);
-        glEnable(GL_DEPTH_TEST);
-        glEnable(GL_CULL_FACE);
-    }
-    gl::OffscreenContext ctx{128, 128};
-    CityOptions city;
-    Scene scene;
-    std::optional<Hierarchy> h;
-    std::optional<SceneRenderer> renderer;
-};
-
-// A minimum-occluder-set database for the small city, made here (maps of
-// 32 x 32 for its 128 x 128 frames).
-std::string small_city_database(const SmallCity &small)
-{
-    OccluderDatabase db;
-    db.grid.points = {5, 1, 5};
-    db.grid.directions = 4;
-    db.grid.origin = small.scene.bounds.min + glm::vec3(0.0f, 1.7f, 0.0f);
-    db.grid.spacing = small.scene.bounds.extent() / 4.0f;
-    db.grid.spacing.y = 0.0f;
-    PreprocessOptions pre;
-    pre.stacks.resolution = 32;
-    db.provenance = DatabaseProvenance::current(*small.h, pre.describe(), 32);
-    const Camera lens = street_level_lens(small.scene.bounds, 1.0f);
-    for (std::uint32_t v = 0; v < db.grid.view_count(); ++v)
-        db.views[v] = select_occluders_for_view(*small.renderer, *small.h, db.grid.view_camera(v, lens), pre);
-    // Per process: meson runs this binary once per driver, at the same time.
-    const std::string path = ::testing::TempDir() + "occu-small-city-occluders-" + std::to_string(getpid()) + ".db";
-    db.save(path);
-    return path;
-}
+// The databases the strategies require, made by the database provider
+// (culling/databases.h) for the small city, smaller than by default: 5 x 5
+// grid points, 4 headings each, maps of 32 x 32 for the 128 x 128 frames.
+const std::vector<std::string> small_databases = {"database-grid=5", "database-headings=4"};
 
 struct Variant {
     std::string spec;
@@ -90,11 +55,14 @@ struct Variant {
 
 TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
 {
-    const SmallCity small;
-    const Hierarchy &h = *small.h;
-    const SceneRenderer &renderer = *small.renderer;
+    // A city of 4x4 blocks in leaves of at most 128 triangles, 128x128 frames.
+    const integration::SmallCity small(4, 128, 128);
+    const Hierarchy &h = small.h;
+    const SceneRenderer &renderer = small.renderer;
     const StrategyContext context{small.scene, h, renderer};
-    const std::string database = small_city_database(small);
+    // Per process: meson runs this binary once per driver, at the same time.
+    DatabaseProvider databases(::testing::TempDir() + "occu-small-city-databases-" + std::to_string(getpid()),
+                               DatabaseProvider::Makes::required, nullptr);
     glClearColor(0, 0, 0, 0);
 
     // Every listed strategy, and the traversal variants of the occlusion unit.
@@ -116,7 +84,10 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     std::uint64_t drawn_none = 0;
     for (const Variant &v : variants) {
         SCOPED_TRACE(v.spec);
-        Strategy s = make_strategy(v.spec, context, {"database=" + database});
+        std::vector<std::string> settings = small_databases;
+        for (const std::string &d : databases.settings_for(choose_strategy(v.spec, small_databases), context, 128, 128))
+            settings.push_back(d);
+        Strategy s = make_strategy(v.spec, context, settings);
         VisibleNodeList coherence(3);
         TraversalOptions options;
         options.batch = v.batch;
@@ -131,7 +102,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
         // The city's routes, and random views from inside its bounds (eyes in
         // buildings and streets alike, looking anywhere).
         for (const char *route : {"dense", "medium", "open", "random:6:2026"}) {
-            const auto cameras = make_route(route, small.scene.bounds, small.city, 5, 1.0f);
+            const auto cameras = small.setup.route(route, 5);
             for (std::size_t f = 0; f < cameras.size(); ++f) {
                 const VisibilityTruth truth = oracle.see(cameras[f], 128, 128);
                 const Frame frame(cameras[f], 128, 128, &truth);
@@ -158,7 +129,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     EXPECT_LE(drawn["ou:proxy=triangles:max-test-area=1/16"], drawn["ou:max-test-area=1/16"])
         << "triangles as proxies should cull at least what boxes do";
     EXPECT_LE(drawn["ideal/16"], drawn["ou:max-test-area=1/1"]) << "nothing culls more than the floor";
-    std::remove(database.c_str());
+    std::filesystem::remove_all(databases.directory());
     // A query counts the whole grown proxy, a tile only the box's footprint:
     // hp sees at least the fragments ou does, so it draws about as much or more.
     EXPECT_GE(drawn["hp/16"], drawn["ou:max-test-area=1/16"] * 99 / 100);
@@ -169,15 +140,14 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
 TEST(ConservativeCulling, FramesEqualUnculledFramesFarAway)
 {
     gl::OffscreenContext ctx(256, 256);
-    const CityOptions city;
-    const Scene scene = generate_city(city);
-    const Hierarchy h = Hierarchy::build(scene);
-    SceneRenderer renderer(scene, h);
+    const SceneSetup city{SceneChoice{}};
+    const Hierarchy &h = city.hierarchy();
+    SceneRenderer renderer(city.scene(), h);
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
-    const StrategyContext context{scene, h, renderer};
+    const StrategyContext context{city.scene(), h, renderer};
     const Strategy none = make_strategy("none", context), ou = make_strategy("ou:max-test-area=1", context);
-    const auto cameras = make_route("open", scene.bounds, city, 3, 1.0f);
+    const auto cameras = city.route("open", 3);
     std::uint64_t drawn_none = 0, drawn_ou = 0;
     for (std::size_t f = 0; f < cameras.size(); ++f) {
         const Frame frame(cameras[f], 256, 256);

@@ -4,36 +4,45 @@
 // occluder images go to framebuffers of their own).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "camera/route.h"
+#include "culling/databases.h"
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
 #include "scene/city.h"
 
+#include "small_city.h"
+
 using namespace occu;
 
 TEST(Cullers, LeaveTheCallersFramebufferAndStateAlone)
 {
-    gl::OffscreenContext ctx(96, 96);
-    CityOptions city;
-    city.blocks_x = city.blocks_z = 3;
-    const Scene scene = generate_city(city);
-    const Hierarchy h = Hierarchy::build(scene);
-    SceneRenderer renderer(scene, h);
-    const StrategyContext context{scene, h, renderer};
-    const Camera camera = make_route("dense", scene.bounds, city, 1, 1.0f)[0];
-    Oracle oracle(renderer, h);
+    const integration::SmallCity city(3, 256, 96);
+    const gl::OffscreenContext &ctx = city.ctx;
+    const Hierarchy &h = city.h;
+    const StrategyContext context = city.context();
+    const Camera camera = city.setup.route("dense", 1)[0];
+    Oracle oracle(city.renderer, h);
     const VisibilityTruth truth = oracle.see(camera, 96, 96);
     const Frame frame(camera, 96, 96, &truth);
 
+    // The databases strategies require, made on demand, small (one view per heading).
+    DatabaseProvider databases(::testing::TempDir() + "occu-culler-framebuffer-" + std::to_string(getpid()),
+                               DatabaseProvider::Makes::required, nullptr);
+    const std::vector<std::string> small = {"database-grid=1", "database-headings=4"};
     for (const std::string &name : strategy_names()) {
-        if (name == "om-mos" || name == "pc-mos")
-            continue;   // need a database; the same code as om-ps after selection
         SCOPED_TRACE(name);
-        const Strategy s = make_strategy(name, context);
+        std::vector<std::string> settings = small;
+        for (const std::string &d : databases.settings_for(choose_strategy(name, small), context, 96, 96))
+            settings.push_back(d);
+        const Strategy s = make_strategy(name, context, settings);
         // A caller's frame in progress: a gradient of colour and depth.
         glEnable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
@@ -83,4 +92,5 @@ TEST(Cullers, LeaveTheCallersFramebufferAndStateAlone)
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
         EXPECT_EQ(fbo, 0);
     }
+    std::filesystem::remove_all(databases.directory());
 }

@@ -6,10 +6,11 @@
 // triangles). In each, every
 // conservative strategy of the registry draws a frame equal, byte for
 // byte, to the unculled frame, as on the city's routes
-// (conservative_frames_test.cpp). Strategies that take their occluders
-// from a minimum-occluder-set database (selection=mos) get one
-// preprocessed for each case's scene and lens (its one grid point at the
-// scene's centre), so that the preprocessing meets the same hard case.
+// (conservative_frames_test.cpp). Strategies that require a database get
+// one made by the database provider (culling/databases.h) for each case's
+// scene and viewport, as small as their settings allow (common settings
+// of one grid point and four headings where a strategy has them); a
+// family that refuses a case's scene must refuse to be made for it.
 // Runs on the driver meson selects with GALLIUM_DRIVER.
 //
 // Each case first checks the premise that makes it the case it is named
@@ -20,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <filesystem>
 #include <cstdio>
 #include <functional>
 #include <map>
@@ -30,6 +32,7 @@
 
 #include <unistd.h>
 
+#include "culling/databases.h"
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
@@ -617,21 +620,26 @@ const std::vector<NamedCase> hard_cases = {
 struct Variant {
     std::string spec;
     std::size_t batch = 16;
-    int mos_map_divisor = 0;   // selection=mos: the maps' divisor its database is made for
 };
 
-bool takes_occluders_from_database(const StrategyChoice &choice)
+// What a strategy is given to make the databases it requires small: a
+// database made for the frame size, of one view per heading.
+const std::vector<std::string> small_databases = {"database-grid=1", "database-layers=1", "database-headings=4"};
+
+bool requires_a_database(const StrategyChoice &choice)
 {
-    return choice.settings.knows("selection") && choice.settings.text("selection") == "mos";
+    const auto read = databases_read(choice);
+    return std::any_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->required; });
 }
 
 // Every conservative strategy of the registry, and the occlusion unit's
 // variants that test every box (none taken as visible for its size),
-// strictly front to back, and by the leaves' own triangles. The
-// database strategies' maps are kept at most 128 pixels wide (a divisor
-// above the default on large viewports), so that preprocessing a
-// 4096-pixel case stays a test's work; which map they use changes what is
-// culled, never whether the frame may lose a pixel.
+// strictly front to back, and by the leaves' own triangles. The maps of
+// the strategies that require a database made for the frame size are kept
+// at most 128 pixels wide (a divisor above the default on large
+// viewports), so that making the database of a 4096-pixel case stays a
+// test's work; which map they use changes what is culled, never whether
+// the frame may lose a pixel.
 std::vector<Variant> conservative_variants(int width)
 {
     std::vector<Variant> variants;
@@ -639,9 +647,9 @@ std::vector<Variant> conservative_variants(int width)
         const StrategyChoice choice = choose_strategy(name);
         if (!choice.conservative())
             continue;
-        if (takes_occluders_from_database(choice)) {
-            const int divisor = std::max(int(choice.settings.integer("map-divisor")), (width + 127) / 128);
-            variants.push_back({name + ":map-divisor=" + std::to_string(divisor), 16, divisor});
+        if (requires_a_database(choice) && choice.settings.knows("map-divisor")) {
+            const long divisor = std::max(choice.settings.integer("map-divisor"), long(width + 127) / 128);
+            variants.push_back({name + ":map-divisor=" + std::to_string(divisor)});
         } else {
             variants.push_back({name});
         }
@@ -703,13 +711,14 @@ TEST_P(HardCaseTest, EveryConservativeStrategyDrawsTheUnculledFrame)
     const Strategy none = make_strategy("none", context);
     std::map<std::size_t, DrawnFrame> unculled;
     std::deque<DrawnFrame> ordered;
-    std::map<int, std::string> databases;   // by map divisor
+    // Per process and case: meson runs this binary once per driver, at the same time.
+    DatabaseProvider databases(::testing::TempDir() + "occu-hard-case-" + GetParam().name + "-" +
+                                   std::to_string(getpid()),
+                               DatabaseProvider::Makes::required, nullptr);
     for (const Variant &v : conservative_variants(c.width)) {
-        // pvs serves only scenes with 2.5D occluders (the generated city's
-        // buildings) and refuses the others by design; these cases are built
-        // of plain meshes. (Its own hard cases: view_cells_frames_test.cpp.)
-        if (v.spec == "pvs" && c.scene.prism_occluders.empty()) {
-            EXPECT_THROW(make_strategy(v.spec, context), std::invalid_argument) << "pvs must refuse a scene without 2.5D occluders";
+        const StrategyChoice choice = choose_strategy(v.spec, small_databases);
+        if (const std::string why = choice.family->refusal(c.scene); !why.empty()) {
+            EXPECT_THROW(make_strategy(v.spec, context), std::invalid_argument) << v.spec << " must refuse: " << why;
             continue;
         }
         TraversalOptions options;
@@ -719,27 +728,9 @@ TEST_P(HardCaseTest, EveryConservativeStrategyDrawsTheUnculledFrame)
             ASSERT_EQ(all_background(unculled[v.batch].pixels), c.empty_frame)
                 << (c.empty_frame ? "the unculled frame shows something" : "the unculled frame is empty");
         }
-        std::vector<std::string> settings;
-        if (v.mos_map_divisor > 0) {
-            std::string &path = databases[v.mos_map_divisor];
-            if (path.empty()) {
-                PreprocessOptions pre;
-                pre.stacks.map_divisor = v.mos_map_divisor;
-                pre.stacks.resolution = (c.width + v.mos_map_divisor - 1) / v.mos_map_divisor;
-                const OccluderDatabase db =
-                    preprocess_database(renderer, h, c.scene.bounds, glm::ivec3(1), 4, c.camera, pre);
-                // Per process and case: meson runs this binary once per driver, at the same time.
-                path = ::testing::TempDir() + "occu-hard-case-" + GetParam().name + "-" +
-                       std::to_string(v.mos_map_divisor) + "-" + std::to_string(getpid()) + ".db";
-                db.save(path);
-                // The preprocessing draws into framebuffers of its own, with its own state.
-                glViewport(0, 0, c.width, c.height);
-                glEnable(GL_DEPTH_TEST);
-                glEnable(GL_CULL_FACE);
-                glClearColor(0, 0, 0, 0);
-            }
-            settings.push_back("database=" + path);
-        }
+        std::vector<std::string> settings = small_databases;
+        for (const std::string &s : databases.settings_for(choice, context, c.width, c.height))
+            settings.push_back(s);
         Strategy s = make_strategy(v.spec, context, settings);
         const DrawnFrame culled = draw_frame(ctx, renderer, h, *s.culler, frame, options);
         // A strategy that orders the frame itself: the unculled frame in its
@@ -759,8 +750,7 @@ TEST_P(HardCaseTest, EveryConservativeStrategyDrawsTheUnculledFrame)
             << v.spec << " (batches of " << v.batch << ") changed pixels; visible leaves it did not draw:"
             << visible_leaves_not_drawn(truth, culled.leaves);
     }
-    for (const auto &[divisor, path] : databases)
-        std::remove(path.c_str());
+    std::filesystem::remove_all(databases.directory());
 }
 
 INSTANTIATE_TEST_SUITE_P(HardCases, HardCaseTest, ::testing::ValuesIn(hard_cases),

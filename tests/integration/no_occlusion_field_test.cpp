@@ -7,7 +7,7 @@
 //    pixels in the whole frame), while the same check finds hidden leaves
 //    in the city, so that it can fail;
 //  - every conservative strategy, with the walkthrough's policies across
-//    frames (temporal coherence, switch-off 0.5: evaluation/side_by_side.h),
+//    frames (temporal coherence, switch-off 0.5: evaluation/measurement_session.h),
 //    draws every frame of the route exactly as the unculled frame;
 //  - the switch-off engages: every strategy that has one tests no node in
 //    the frames between its probes (frames 25-39 here: it switches off
@@ -24,9 +24,10 @@
 #include <vector>
 
 #include "camera/route.h"
+#include "culling/databases.h"
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
-#include "evaluation/side_by_side.h"
+#include "evaluation/measurement_session.h"
 #include "gl/gl_headers.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
@@ -141,9 +142,11 @@ TEST(NoOcclusionField, EveryStrategyDrawsUnculledFramesAndSwitchesOff)
     std::size_t with_switch_off = 0;
     for (const std::string &name : strategy_names()) {
         const StrategyChoice choice = choose_strategy(name);
-        // The minimum-occluder-set strategies need a database made for the
-        // scene; their switch-off is om-ps's and pc-ps's.
-        if (!choice.conservative() || (choice.settings.knows("selection") && choice.settings.text("selection") == "mos"))
+        // Strategies that require a database (made for the scene) switch
+        // off as the same family without one does.
+        const auto read = databases_read(choice);
+        if (!choice.conservative() ||
+            std::any_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->required; }))
             continue;
         SCOPED_TRACE(name);
         Strategy s = make_strategy(name, context);

@@ -22,32 +22,13 @@
 #include "strategies/leone_occluder_skins/skin_occluders.h"
 
 #include "frame_comparison.h"
+#include "small_city.h"
 
 using namespace occu;
 using occu::integration::draw_frame;
 using occu::integration::DrawnFrame;
 
 namespace {
-
-struct SmallCity {
-    SmallCity()
-    {
-        city.blocks_x = city.blocks_z = 3;
-        scene = generate_city(city);
-        HierarchyOptions ho;
-        ho.max_leaf_triangles = 128;
-        h.emplace(Hierarchy::build(scene, ho));
-        renderer.emplace(scene, *h);
-        glEnable(GL_DEPTH_TEST);
-        glEnable(GL_CULL_FACE);
-        glClearColor(0, 0, 0, 0);
-    }
-    gl::OffscreenContext ctx{128, 128};
-    CityOptions city;
-    Scene scene;
-    std::optional<Hierarchy> h;
-    std::optional<SceneRenderer> renderer;
-};
 
 bool holds(const Aabb &outer, const Aabb &inner)
 {
@@ -90,9 +71,9 @@ std::vector<Camera> through_the_mesh_cameras(const Scene &scene, const std::vect
 
 TEST(ShadowCulling, FramesEqualUnculledFramesWhereSkinsWouldSeeThrough)
 {
-    const SmallCity small;
-    const Hierarchy &h = *small.h;
-    const StrategyContext context{small.scene, h, *small.renderer};
+    const integration::SmallCity small(3, 128, 128);
+    const Hierarchy &h = small.h;
+    const StrategyContext context{small.scene, h, small.renderer};
     const SkinOccluders skins(small.scene, "", 8);
     ASSERT_GT(skins.size(), 20u);
 
@@ -112,9 +93,9 @@ TEST(ShadowCulling, FramesEqualUnculledFramesWhereSkinsWouldSeeThrough)
         ASSERT_TRUE(premise);
     }
     const std::size_t awkward = cameras.size();
-    for (const Camera &c : make_route("random:40:11", small.scene.bounds, small.city, 40, 1.0f))
+    for (const Camera &c : small.setup.route("random:40:11", 40))
         cameras.push_back(c);
-    for (const Camera &c : make_route("dense", small.scene.bounds, small.city, 8, 1.0f))
+    for (const Camera &c : small.setup.route("dense", 8))
         cameras.push_back(c);
 
     const Strategy none = make_strategy("none", context);
@@ -133,10 +114,10 @@ TEST(ShadowCulling, FramesEqualUnculledFramesWhereSkinsWouldSeeThrough)
     options.batch = 16;
     for (std::size_t f = 0; f < cameras.size(); ++f) {
         const Frame frame(cameras[f], 128, 128);
-        const DrawnFrame reference = draw_frame(small.ctx, *small.renderer, h, *none.culler, frame, {});
+        const DrawnFrame reference = draw_frame(small.ctx, small.renderer, h, *none.culler, frame, {});
         drawn_none += reference.triangles;
         for (std::size_t s = 0; s < specs.size(); ++s) {
-            const DrawnFrame culled = draw_frame(small.ctx, *small.renderer, h, *strategies[s].culler, frame, options);
+            const DrawnFrame culled = draw_frame(small.ctx, small.renderer, h, *strategies[s].culler, frame, options);
             EXPECT_TRUE(reference.pixels == culled.pixels)
                 << specs[s] << ", camera " << f << (f < awkward ? " (through a mesh)" : "");
             drawn_by[s] += culled.triangles;

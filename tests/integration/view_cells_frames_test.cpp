@@ -19,6 +19,7 @@
 #include "culling/registry.h"
 #include "evaluation/oracle.h"
 #include "frame_comparison.h"
+#include "small_city.h"
 #include "gl/offscreen_context.h"
 #include "render/scene_renderer.h"
 #include "scene/city.h"
@@ -32,26 +33,14 @@ namespace {
 
 constexpr int size = 128;
 
-struct City {
-    gl::OffscreenContext ctx{size, size};
-    CityOptions options;
-    Scene scene;
-    std::optional<Hierarchy> h;
-    std::optional<SceneRenderer> renderer;
-    std::optional<ViewCells> cells;
-    City()
+// The small city of 3x3 blocks in leaves of the default size, with its view cells.
+struct City : SmallCity {
+    City() : SmallCity(3, 256, size)
     {
-        options.blocks_x = options.blocks_z = 3;
-        scene = generate_city(options);
-        h.emplace(Hierarchy::build(scene));
-        renderer.emplace(scene, *h);
         cells.emplace(glm::dvec2(scene.bounds.min.x, scene.bounds.min.z), glm::dvec2(scene.bounds.max.x, scene.bounds.max.z),
                       scene.prism_occluders, ViewCellOptions{});
-        glViewport(0, 0, size, size);
-        glEnable(GL_DEPTH_TEST);
-        glEnable(GL_CULL_FACE);
-        glClearColor(0, 0, 0, 0);
     }
+    std::optional<ViewCells> cells;
 };
 
 // A point of cell c's prism: barycentric (u, v, 1 - u - v), height y.
@@ -67,8 +56,8 @@ glm::vec3 point_in(const ViewCells &cells, std::size_t c, double u, double v, do
 TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
 {
     City city;
-    const StrategyContext context{city.scene, *city.h, *city.renderer};
-    ViewCellVisibility visibility(city.scene, *city.h, *city.cells, ViewCellVisibilityOptions{});
+    const StrategyContext context{city.scene, city.h, city.renderer};
+    ViewCellVisibility visibility(city.scene, city.h, *city.cells, ViewCellVisibilityOptions{});
 
     // The eyes: random points of random cells at random heights in the
     // prism, and the awkward ones: a corner at street level, an edge's
@@ -106,8 +95,8 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
 
     // Their cells' sets, both ways: the same leaves.
     PvsDatabase db;
-    db.provenance.hierarchy = city.h->fingerprint();
-    db.provenance.leaves = city.h->leaf_count();
+    db.provenance.hierarchy = city.h.fingerprint();
+    db.provenance.leaves = city.h.leaf_count();
     const ViewCellVisibilityOptions vo;
     db.provenance.epsilon = vo.epsilon;
     db.provenance.pixel = vo.pixel;
@@ -122,7 +111,7 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
         const CellVisibility by_unit = visibility.compute(c, CullMapTest::occlusion_unit);
         const CellVisibility by_readback = visibility.compute(c, CullMapTest::readback);
         EXPECT_EQ(by_unit.visible_leaves, by_readback.visible_leaves) << "cell " << c;
-        EXPECT_LT(by_unit.visible_leaves.size(), city.h->leaf_count()) << "cell " << c << " hides nothing";
+        EXPECT_LT(by_unit.visible_leaves.size(), city.h.leaf_count()) << "cell " << c << " hides nothing";
         db.visible[c] = by_unit.visible_leaves;
     }
     const std::string path = testing::TempDir() + "/occu-view-cells-test.pvs";
@@ -134,21 +123,21 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
     Strategy none = make_strategy("none", context);
     Strategy vfc = make_strategy("vfc", context);
     Strategy pvs = make_strategy("pvs:pvs-database=" + path, context);
-    Oracle oracle(*city.renderer, *city.h);
+    Oracle oracle(city.renderer, city.h);
     std::uint64_t drawn_vfc = 0, drawn_pvs = 0;
     for (std::size_t i = 0; i < cameras.size(); ++i) {
         const VisibilityTruth truth = oracle.see(cameras[i], size, size);
         const Frame frame(cameras[i], size, size, &truth);
-        const DrawnFrame reference = draw_frame(city.ctx, *city.renderer, *city.h, *none.culler, frame, {});
-        const DrawnFrame culled = draw_frame(city.ctx, *city.renderer, *city.h, *pvs.culler, frame, {});
-        drawn_vfc += draw_frame(city.ctx, *city.renderer, *city.h, *vfc.culler, frame, {}).triangles;
+        const DrawnFrame reference = draw_frame(city.ctx, city.renderer, city.h, *none.culler, frame, {});
+        const DrawnFrame culled = draw_frame(city.ctx, city.renderer, city.h, *pvs.culler, frame, {});
+        drawn_vfc += draw_frame(city.ctx, city.renderer, city.h, *vfc.culler, frame, {}).triangles;
         drawn_pvs += culled.triangles;
         std::string missing;
         {
             const std::set<std::uint32_t> drawn(culled.leaves.begin(), culled.leaves.end());
             for (std::uint32_t leaf : truth.visible)
                 if (!drawn.count(leaf)) {
-                    const Aabb &b = city.h->nodes()[leaf].bounds;
+                    const Aabb &b = city.h.nodes()[leaf].bounds;
                     char buf[200];
                     std::snprintf(buf, sizeof buf, " %u [%.2f %.2f %.2f - %.2f %.2f %.2f]", leaf, b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
                     missing += buf;
@@ -177,8 +166,8 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
         ASSERT_FALSE(city.cells->locate(c.position));
         const VisibilityTruth truth = oracle.see(c, size, size);
         const Frame frame(c, size, size, &truth);
-        const DrawnFrame reference = draw_frame(city.ctx, *city.renderer, *city.h, *none.culler, frame, {});
-        const DrawnFrame culled = draw_frame(city.ctx, *city.renderer, *city.h, *pvs.culler, frame, {});
+        const DrawnFrame reference = draw_frame(city.ctx, city.renderer, city.h, *none.culler, frame, {});
+        const DrawnFrame culled = draw_frame(city.ctx, city.renderer, city.h, *pvs.culler, frame, {});
         EXPECT_EQ(differing_pixels(reference.pixels, culled.pixels), 0u);
     }
     EXPECT_EQ(pvs.culler->note().rfind("2 of 26 frames with the eye in no view cell", 0), 0u) << pvs.culler->note();
@@ -188,7 +177,7 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
 TEST(ViewCellFrames, RefusesADatabaseOfAnotherHierarchyAndScenesWithout25DOccluders)
 {
     City city;
-    const StrategyContext context{city.scene, *city.h, *city.renderer};
+    const StrategyContext context{city.scene, city.h, city.renderer};
     PvsDatabase db;
     db.provenance.hierarchy = "0123456789abcdef";
     db.provenance.leaves = 1;

@@ -132,7 +132,8 @@ StrategyFamily occlusion_unit_family()
     f.name = "ou";
     f.paper = "Bartz, Meissner and Huettner 1998, sections 3 and 5";
     f.summary = "hierarchical occlusion tests of node boxes with GL_MESAX_occlusion_unit, one tile per box";
-    f.queries_rasterizer = true;
+    f.traversal.coherence = true;
+    f.traversal.switch_off = true;
     f.settings = {
         choice_setting("passes", {"disjoint", "shared"},
                        "boxes share a pass only where their footprints are disjoint, or always"),

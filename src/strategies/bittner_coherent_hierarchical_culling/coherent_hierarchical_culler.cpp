@@ -509,9 +509,8 @@ StrategyFamily coherent_hierarchical_culling_family()
     // tenth of the gain that tests which stall must reach: on the
     // city's open route it culls 13% of the triangles vfc draws and is
     // faster than vfc (docs/coherent-hierarchical-culling.md), and stays on.
-    f.queries_rasterizer = false;
-    f.costs_per_frame = true;
-    f.switch_off_share = 0.1;
+    f.traversal.switch_off = true;
+    f.traversal.switch_off_share = 0.1;
     f.settings = {
         integer_setting("batch", 64, 1, 64, Role::cost,
                         "previously invisible nodes tested together in one pass (one tile each; at most the unit's tiles)"),

@@ -176,9 +176,10 @@ StrategyFamily supporting_plane_family()
     f.name = "planes";
     f.paper = "Coorg and Teller 1997 (Moeller and Haines, shadow culling)";
     f.summary = "the viewer inside every supporting plane of a large skin occluder and a box, planes kept per pair";
-    f.costs_per_frame = true;   // its tests: each node against each occluder's planes (0.9 ms a frame on dense)
+    f.traversal.switch_off = true;   // its tests: each node against each occluder's planes (0.9 ms a frame on dense)
     // As shadow's, and the cache.
     f.settings = shadow_occluder_settings();
+    f.databases = {skin_database_need()};
     f.settings.push_back(on_off_setting("plane-cache", true, SettingSpec::Role::choice,
                                         "keep each occluder-node pair's supporting planes across frames; off: make "
                                         "them at every test"));

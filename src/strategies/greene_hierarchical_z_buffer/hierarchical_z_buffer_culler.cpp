@@ -132,7 +132,7 @@ StrategyFamily hierarchical_z_buffer_family()
     f.name = "hzb";
     f.paper = "Greene, Kass and Miller 1993 (Moeller and Haines, hierarchical Z-buffering)";
     f.summary = "a Z-pyramid of the skins' CPU depth, or of last frame's visible leaves, tested coarse to fine";
-    f.costs_per_frame = true;
+    f.traversal.switch_off = true;
     f.settings = {
         choice_setting("source", {"skins", "last-frame"},
                        "the occluder skins' CPU depth buffer, or the depth of the leaves the last frame drew"),
@@ -143,6 +143,8 @@ StrategyFamily hierarchical_z_buffer_family()
     };
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
+    f.databases = {skin_database_need()};
+    f.databases[0].read_by = [](const Settings &s) { return s.text("source") == "skins"; };
     f.presets = {
         {"hzb-last-frame", "source=last-frame"},
     };

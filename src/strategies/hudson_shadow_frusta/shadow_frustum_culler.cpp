@@ -95,8 +95,9 @@ StrategyFamily shadow_frustum_family()
     // No drawing, but every node is tested against every occluder's
     // shadow frustum: on the open route, where nothing is hidden, that costs
     // more than it saves, and the switch-off gives it back.
-    f.costs_per_frame = true;
+    f.traversal.switch_off = true;
     f.settings = shadow_occluder_settings();
+    f.databases = {skin_database_need()};
     f.presets = {
         {"shadow-faces", "aggregate=off"},
     };

@@ -11,23 +11,31 @@ namespace occu {
 
 namespace {
 
-// Skins made at start, once per scene for all the strategies of a process
-// (a walkthrough compares several on one scene).
-const SceneSkins &skins_of(const Scene &scene)
+// Skins made at start, once per scene and options for all the strategies
+// of a process (a walkthrough compares several on one scene).
+const SceneSkins &skins_of(const Scene &scene, const SkinOptions &options)
 {
     static std::mutex lock;
     static std::map<std::string, SceneSkins> made;
     const std::lock_guard<std::mutex> guard(lock);
-    const std::string key = scene_geometry_fingerprint(scene);
+    const std::string key = scene_geometry_fingerprint(scene) + " " + options.describe();
     auto it = made.find(key);
     if (it == made.end())
-        it = made.emplace(key, scene_skins(scene, SkinOptions{})).first;
+        it = made.emplace(key, scene_skins(scene, options)).first;
     return it->second;
+}
+
+SkinOptions skin_options(const Settings &settings)
+{
+    SkinOptions options;
+    options.voxel_size = float(settings.number("skin-voxel"));
+    return options;
 }
 
 }  // namespace
 
-SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh)
+SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh,
+                             const SkinOptions &options)
 {
     auto keep = [&](std::uint32_t mesh, const std::vector<Aabb> &boxes) {
         if (mesh >= scene.meshes.size())
@@ -41,7 +49,7 @@ SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, in
         }
     };
     if (database.empty()) {
-        for (const MeshSkins &m : skins_of(scene).skins)
+        for (const MeshSkins &m : skins_of(scene, options).skins)
             keep(m.mesh, m.boxes);
         return;
     }
@@ -70,7 +78,7 @@ bool SkinOccluders::usable(std::size_t i, const Frame &frame) const
 }
 
 SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
-    : SkinOccluders(scene, settings.text("skin-database"), int(settings.integer("skin-boxes")))
+    : SkinOccluders(scene, settings.text("skin-database"), int(settings.integer("skin-boxes")), skin_options(settings))
 {
 }
 
@@ -78,8 +86,31 @@ std::vector<SettingSpec> skin_settings()
 {
     return {
         integer_setting("skin-boxes", 8, 1, 1 << 16, SettingSpec::Role::cost, "skin boxes per mesh, the largest first"),
+        // Tighter than SkinOptions' default (95% of the city's buildings'
+        // bodies against 89%) for seven times its second: what benchmarks
+        // made their skin databases with, and made once by the database
+        // provider (culling/databases.h).
+        number_setting("skin-voxel", 0.25, 0.05, 10.0, SettingSpec::Role::choice,
+                       "voxel edge, metres, of the skins made at start or as a skin database (0.5: a seventh of "
+                       "the time, looser)"),
         path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
     };
+}
+
+DatabaseNeed skin_database_need()
+{
+    DatabaseNeed need;
+    need.setting = "skin-database";
+    need.name = "skin database";
+    need.provenance = [](const DatabaseRequest &r) {
+        const SkinProvenance p = SkinProvenance::current(r.context.scene, skin_options(r.settings));
+        return p.algorithm + " code " + p.code + " options " + p.options + " scene " + p.scene + " " +
+               std::to_string(p.meshes) + " " + std::to_string(p.triangles);
+    };
+    need.make = [](const DatabaseRequest &r, const std::string &path) {
+        OccluderSkinDatabase::make(r.context.scene, skin_options(r.settings)).save(path);
+    };
+    return need;
 }
 
 std::size_t SkinOccluders::render(const Frame &frame, DepthRasterizer &raster, std::size_t limit)

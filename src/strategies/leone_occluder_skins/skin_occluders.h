@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "culling/culler.h"
+#include "culling/registry.h"
 #include "culling/settings.h"
+#include "strategies/leone_occluder_skins/occluder_skins.h"
 #include "raster/depth_rasterizer.h"
 #include "scene/scene.h"
 
@@ -21,9 +23,10 @@ class SkinOccluders {
 public:
     // From the skin database at `database` (refused, naming why, when made
     // for another scene), or with an empty path made from `scene` now with
-    // the default SkinOptions. Each mesh keeps its first `boxes_per_mesh`
-    // boxes (the largest first).
-    SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh);
+    // `options` (once per scene and options in a process). Each mesh keeps
+    // its first `boxes_per_mesh` boxes (the largest first).
+    SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh,
+                  const SkinOptions &options = {});
     // As its strategy's settings (skin_settings below) ask.
     SkinOccluders(const Scene &scene, const Settings &settings);
 
@@ -52,8 +55,12 @@ private:
     std::vector<std::pair<float, std::uint32_t>> chosen_;
 };
 
-// The settings of every strategy whose occluders are skins: skin-boxes
-// and skin-database.
+// The settings of every strategy whose occluders are skins: skin-boxes,
+// skin-voxel and skin-database.
 std::vector<SettingSpec> skin_settings();
+
+// The skin database those strategies read (skin-database): made with the
+// settings' skin-voxel, for the scene's meshes (culling/databases.h makes it).
+DatabaseNeed skin_database_need();
 
 }  // namespace occu

@@ -82,7 +82,7 @@ StrategyFamily occluder_skins_family()
     f.name = "skins";
     f.paper = "Leone et al., sections 4-7";
     f.summary = "occluder skins (or the frame's drawn triangles) in a CPU depth buffer, rectangles tested at one z";
-    f.costs_per_frame = true;
+    f.traversal.switch_off = true;
     f.settings = {
         choice_setting("occluders", {"skins", "drawn", "both"},
                        "the meshes' occluder skins, the triangles of the leaves drawn so far this frame, or both"),
@@ -96,6 +96,8 @@ StrategyFamily occluder_skins_family()
     };
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
+    f.databases = {skin_database_need()};
+    f.databases[0].read_by = [](const Settings &s) { return s.text("occluders") != "drawn"; };
     f.presets = {
         {"skins-drawn", "occluders=drawn"},
         {"skins-both", "occluders=both"},

@@ -102,6 +102,20 @@ bool DatabaseProvenance::operator==(const DatabaseProvenance &o) const
            scene == o.scene && leaves == o.leaves && triangles == o.triangles && mesa == o.mesa;
 }
 
+OccluderGrid OccluderGrid::over_scene(const Aabb &bounds, const glm::ivec3 &points, int directions, float eye_height)
+{
+    OccluderGrid g;
+    g.points = points;
+    g.directions = directions;
+    const glm::vec3 size = bounds.extent();
+    auto step = [](float extent, int n) { return n > 1 ? extent / float(n - 1) : 0.0f; };
+    g.spacing = {step(size.x, points.x), step(size.y, points.y), step(size.z, points.z)};
+    // One point across an axis stands at the middle of it.
+    auto first = [](float lo, float extent, int n) { return n > 1 ? lo : lo + 0.5f * extent; };
+    g.origin = {first(bounds.min.x, size.x, points.x), bounds.min.y + eye_height, first(bounds.min.z, size.z, points.z)};
+    return g;
+}
+
 Camera OccluderGrid::view_camera(std::uint32_t view, const Camera &lens) const
 {
     const int d = int(view % std::uint32_t(directions));

@@ -39,6 +39,13 @@ struct OccluderGrid {
     glm::ivec3 points{1};
     int directions = 4;
 
+    // The grid of occu-preprocess build and of databases made on demand:
+    // points.x x points.z points across the scene's ground, corner to
+    // corner (one point across an axis: at its middle), at `eye_height`
+    // above its floor, and points.y such layers up to that height above its
+    // top, each with `directions` headings.
+    static OccluderGrid over_scene(const Aabb &bounds, const glm::ivec3 &points, int directions, float eye_height);
+
     std::uint32_t view_count() const { return std::uint32_t(points.x * points.y * points.z * directions); }
     // The camera of view v (same lens as `lens`: fov, aspect, planes).
     Camera view_camera(std::uint32_t view, const Camera &lens) const;

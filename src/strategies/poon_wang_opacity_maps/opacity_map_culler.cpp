@@ -7,6 +7,12 @@
 
 #include "gl/framebuffer.h"
 #include "gl/state.h"
+#include "strategies/poon_wang_opacity_maps/opacity_map.h"
+#include "strategies/poon_wang_opacity_maps/sparse_depth_map.h"
+#include "strategies/poon_wang_opacity_maps/selection.h"
+#include "camera/route.h"
+#include "strategies/poon_wang_opacity_maps/occluder_database.h"
+#include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
 #include "render/id_buffer.h"
 #include "render/scene_renderer.h"
 #include "spatial/hierarchy.h"
@@ -35,7 +41,8 @@ public:
         const std::string &path = settings.text("database");
         if (selection_ == Selection::minimum_occluder_set) {
             if (path.empty())
-                throw std::invalid_argument("selection=mos needs database=FILE (made by occu-preprocess)");
+                throw std::invalid_argument("selection=mos needs database=FILE (made by occu-preprocess, or on demand "
+                                            "by a program's database provider)");
             database_.emplace(OccluderDatabase::load(path));
             const std::string mismatch = database_->provenance.mismatch_for(hierarchy_);
             if (!mismatch.empty())
@@ -206,6 +213,53 @@ private:
     CullerStats stats_;
 };
 
+// The minimum-occluder-set database of selection=mos, made on demand as
+// occu-preprocess build makes it (section 4: grid points at eye height,
+// headings each), for maps of the frame's size / map-divisor.
+struct MosDatabase {
+    PreprocessOptions options;
+    OccluderGrid grid;
+    Camera lens;
+
+    explicit MosDatabase(const DatabaseRequest &r)
+    {
+        const int divisor = int(r.settings.integer("map-divisor"));
+        options.stacks.map_divisor = divisor;
+        options.stacks.resolution = (std::max(r.width, 1) + divisor - 1) / divisor;
+        const Aabb &bounds = r.context.scene.bounds;
+        const int points = int(r.settings.integer("database-grid"));
+        grid = OccluderGrid::over_scene(bounds, {points, int(r.settings.integer("database-layers")), points},
+                                        int(r.settings.integer("database-headings")),
+                                        float(r.settings.number("database-eye-height")));
+        // The street-level lens, its near plane within a scene smaller than it.
+        lens = street_level_lens(bounds, 1.0f);
+        const float diagonal = std::max(glm::length(bounds.extent()), 1e-3f);
+        lens.near_plane = std::min(lens.near_plane, 1e-3f * diagonal);
+        lens.far_plane = 2.0f * diagonal;
+    }
+};
+
+DatabaseNeed mos_database_need()
+{
+    DatabaseNeed need;
+    need.setting = "database";
+    need.name = "occluder database";
+    need.required = true;
+    need.read_by = [](const Settings &s) { return s.text("selection") == "mos"; };
+    need.provenance = [](const DatabaseRequest &r) {
+        const MosDatabase m(r);
+        return DatabaseProvenance::current(r.context.hierarchy, m.options.describe(), m.options.stacks.resolution)
+                   .key(m.grid) +
+               " lens " + std::to_string(m.lens.near_plane) + " " + std::to_string(m.lens.far_plane) + " " +
+               std::to_string(m.lens.fovy_degrees);
+    };
+    need.make = [](const DatabaseRequest &r, const std::string &path) {
+        const MosDatabase m(r);
+        preprocess_database(r.context.renderer, r.context.hierarchy, m.grid, m.lens, m.options).save(path);
+    };
+    return need;
+}
+
 }  // namespace
 
 StrategyFamily opacity_map_family()
@@ -215,7 +269,7 @@ StrategyFamily opacity_map_family()
     f.name = "om";
     f.paper = "Poon and Wang, sections 4, 5 and 6.1";
     f.summary = "opacity map and sparse depth map of selected occluders, tested on the CPU";
-    f.costs_per_frame = true;
+    f.traversal.switch_off = true;
     f.settings = {
         choice_setting("selection", {"ps", "fh", "mos"},
                        "occluders by projected size, first hit, or from a minimum-occluder-set database"),
@@ -226,8 +280,18 @@ StrategyFamily opacity_map_family()
         number_setting("coverage-ratio", 0.2, 0.0, 1.0, Role::cost,
                        "adaptive overlap test: below this coverage a box's descendants go untested", "0"),
         integer_setting("map-divisor", 4, 1, 64, Role::cost, "frame pixels per map pixel, each way"),
-        path_setting("database", "the occluder database for selection=mos (occu-preprocess build)"),
+        path_setting("database", "the occluder database for selection=mos (occu-preprocess build); without one, "
+                                 "made on demand with the settings below"),
+        integer_setting("database-grid", 8, 1, 256, Role::choice,
+                        "a database made on demand: grid points each way across the scene's ground"),
+        integer_setting("database-layers", 1, 1, 64, Role::choice,
+                        "a database made on demand: layers of grid points, from eye height to that above the top"),
+        integer_setting("database-headings", 8, 1, 64, Role::choice,
+                        "a database made on demand: view headings at each grid point"),
+        number_setting("database-eye-height", 1.7, 0.0, 1e6, Role::choice,
+                       "a database made on demand: metres above the scene's floor of its lowest grid points"),
     };
+    f.databases = {mos_database_need()};
     f.presets = {
         {"om-ps", "selection=ps"},
         {"om-fh", "selection=fh"},

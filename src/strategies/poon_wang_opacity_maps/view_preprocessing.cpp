@@ -67,19 +67,13 @@ std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &render
     return select_without_redundancy(ids, camera, ordered, nodes, options.stacks.resolution, options.max_occluders);
 }
 
-OccluderDatabase preprocess_database(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Aabb &bounds,
-                                     const glm::ivec3 &points, int directions, const Camera &lens,
-                                     const PreprocessOptions &options)
+OccluderDatabase preprocess_database(const SceneRenderer &renderer, const Hierarchy &hierarchy, const OccluderGrid &grid,
+                                     const Camera &lens, const PreprocessOptions &options)
 {
     OccluderDatabase db;
     db.provenance = DatabaseProvenance::current(hierarchy, options.describe(), options.stacks.resolution);
-    OccluderGrid &g = db.grid;
-    g.points = points;
-    g.directions = directions;
-    // The centres of points.x * points.y * points.z equal cells of the
-    // bounds: the nearest point to an eye inside is its cell's.
-    g.spacing = bounds.extent() / glm::vec3(points);
-    g.origin = bounds.min + 0.5f * g.spacing;
+    db.grid = grid;
+    const OccluderGrid &g = db.grid;
     for (std::uint32_t v = 0; v < g.view_count(); ++v)
         db.views[v] = select_occluders_for_view(renderer, hierarchy, g.view_camera(v, lens), options);
     return db;

@@ -51,14 +51,11 @@ std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &render
                                                      const Camera &camera, const PreprocessOptions &options,
                                                      PreprocessStats *stats = nullptr);
 
-// A whole database made here, for programs that need one at start (e.g.
-// occu-random-views for om-mos on any scene): a grid point at the centre
-// of each of points.x * points.y * points.z equal cells of `bounds`, `directions`
-// headings each, every view with the lens `lens` and selected by
-// select_occluders_for_view with `options` (options.stacks.resolution: the
-// run-time maps' resolution). Needs what select_occluders_for_view needs.
-OccluderDatabase preprocess_database(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Aabb &bounds,
-                                     const glm::ivec3 &points, int directions, const Camera &lens,
-                                     const PreprocessOptions &options);
+// A whole database made here, for the grid's every view with the lens
+// `lens`, selected by select_occluders_for_view with `options`
+// (options.stacks.resolution: the run-time maps' resolution). Needs what
+// select_occluders_for_view needs.
+OccluderDatabase preprocess_database(const SceneRenderer &renderer, const Hierarchy &hierarchy, const OccluderGrid &grid,
+                                     const Camera &lens, const PreprocessOptions &options);
 
 }  // namespace occu

@@ -101,7 +101,8 @@ StrategyFamily hp_occlusion_test_family()
     f.paper = "Scott, Olsen and Gannett 1998, the HP occlusion test "
               "(Moeller and Haines, VISUALIZE fx's hardware implementation)";
     f.summary = "one occlusion query per node box, front to back, the flag read before the box is drawn or opened";
-    f.queries_rasterizer = true;
+    f.traversal.coherence = true;
+    f.traversal.switch_off = true;
     f.make = [](const StrategyContext &, const Settings &) -> std::unique_ptr<Culler> {
         return std::make_unique<HpOcclusionTestCuller>();
     };

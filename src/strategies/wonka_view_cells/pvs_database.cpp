@@ -61,6 +61,37 @@ std::string PvsProvenance::difference(const PvsProvenance &o) const
     return "";
 }
 
+PvsProvenance PvsProvenance::current(const Hierarchy &hierarchy, const ViewCellOptions &cells,
+                                     const ViewCellVisibilityOptions &visibility)
+{
+    PvsProvenance p;
+    p.hierarchy = hierarchy.fingerprint();
+    p.leaves = hierarchy.leaf_count();
+    p.epsilon = visibility.epsilon;
+    p.pixel = visibility.pixel;
+    p.initial_extent = visibility.initial_extent;
+    p.max_edge = cells.max_edge;
+    p.clearance = cells.clearance;
+    p.bottom = cells.bottom;
+    p.top = cells.top;
+    return p;
+}
+
+PvsDatabase PvsDatabase::make(const Scene &scene, const Hierarchy &hierarchy, const ViewCellOptions &options,
+                              const ViewCellVisibilityOptions &visibility_options, CullMapTest test)
+{
+    const ViewCells cells({scene.bounds.min.x, scene.bounds.min.z}, {scene.bounds.max.x, scene.bounds.max.z},
+                          scene.prism_occluders, options);
+    ViewCellVisibility visibility(scene, hierarchy, cells, visibility_options);
+    PvsDatabase db;
+    db.provenance = PvsProvenance::current(hierarchy, options, visibility_options);
+    for (std::uint32_t c = 0; c < cells.size(); ++c) {
+        db.cells.push_back(cells.triangle(c));
+        db.visible[c] = visibility.compute(c, test).visible_leaves;
+    }
+    return db;
+}
+
 ViewCellOptions PvsDatabase::cell_options() const
 {
     ViewCellOptions c;

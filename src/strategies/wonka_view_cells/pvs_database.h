@@ -34,6 +34,9 @@ struct PvsProvenance {
     std::uint64_t leaves = 0;     // leaves of that hierarchy
     double epsilon = 0, pixel = 0, max_edge = 0, clearance = 0, bottom = 0, top = 0, initial_extent = 0;
 
+    // For a database about to be made here.
+    static PvsProvenance current(const Hierarchy &hierarchy, const ViewCellOptions &cells,
+                                 const ViewCellVisibilityOptions &visibility);
     std::string describe_options() const;
     // The first field that differs, both values named; empty when none does.
     std::string difference(const PvsProvenance &other) const;
@@ -46,6 +49,12 @@ public:
     std::map<std::uint32_t, std::vector<std::uint32_t>> visible;   // cell -> its visible leaves
 
     ViewCellOptions cell_options() const;
+
+    // The cells of `scene`'s ground (its 2.5D occluders', view_cells.h)
+    // and every cell's set, found with `test` (view_cell_visibility.h;
+    // needs what that needs).
+    static PvsDatabase make(const Scene &scene, const Hierarchy &hierarchy, const ViewCellOptions &cells,
+                            const ViewCellVisibilityOptions &visibility, CullMapTest test);
 
     void save(const std::string &path) const;
     // Throws std::runtime_error naming the file and line of what is wrong.

@@ -18,6 +18,29 @@ namespace occu::strategies {
 
 namespace {
 
+ViewCellOptions cell_options(const Settings &settings)
+{
+    ViewCellOptions cells;
+    cells.max_edge = settings.number("max-edge");
+    cells.top = settings.number("cell-top");
+    cells.clearance = settings.number("clearance");
+    return cells;
+}
+
+ViewCellVisibilityOptions visibility_options(const Settings &settings)
+{
+    ViewCellVisibilityOptions options;
+    options.epsilon = settings.number("epsilon");
+    options.pixel = settings.number("pixel");
+    options.initial_extent = settings.number("initial-extent");
+    return options;
+}
+
+CullMapTest cull_map_test()
+{
+    return gl::OcclusionUnit::available() ? CullMapTest::occlusion_unit : CullMapTest::readback;
+}
+
 class ViewCellCuller final : public Culler {
 public:
     ViewCellCuller(const StrategyContext &context, const Settings &settings) : hierarchy_(context.hierarchy)
@@ -27,36 +50,32 @@ public:
                 scene_triangles_ += n.triangle_count;
         const std::string &path = settings.text("pvs-database");
         if (!path.empty()) {
-            // The database was made with its own settings (its provenance);
-            // others given beside it would be silently ignored.
-            for (const char *key : {"epsilon", "pixel", "max-edge", "cell-top", "clearance", "initial-extent"})
-                if ((":" + settings.changed()).find(":" + std::string(key) + "=") != std::string::npos)
-                    throw std::invalid_argument("pvs: " + std::string(key) +
-                                                " is the database's to say (" + path + " was made with its own); "
-                                                "give it to occu-preprocess view-cells, not beside pvs-database");
             database_.emplace(PvsDatabase::load(path));
             if (database_->provenance.hierarchy != context.hierarchy.fingerprint())
                 throw std::runtime_error(path + " was made for another scene or hierarchy (hierarchy " +
                                          database_->provenance.hierarchy + ", this one " +
                                          context.hierarchy.fingerprint() + ")");
+            // The database was made with its own settings (its provenance):
+            // one given beside it that differs would be silently ignored.
+            const PvsProvenance &made = database_->provenance;
+            const std::pair<const char *, double> made_with[] = {
+                {"epsilon", made.epsilon},   {"pixel", made.pixel},         {"max-edge", made.max_edge},
+                {"cell-top", made.top},      {"clearance", made.clearance}, {"initial-extent", made.initial_extent}};
+            for (const auto &[key, value] : made_with)
+                if ((":" + settings.changed()).find(":" + std::string(key) + "=") != std::string::npos &&
+                    settings.number(key) != value)
+                    throw std::invalid_argument("pvs: " + std::string(key) + "=" + settings.text(key) +
+                                                " is not what " + path + " was made with (" + std::to_string(value) +
+                                                "): it is the database's to say; give it to occu-preprocess "
+                                                "view-cells, not beside pvs-database");
             cells_.emplace(database_->cells, database_->cell_options());
         } else {
-            ViewCellOptions cells;
-            cells.max_edge = settings.number("max-edge");
-            cells.top = settings.number("cell-top");
-            cells.clearance = settings.number("clearance");
             const Scene &scene = context.scene;
-            if (scene.prism_occluders.empty())
-                throw std::invalid_argument("pvs needs 2.5D occluders (building footprints with heights, Wonka et al. "
-                                            "section 4.1), which only the generated city provides; this scene has none");
             cells_.emplace(glm::dvec2(scene.bounds.min.x, scene.bounds.min.z),
-                           glm::dvec2(scene.bounds.max.x, scene.bounds.max.z), scene.prism_occluders, cells);
-            ViewCellVisibilityOptions options;
-            options.epsilon = settings.number("epsilon");
-            options.pixel = settings.number("pixel");
-            options.initial_extent = settings.number("initial-extent");
-            visibility_.emplace(scene, hierarchy_, *cells_, options);
-            test_ = gl::OcclusionUnit::available() ? CullMapTest::occlusion_unit : CullMapTest::readback;
+                           glm::dvec2(scene.bounds.max.x, scene.bounds.max.z), scene.prism_occluders,
+                           cell_options(settings));
+            visibility_.emplace(scene, hierarchy_, *cells_, visibility_options(settings));
+            test_ = cull_map_test();
         }
     }
 
@@ -170,6 +189,23 @@ StrategyFamily view_cell_family()
         number_setting("initial-extent", 64.0, 1.0, 1e6, Role::cost,
                        "metres around a cell of its first cull map (section 6)"),
     };
+    f.scene_requirements = {{"2.5D occluders (building footprints with heights, Wonka et al. section 4.1), which "
+                             "only the generated city provides",
+                             [](const Scene &scene) { return !scene.prism_occluders.empty(); }}};
+    DatabaseNeed sets;
+    sets.setting = "pvs-database";
+    sets.name = "PVS database";
+    sets.provenance = [](const DatabaseRequest &r) {
+        const PvsProvenance p =
+            PvsProvenance::current(r.context.hierarchy, cell_options(r.settings), visibility_options(r.settings));
+        return "view-cells hierarchy " + p.hierarchy + " " + std::to_string(p.leaves) + " " + p.describe_options();
+    };
+    sets.make = [](const DatabaseRequest &r, const std::string &path) {
+        PvsDatabase::make(r.context.scene, r.context.hierarchy, cell_options(r.settings), visibility_options(r.settings),
+                          cull_map_test())
+            .save(path);
+    };
+    f.databases = {sets};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<ViewCellCuller>(context, settings);
     };

@@ -128,7 +128,7 @@ StrategyFamily hierarchical_occlusion_map_family()
     f.name = "hom";
     f.paper = "Zhang, Manocha, Hudson and Hoff 1997 (Moeller and Haines, hierarchical occlusion maps)";
     f.summary = "an opacity pyramid of the skins and a depth estimation buffer, overlap then depth test";
-    f.costs_per_frame = true;
+    f.traversal.switch_off = true;
     f.settings = {
         number_setting("tolerance", 0.0, 0.0, 1.0, Role::approximation,
                        "1 - the opacity threshold O_0: the share of a level-0 texel's frame pixels that may be holes"),
@@ -141,6 +141,7 @@ StrategyFamily hierarchical_occlusion_map_family()
     };
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
+    f.databases = {skin_database_need()};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalOcclusionMapCuller>(context, settings);
     };

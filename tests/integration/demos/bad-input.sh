@@ -38,7 +38,10 @@ expect_error "'threshold'" "$walkthrough" --strategies ou:threshold=0.1
 expect_error "proxy" "$walkthrough" --strategies ou:proxy=maybe
 expect_error "'passes'" "$walkthrough" --strategies vfc,om-ps --set passes=shared
 expect_error "--coherence" "$walkthrough" --coherence maybe
-expect_error "database=FILE" "$walkthrough" --frames 1 --strategies om-mos
+expect_error "--make-databases" "$walkthrough" --make-databases some
+# A database a strategy requires is made on demand, where it can be written.
+expect_error "cannot make the database directory '/proc/occu-databases'" "$walkthrough" --frames 1 --size 16 \
+    --strategies om-mos:database-grid=1:database-headings=1 --databases /proc/occu-databases --out "$dir/walk"
 expect_error "needs the oracle" "$walkthrough" --strategies vfc,ideal --oracle off
 expect_error "bad.db" "$walkthrough" --frames 1 --strategies om-mos --occluder-db "$dir/bad.db"
 expect_error "another scene or hierarchy" "$walkthrough" --frames 1 --strategies om-mos --leaf-triangles 512 \

@@ -17,7 +17,7 @@ expect_error "no-such-knob" "$bench" --strategies om-ps --knob no-such-knob=1 --
 expect_error "tolerance" "$bench" --strategies om-ps --knob tolerance=-1 --out "$out"
 expect_error "nope" "$bench" --strategies nope --out "$out"
 expect_error "vfc has no approximation or cost setting" "$bench" --strategies vfc --out "$out"
-expect_error "om-mos needs an occluder database" "$bench" --strategies om-mos --out "$out"
+expect_error "--make-databases" "$bench" --strategies om-ps --make-databases some --out "$out"
 expect_error "--bogus" "$bench" --bogus 1
 expect_error "nowhere" "$bench" --routes nowhere --strategies om-ps --knob tolerance=0 --out "$out"
 # An approximation knob swept without its exact value never reaches 0 wrong pixels: said loudly, exit 1.

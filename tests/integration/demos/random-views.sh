@@ -1,7 +1,7 @@
 #!/bin/sh
 # occu-random-views: a CI-sized run (VIEWS random cameras over the city and
 # the two assimp-testmodels scenes, every conservative strategy, om-mos and
-# pc-mos with small occluder databases made at start) loses no
+# pc-mos with small occluder databases made on demand) loses no
 # visible pixel, exits 0 and prints its summary; a strategy that does lose
 # pixels (an approximation, ou:tolerance=0.9) makes it exit 1 naming the
 # strategy, scene and view; bad options and unreadable scenes are refused
@@ -37,8 +37,9 @@ expect_error "--switch-off" "$views" --switch-off 2 --out "$out"
 expect_error "--coherence" "$views" --coherence maybe --out "$out"
 expect_error "no-such-strategy" "$views" --strategies vfc,no-such-strategy --out "$out"
 expect_error "no-such-setting" "$views" --strategies ou:no-such-setting=1 --out "$out"
-expect_error "--mos-grid" "$views" --mos-grid 4,2 --out "$out"
-expect_error "--mos-grid" "$views" --mos-grid 4,2,4/0 --out "$out"
+expect_error "database-grid" "$views" --set database-grid=0 --out "$out"
+expect_error "'nothing-has-this'" "$views" --set nothing-has-this=1 --out "$out"
+expect_error "--make-databases" "$views" --make-databases some --out "$out"
 expect_error "nowhere.db" "$views" --scene city --views 1 --strategies om-mos:database="$dir/nowhere.db" --out "$out"
 expect_error "--strategies is empty" "$views" --strategies , --out "$out"
 expect_error "--scene is empty" "$views" --scene , --out "$out"
@@ -52,7 +53,8 @@ expect_error "first by ou:tolerance=0.9 on scene city, view" "$views" --scene ci
     --strategies vfc,ou:tolerance=0.9 --driver "$driver" --out "$out"
 
 # The CI-sized run: every conservative strategy, no pixel lost.
-if "$views" --views "$count" --size 64 --seed 2026 --mos-grid 2,2,2/4 --driver "$driver" --out "$out" >"$dir/good" 2>&1; then
+if "$views" --views "$count" --size 64 --seed 2026 --set database-grid=2 --set database-layers=2 \
+    --set database-headings=4 --databases "$dir/databases" --driver "$driver" --out "$out" >"$dir/good" 2>&1; then
     status=0
 else
     status=$?
@@ -60,7 +62,7 @@ fi
 frames=$(sed -n 's/^total: [0-9]* views, \([0-9]*\) frames, 0 visible pixels lost.*/\1/p' "$dir/good")
 if [ $status -eq 0 ] && [ -n "$frames" ] && grep -q "^total: $count views" "$dir/good" &&
     [ "$(grep -c '^scene .*: [0-9]* views, [0-9]* strategies, 0 visible pixels lost$' "$dir/good")" -eq 3 ] &&
-    [ "$(grep -c '^occluder database at start (for om-mos' "$dir/good")" -eq 3 ] &&
+    [ "$(grep -c '^occluder database made (for om-mos' "$dir/good")" -eq 3 ] &&
     grep -q '^left out: pvs' "$dir/good" &&
     [ "$(grep -cE '^(ou|chc|chc-shared|hzb-last-frame|om-mos|pc-mos|skins-both) +[0-9]+ ' "$dir/good")" -eq 21 ] &&
     [ "$(wc -l < "$out/views.csv")" -eq $((frames + 1)) ] &&

@@ -4,6 +4,7 @@
 // settings and values are refused naming them and what is known; former
 // names keep working.
 #include "culling/registry.h"
+#include "culling/databases.h"
 
 #include <gtest/gtest.h>
 
@@ -105,14 +106,14 @@ TEST(Registry, EveryNameBuildsAConservativeStrategyAtDefaults)
     for (const std::string &n : strategy_names()) {
         const StrategyChoice c = choose_strategy(n);
         EXPECT_TRUE(c.conservative()) << n;
-        if (c.settings.knows("selection") && c.settings.text("selection") == "mos") {
-            // Needs a database (tests/integration makes one).
+        const auto read = databases_read(c);
+        if (std::any_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->required; })) {
+            // Not given a database it requires (tests/integration have one made).
             EXPECT_THROW(make_strategy(n, context), std::invalid_argument) << n;
             continue;
         }
-        if (n == "pvs") {
-            // Needs 2.5D occluders, which a plain mesh lacks
-            // (tests/integration/view_cells_frames_test.cpp builds it on a city).
+        if (!c.family->refusal(box.scene).empty()) {
+            // A scene it cannot serve: a plain mesh has no 2.5D occluders.
             EXPECT_THROW(make_strategy(n, context), std::invalid_argument) << n;
             continue;
         }
@@ -124,9 +125,10 @@ TEST(Registry, EveryNameBuildsAConservativeStrategyAtDefaults)
 
 TEST(Registry, TraitsComeFromTheFamily)
 {
-    EXPECT_TRUE(choose_strategy("ou-shared").family->queries_rasterizer);
-    EXPECT_FALSE(choose_strategy("om-fh").family->queries_rasterizer);
-    EXPECT_FALSE(choose_strategy("vfc").family->queries_rasterizer);
+    EXPECT_TRUE(choose_strategy("ou-shared").family->traversal.coherence);
+    EXPECT_FALSE(choose_strategy("om-fh").family->traversal.coherence);
+    EXPECT_TRUE(choose_strategy("om-fh").family->traversal.switch_off);
+    EXPECT_FALSE(choose_strategy("vfc").family->traversal.switch_off);
     EXPECT_TRUE(choose_strategy("ideal").family->needs_truth);
     EXPECT_FALSE(choose_strategy("none").family->needs_truth);
     // A tolerance makes an approximation; 0 is exact again.
@@ -240,4 +242,42 @@ TEST(Baselines, IdealDrawsTheOraclesVisibleLeavesAndNeedsTheOracle)
     ideal.culler->begin_frame(Frame(c, 8, 8, &truth));
     ideal.culler->test(tests);
     EXPECT_EQ(tests[0].result, Visibility::visible);
+}
+
+// What a family declares it needs: every database need names a path
+// setting of its family, says how to make it and what it depends on; the
+// scene requirements say what they want. The ones declared today: the
+// minimum-occluder-set database (required, read only with selection=mos),
+// the skins' and the view cells' (made by the strategy itself without one),
+// and the view cells' 2.5D occluders.
+TEST(Registry, FamiliesDeclareTheirDatabasesAndScenes)
+{
+    std::size_t needs = 0, required = 0;
+    for (const StrategyFamily &f : strategy_families()) {
+        for (const DatabaseNeed &d : f.databases) {
+            SCOPED_TRACE(f.name + " " + d.setting);
+            ++needs;
+            required += d.required;
+            const auto spec = std::find_if(f.settings.begin(), f.settings.end(),
+                                           [&d](const SettingSpec &s) { return s.name == d.setting; });
+            ASSERT_NE(spec, f.settings.end()) << "a database need names no setting of its family";
+            EXPECT_EQ(spec->kind, SettingSpec::Kind::path);
+            EXPECT_TRUE(d.provenance);
+            EXPECT_TRUE(d.make);
+            EXPECT_FALSE(d.name.empty());
+        }
+        for (const SceneRequirement &r : f.scene_requirements) {
+            EXPECT_FALSE(r.what.empty()) << f.name;
+            EXPECT_TRUE(r.met) << f.name;
+        }
+    }
+    EXPECT_GE(needs, 7u);
+    EXPECT_EQ(required, 1u);
+    EXPECT_EQ(databases_read(choose_strategy("om-mos")).size(), 1u);
+    EXPECT_EQ(databases_read(choose_strategy("om-ps")).size(), 0u) << "om-ps reads no database";
+    EXPECT_EQ(databases_read(choose_strategy("hzb-last-frame")).size(), 0u);
+    EXPECT_EQ(databases_read(choose_strategy("skins-drawn")).size(), 0u);
+    Scene plain;
+    EXPECT_NE(choose_strategy("pvs").family->refusal(plain).find("2.5D occluders"), std::string::npos);
+    EXPECT_EQ(choose_strategy("ou").family->refusal(plain), "");
 }

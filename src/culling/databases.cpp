@@ -1,0 +1,117 @@
+#include "culling/databases.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "gl/gl_headers.h"
+#include "library_code_hash.h"
+
+#ifndef OCCU_MESA_BUILD
+#define OCCU_MESA_BUILD "unknown"
+#endif
+
+namespace occu {
+
+namespace {
+
+// 64-bit FNV-1a, as 16 hex digits: a name, not a defence against collisions made on purpose.
+std::string hash_name(const std::string &text)
+{
+    std::uint64_t h = 0xcbf29ce484222325ULL;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 0x100000001b3ULL;
+    }
+    char s[17];
+    std::snprintf(s, sizeof(s), "%016llx", (unsigned long long)h);
+    return s;
+}
+
+}  // namespace
+
+const char *library_code_hash()
+{
+    return OCCU_LIBRARY_CODE_HASH;
+}
+
+std::vector<const DatabaseNeed *> databases_read(const StrategyChoice &choice)
+{
+    std::vector<const DatabaseNeed *> read;
+    for (const DatabaseNeed &d : choice.family->databases)
+        if (d.read_by_settings(choice.settings))
+            read.push_back(&d);
+    return read;
+}
+
+DatabaseProvider::DatabaseProvider(std::string directory, Makes makes, std::FILE *report)
+    : directory_(std::move(directory)), makes_(makes), report_(report)
+{
+}
+
+std::vector<std::string> DatabaseProvider::settings_for(const StrategyChoice &choice, const StrategyContext &context,
+                                                        int width, int height)
+{
+    std::vector<std::string> settings;
+    for (const DatabaseNeed *need : databases_read(choice)) {
+        if (!choice.settings.text(need->setting).empty() || (!need->required && makes_ == Makes::required))
+            continue;
+        const DatabaseRequest request{context, choice.settings, width, height};
+        const std::string provenance = need->provenance(request) + "\nlibrary " + library_code_hash() + "\nmesa " +
+                                       OCCU_MESA_BUILD;
+        const std::string path = directory_ + "/" + need->setting + "-" + hash_name(provenance) + ".db";
+        if (!std::filesystem::exists(path)) {
+            std::error_code error;
+            std::filesystem::create_directories(directory_, error);
+            if (error)
+                throw std::runtime_error("cannot make the database directory '" + directory_ + "': " + error.message());
+            // Written whole under a name of this process's, then named.
+            const std::string part = path + ".part-" + std::to_string(getpid());
+            const auto start = std::chrono::steady_clock::now();
+            // The making draws with its own state (framebuffers, viewports).
+            glPushAttrib(GL_ALL_ATTRIB_BITS);
+            try {
+                need->make(request, part);
+            } catch (...) {
+                glPopAttrib();
+                std::filesystem::remove(part, error);
+                throw;
+            }
+            glPopAttrib();
+            std::filesystem::rename(part, path, error);
+            if (error)
+                throw std::runtime_error("cannot name the database '" + path + "': " + error.message());
+            made_.push_back(path);
+            if (report_)
+                std::fprintf(report_, "%s made (for %s) in %.1f s: %s\n", need->name.c_str(), choice.label().c_str(),
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                             path.c_str());
+        }
+        settings.push_back(need->setting + "=" + path);
+    }
+    return settings;
+}
+
+DatabaseProvider::Makes make_databases_option(const std::string &option, const std::string &text)
+{
+    if (text == "required")
+        return DatabaseProvider::Makes::required;
+    if (text == "all")
+        return DatabaseProvider::Makes::all;
+    throw std::invalid_argument(option + " wants required or all, got '" + text + "'");
+}
+
+std::string default_database_directory()
+{
+    if (const char *cache = std::getenv("XDG_CACHE_HOME"); cache && *cache)
+        return std::string(cache) + "/occu/databases";
+    if (const char *home = std::getenv("HOME"); home && *home)
+        return std::string(home) + "/.cache/occu/databases";
+    return "occu-databases";
+}
+
+}  // namespace occu
