@@ -56,7 +56,7 @@ expect_error "nan.obj': vertex 2 of mesh 'wall' is (1, nan, 0)" "$walkthrough" -
 expect_error "short.bsp': Quake III BSP: the file is 4 bytes" "$walkthrough" --frames 1 --scene "$dir/short.bsp"
 expect_error "lumps.bsp': Quake III BSP: lump 13 (faces): bytes 144 to 248 lie beyond the end" "$walkthrough" --frames 1 \
     --scene "$dir/lumps.bsp"
-expect_error "no-such-level.bsp': No such file" "$walkthrough" --frames 1 --scene "$dir/no-such-level.bsp"
+expect_error "no-such-level.bsp': no such file" "$walkthrough" --frames 1 --scene "$dir/no-such-level.bsp"
 expect_error "cannot open the archive '$dir/no-such.pk3'" "$walkthrough" --frames 1 --scene "$dir/no-such.pk3:maps/x.bsp"
 expect_error "holds no member 'maps/no-such-level.bsp'" "$walkthrough" --frames 1 --scene "$pak:maps/no-such-level.bsp"
 expect_error "route 'spawn': the scene is not a Quake III level" "$walkthrough" --frames 1 --route spawn

@@ -21,7 +21,8 @@ if [ ! -r "${level%%:*}" ]; then
 fi
 
 # Random views: every conservative strategy, no pixel lost.
-if "$views" --scene "$level" --views "$count" --size 64 --seed 2026 --mos-grid 2,2,2/4 --driver "$driver" \
+if "$views" --scene "$level" --views "$count" --size 64 --seed 2026 --set database-grid=2 --set database-layers=2 \
+       --set database-headings=4 --databases "$dir/databases" --driver "$driver" \
        --out "$dir/random" >"$dir/random.out" 2>&1; then
     status=0
 else
