@@ -30,7 +30,8 @@ const SceneSkins &skins_of(const Scene &scene)
 SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh)
 {
     auto keep = [&](std::uint32_t mesh, const std::vector<Aabb> &boxes) {
-        if (mesh >= scene.meshes.size())
+        // A see-through mesh hides nothing, whatever a database says.
+        if (mesh >= scene.meshes.size() || !scene.meshes[mesh].occluder)
             return;
         Aabb bounds;
         for (const glm::vec3 &p : scene.meshes[mesh].positions)
