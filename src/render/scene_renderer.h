@@ -4,9 +4,10 @@
 //
 // See-through meshes (Mesh::occluder false: glass, water, fog) hide nothing,
 // so a frame draws them last, as a real-time renderer draws translucent
-// surfaces after the opaque ones (Quake III sorts its translucent shaders
-// after the opaque; Akenine-Moller, Haines and Hoffman, "Real-Time
-// Rendering", section 5.5): every leaf's occluders first (draw_leaf), in
+// surfaces after the opaque ones (Quake III's shaders sort blended surfaces
+// after opaque ones; Akenine-Moller, Haines and Hoffman, "Real-Time
+// Rendering", 4th ed., section 5.5, "Transparency, Alpha, and
+// Compositing"): every leaf's occluders first (draw_leaf), in
 // whatever order the culling strategy chooses, then the see-through
 // triangles of the leaves it drew (draw_see_through), blended over them,
 // depth tested but never writing depth. So the depth buffer the occlusion
