@@ -220,7 +220,7 @@ void draw_collision_frame(const SceneRenderer &renderer, const Hierarchy &hierar
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl::load_camera(camera);
     for (std::uint32_t leaf : leaves_in_frustum(hierarchy, Frustum(camera.view_projection())))
-        renderer.draw_leaf(leaf);
+        renderer.draw_leaf(leaf, LeafPart::all);   // see-through surfaces stop a walker too
 }
 
 CollisionCheck::CollisionCheck(const SceneRenderer &renderer, const Hierarchy &hierarchy)
@@ -273,7 +273,7 @@ CollisionResult CollisionCheck::check_own_pass(const Camera &camera, float step_
         glClear(GL_DEPTH_BUFFER_BIT);
         gl::load_camera(volume.camera());
         for (std::uint32_t leaf : leaves)
-            renderer_.draw_leaf_flat(leaf);
+            renderer_.draw_leaf_flat(leaf, LeafPart::all);
     }
     return test_far_face(volume, {0, 0, volume.width(), volume.height()});
 }

@@ -199,7 +199,7 @@ void draw_polygons(const SceneRenderer &renderer, const Hierarchy &hierarchy, co
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl::load_camera(camera);
     for (std::uint32_t leaf : leaves_in_frustum(hierarchy, Frustum(camera.view_projection())))
-        renderer.draw_leaf(leaf);
+        renderer.draw_leaf(leaf, LeafPart::all);
 }
 
 std::vector<double> read_window_depth(int width, int height)

@@ -28,9 +28,13 @@ void draw_unculled_after(const SceneRenderer &renderer, const Hierarchy &hierarc
         renderer.draw_leaf(leaf);
         done[leaf] = 1;
     }
+    std::vector<std::uint32_t> leaves = first;
     for (std::uint32_t n = 0; n < nodes.size(); ++n)
-        if (nodes[n].leaf() && !done[n])
+        if (nodes[n].leaf() && !done[n]) {
             renderer.draw_leaf(n);
+            leaves.push_back(n);
+        }
+    renderer.draw_see_through(leaves, camera.position);
     glFinish();
 }
 

@@ -10,6 +10,11 @@
 // pixel is one where a leaf the strategy culled is strictly nearer than
 // everything it drew there: geometry the viewer sees that the culled frame
 // shows wrongly (background, or what lies behind).
+// See-through triangles (Mesh::occluder false) come last in both frames,
+// sorted by distance, depth tested against the occluders and not writing
+// depth (render/scene_renderer.h): a culled leaf's see-through surface
+// changes a pixel only where no occluder drawn is nearer, and what lies
+// behind a see-through surface counts as seen.
 //
 // Depth ties. Where faces tie in depth (coplanar faces of two leaves) the
 // leaf drawn first keeps the pixel, so a frame that left out one of the two
@@ -38,7 +43,8 @@ std::uint64_t lost_pixels(const std::uint8_t *reference, const std::uint8_t *cul
 
 // The reference above: clears colour and depth, loads `camera` and draws
 // every leaf of `hierarchy`, those of `first` in their order, then the
-// others in index order; waits for it (glFinish). Draws into the current
+// others in index order, then the see-through triangles of all of them as a
+// frame draws them (render/scene_renderer.h); waits for it (glFinish). Draws into the current
 // context with its state.
 void draw_unculled_after(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Camera &camera,
                          const std::vector<std::uint32_t> &first);

@@ -10,9 +10,12 @@ VisibilityTruth Oracle::see(const Camera &camera, int width, int height)
     truth.in_frustum = leaves_in_frustum(hierarchy_, Frustum(camera.view_projection()));
     const auto &nodes = hierarchy_.nodes();
     std::vector<bool> seen(nodes.size() + 1, false);
-    for (std::uint32_t id : ids_.render(camera, truth.in_frustum, width, height))
+    std::vector<std::uint32_t> see_through;
+    for (std::uint32_t id : ids_.render(camera, truth.in_frustum, width, height, &see_through))
         if (id && id <= nodes.size())
             seen[id] = true;
+    for (std::uint32_t n : see_through)
+        seen[n + 1] = true;
     for (std::uint32_t id = 1; id <= nodes.size(); ++id)
         if (seen[id])
             truth.visible.push_back(id - 1);

@@ -3,7 +3,11 @@
 // drawn in its own flat colour, then read back). It draws into the bound
 // framebuffer, the one the frames are drawn into, so that its pixels are
 // the frame's (render/id_buffer.h says why), and overwrites its colour and
-// depth: callers draw their frames after it. Culling efficiency is measured against it, as Poon and Wang
+// depth: callers draw their frames after it. A see-through mesh
+// (Mesh::occluder false) hides nothing: the ID buffer holds occluders only,
+// so what lies behind glass is seen, and a leaf whose see-through triangles
+// pass the depth test of those occluders is seen too, as the frame blends
+// them over the occluders (render/scene_renderer.h). Culling efficiency is measured against it, as Poon and Wang
 // (section 6) compare with the exact visible set, and the `ideal` reference
 // strategy draws exactly its visible leaves.
 #pragma once

@@ -1,11 +1,56 @@
 #include "render/id_buffer.h"
 
+#include <stdexcept>
+
 #include "gl/state.h"
 
 namespace occu {
 
+namespace {
+
+// Of `leaves`, those whose see-through triangles pass the depth test of the
+// bound framebuffer somewhere (GL_SAMPLES_PASSED), drawn without writing
+// colour or depth.
+std::vector<std::uint32_t> see_through_passing(const SceneRenderer &renderer, const std::vector<std::uint32_t> &leaves)
+{
+    std::vector<std::uint32_t> candidates;
+    for (std::uint32_t n : leaves)
+        if (renderer.has_see_through(n))
+            candidates.push_back(n);
+    if (candidates.empty())
+        return {};
+    auto GenQueries = reinterpret_cast<PFNGLGENQUERIESPROC>(gl::get_proc_address("glGenQueries"));
+    auto DeleteQueries = reinterpret_cast<PFNGLDELETEQUERIESPROC>(gl::get_proc_address("glDeleteQueries"));
+    auto BeginQuery = reinterpret_cast<PFNGLBEGINQUERYPROC>(gl::get_proc_address("glBeginQuery"));
+    auto EndQuery = reinterpret_cast<PFNGLENDQUERYPROC>(gl::get_proc_address("glEndQuery"));
+    auto GetQueryObjectuiv =
+        reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(gl::get_proc_address("glGetQueryObjectuiv"));
+    if (!GenQueries || !DeleteQueries || !BeginQuery || !EndQuery || !GetQueryObjectuiv)
+        throw std::runtime_error("the visibility of see-through meshes needs occlusion queries (GL 1.5)");
+    std::vector<GLuint> queries(candidates.size());
+    GenQueries(GLsizei(queries.size()), queries.data());
+    glDepthMask(GL_FALSE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+        BeginQuery(GL_SAMPLES_PASSED, queries[i]);
+        renderer.draw_leaf_flat(candidates[i], LeafPart::see_through);
+        EndQuery(GL_SAMPLES_PASSED);
+    }
+    std::vector<std::uint32_t> shown;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+        GLuint samples = 0;
+        GetQueryObjectuiv(queries[i], GL_QUERY_RESULT, &samples);
+        if (samples)
+            shown.push_back(candidates[i]);
+    }
+    DeleteQueries(GLsizei(queries.size()), queries.data());
+    return shown;
+}
+
+}  // namespace
+
 std::vector<std::uint32_t> IdBuffer::render(const Camera &camera, const std::vector<std::uint32_t> &leaves, int width,
-                                            int height)
+                                            int height, std::vector<std::uint32_t> *see_through_shown)
 {
     std::optional<gl::Framebuffer::Bind> bind;
     if (target_kind_ == Target::own_framebuffer) {
@@ -38,6 +83,8 @@ std::vector<std::uint32_t> IdBuffer::render(const Camera &camera, const std::vec
             renderer_.draw_leaf_flat(n);
         }
         glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+        if (see_through_shown)
+            *see_through_shown = see_through_passing(renderer_, leaves);
     }
     std::vector<std::uint32_t> ids(std::size_t(width) * std::size_t(height));
     for (std::size_t i = 0; i < ids.size(); ++i)

@@ -35,9 +35,15 @@ public:
 
     // Draws `leaves` as seen by `camera` into width x height pixels and
     // returns, per pixel (rows bottom-up), the leaf index + 1 seen there, 0
-    // for background. Indices must be below 2^24 - 1.
+    // for background. Indices must be below 2^24 - 1. Only occluders are
+    // drawn (Mesh::occluder): a see-through surface hides nothing, so a
+    // pixel names the first occluder along its ray, what occluder selection
+    // wants. `see_through_shown`, when given, receives the leaves of
+    // `leaves` whose see-through triangles show in front of those
+    // occluders somewhere (one occlusion query each, with the frame's depth
+    // test): what a frame draws over the occluders (render/scene_renderer.h).
     std::vector<std::uint32_t> render(const Camera &camera, const std::vector<std::uint32_t> &leaves, int width,
-                                      int height);
+                                      int height, std::vector<std::uint32_t> *see_through_shown = nullptr);
 
 private:
     const SceneRenderer &renderer_;

@@ -34,7 +34,10 @@ struct Mesh {
 // A 2.5D occluder (Wonka, Wimmer and Schmalstieg 2000, section 4.1): a
 // solid prism between heights `bottom` and `top` over a simple polygon in
 // the ground plane (world x and z), wholly inside the scene's geometry, so
-// that whatever it hides the scene hides. Points are (x, z); the outline
+// that whatever it hides the scene hides: inside occluder meshes, never
+// see-through ones (Mesh::occluder), which hide nothing. The view cells'
+// visibility (strategies/wonka_view_cells/) takes these prisms, declared by
+// the scene's generator, as its only occluders, never the meshes. Points are (x, z); the outline
 // runs counter-clockwise in those coordinates (positive signed area), holes
 // clockwise.
 struct PrismOccluder {

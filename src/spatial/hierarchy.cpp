@@ -13,6 +13,7 @@ struct Item {
     TriangleRef ref;
     Aabb box;
     glm::vec3 centroid;
+    bool occluder = true;   // its mesh's Mesh::occluder
 };
 
 class Builder {
@@ -50,8 +51,14 @@ private:
     {
         nodes_[node].first_triangle = std::uint32_t(out_.size());
         nodes_[node].triangle_count = std::uint32_t(items.size());
-        for (const Item &it : items)
-            out_.push_back(it.ref);
+        // Occluders first, see-through triangles after (in their order):
+        // whatever draws or rasterizes a leaf's occluders takes a prefix.
+        for (int pass = 0; pass < 2; ++pass)
+            for (const Item &it : items)
+                if (it.occluder == (pass == 0))
+                    out_.push_back(it.ref);
+        nodes_[node].occluder_triangles = std::uint32_t(
+            std::count_if(items.begin(), items.end(), [](const Item &it) { return it.occluder; }));
     }
 
     // Octants around the centre of the centroids' box; if every centroid
@@ -109,6 +116,11 @@ std::string Hierarchy::fingerprint_of(const Scene &scene, const Hierarchy &h)
 {
     Fnv1a f;
     for (const Mesh &mesh : scene.meshes) {
+        // A see-through mesh is marked in the hash (and only then, so that
+        // scenes without one keep their fingerprints): what was chosen as
+        // occluders for a scene depends on which meshes may occlude.
+        if (!mesh.occluder)
+            f.add(std::uint64_t(0x7365652d7468726full));
         f.add(mesh.positions.size());
         for (const glm::vec3 &p : mesh.positions)
             f.add(p);
@@ -166,7 +178,7 @@ Hierarchy Hierarchy::build(const Scene &scene, const HierarchyOptions &options)
     for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh &mesh = scene.meshes[m];
         for (std::uint32_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-            Item it{{m, i}, {}, {}};
+            Item it{{m, i}, {}, {}, mesh.occluder};
             for (int k = 0; k < 3; ++k)
                 it.box.expand(mesh.positions[mesh.indices[i + k]]);
             it.centroid = it.box.center();

@@ -26,6 +26,9 @@ struct HierarchyNode {
     Aabb bounds;
     std::uint32_t first_child = 0, child_count = 0;          // nodes[first_child ..]
     std::uint32_t first_triangle = 0, triangle_count = 0;    // leaves: triangles[first_triangle ..]
+    // Leaves: how many of its triangles, the first ones, belong to meshes
+    // that are occluders (Mesh::occluder); the see-through ones follow.
+    std::uint32_t occluder_triangles = 0;
     std::uint32_t depth = 0;
     std::uint32_t subtree_triangles = 0;   // in this node's leaves
     bool leaf() const { return child_count == 0; }

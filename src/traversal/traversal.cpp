@@ -79,6 +79,7 @@ public:
             }
         }
         stats_.passes = culler_.stats().passes;
+        draw_see_through();
         if (coherence)
             coherence->end_frame();
         if (options_.switch_off)
@@ -125,6 +126,7 @@ private:
         watch_.time(traverse_ms, [&] { culler_.traverse(sink); });
         stats_.test_ms = std::max(0.0, traverse_ms - sink.draw_ms);
         stats_.passes = culler_.stats().passes;
+        draw_see_through();
         // Judged as any tested frame is: the triangles its answers culled
         // against those it drew. Its own traversal cannot be cut, so a probe
         // is a whole frame of it.
@@ -132,6 +134,11 @@ private:
             options_.switch_off->end_frame(true, double(stats_.triangles), double(stats_.triangles_occluded));
         return std::move(stats_);
     }
+
+    // The frame's last pass (render/scene_renderer.h): the see-through
+    // triangles of the leaves drawn, after every test, so that no test
+    // found a box occluded by a see-through surface.
+    void draw_see_through() { stats_.triangles += renderer_.draw_see_through(stats_.drawn, frame_.camera.position); }
 
     void push(std::uint32_t node) { front_.push({distance_to(nodes_[node].bounds, frame_.camera.position), node}); }
 

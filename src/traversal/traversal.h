@@ -53,7 +53,9 @@ struct FrameStats {
 };
 
 // Draws one frame into the current context's bound framebuffer (the caller
-// clears it and loads the camera's matrices, gl/state.h) and returns what it did.
+// clears it and loads the camera's matrices, gl/state.h) and returns what it
+// did: the occluders of the leaves it finds visible as it tests, then the
+// see-through triangles of those leaves (SceneRenderer::draw_see_through).
 FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler,
                             const Frame &frame, const TraversalOptions &options = {});
 

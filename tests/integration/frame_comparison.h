@@ -61,6 +61,7 @@ inline DrawnFrame draw_unculled_after(const gl::OffscreenContext &ctx, const Sce
             d.triangles += renderer.draw_leaf(n);
             d.leaves.push_back(n);
         }
+    d.triangles += renderer.draw_see_through(d.leaves, frame.camera.position);
     glFinish();
     const std::size_t bytes = std::size_t(ctx.width()) * std::size_t(ctx.height()) * 4;
     d.pixels.assign(ctx.pixels(), ctx.pixels() + bytes);

@@ -98,7 +98,8 @@ private:
         gl::OcclusionPass pass(unit_, gl::OcclusionMode::brief, tiles_for(members));
         for (std::size_t i : members) {
             if (leaf_triangles_ && tests[i].leaf)
-                renderer_.draw_leaf_flat(tests[i].node);
+                // All of them: a leaf whose see-through triangles show is visible.
+                renderer_.draw_leaf_flat(tests[i].node, LeafPart::all);
             else
                 draw_proxy_box(proxies_[i]);
         }

@@ -527,6 +527,10 @@ std::optional<std::vector<Aabb>> occluder_skins(const Mesh &mesh, const SkinOpti
 {
     if (const std::string problem = options.problem(); !problem.empty())
         throw std::invalid_argument("occluder skins: " + problem);
+    if (!mesh.occluder) {
+        fail(why, "see-through (not an occluder): it hides nothing behind it");
+        return std::nullopt;
+    }
     if (mesh.triangle_count() == 0) {
         fail(why, "no triangles");
         return std::nullopt;
@@ -596,6 +600,10 @@ std::string scene_geometry_fingerprint(const Scene &scene)
     Fnv1a f;
     f.add(std::uint64_t(scene.meshes.size()));
     for (const Mesh &mesh : scene.meshes) {
+        // A see-through mesh gets no skins: marked in the hash (only then,
+        // so that scenes without one keep their fingerprints).
+        if (!mesh.occluder)
+            f.add(std::uint64_t(0x7365652d7468726full));
         f.add(std::uint64_t(mesh.positions.size()));
         for (const glm::vec3 &p : mesh.positions)
             f.add(p);

@@ -113,7 +113,8 @@ struct SkinOptions {
 constexpr std::size_t max_skin_voxels = std::size_t(1) << 25;
 
 // The skins of one mesh, in the order found. std::nullopt
-// (with `why` filled) when the mesh has no skins to give: not watertight,
+// (with `why` filled) when the mesh has no skins to give: see-through
+// (Mesh::occluder false: it hides nothing behind it), not watertight,
 // no interior at this voxel size (thinner than about two voxels), grid too
 // large, no triangles, or bad vertices or indices. A watertight mesh whose
 // first box is below min_volume gives an empty vector. Throws

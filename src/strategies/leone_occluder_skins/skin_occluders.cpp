@@ -38,7 +38,8 @@ SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, in
                              const SkinOptions &options)
 {
     auto keep = [&](std::uint32_t mesh, const std::vector<Aabb> &boxes) {
-        if (mesh >= scene.meshes.size())
+        // A see-through mesh hides nothing, whatever a database says.
+        if (mesh >= scene.meshes.size() || !scene.meshes[mesh].occluder)
             return;
         Aabb bounds;
         for (const glm::vec3 &p : scene.meshes[mesh].positions)

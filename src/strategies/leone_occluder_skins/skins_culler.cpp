@@ -52,7 +52,8 @@ public:
             return;
         const HierarchyNode &n = hierarchy_.nodes()[node];
         const auto &triangles = hierarchy_.triangles();
-        for (std::uint32_t i = n.first_triangle; i < n.first_triangle + n.triangle_count; ++i) {
+        // Its occluders only: the hierarchy puts the see-through triangles last.
+        for (std::uint32_t i = n.first_triangle; i < n.first_triangle + n.occluder_triangles; ++i) {
             const Mesh &mesh = scene_.meshes[triangles[i].mesh];
             raster_.render_triangles(mesh.positions.data(), mesh.indices.data() + triangles[i].first_index, 1);
         }

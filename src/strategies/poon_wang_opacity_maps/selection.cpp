@@ -25,6 +25,8 @@ std::vector<std::uint32_t> occluders_by_projected_size(const Hierarchy &hierarch
 {
     std::vector<std::pair<float, std::uint32_t>> candidates;
     for (std::uint32_t n : leaves_in_frustum(hierarchy, frustum)) {
+        if (hierarchy.nodes()[n].occluder_triangles == 0)
+            continue;   // see-through alone: it would draw no occluder
         const Aabb &b = hierarchy.nodes()[n].bounds;
         const glm::vec3 e = b.extent();
         const glm::vec3 nearest = glm::clamp(camera.position, b.min, b.max);

@@ -105,3 +105,32 @@ TEST(Hierarchy, RefusesASceneWithAVertexThatIsNotFinite)
     o.max_leaf_triangles = 8;
     EXPECT_THROW(Hierarchy::build(s, o), std::runtime_error);
 }
+
+// A see-through mesh (Mesh::occluder false) shares leaves with occluders:
+// each leaf lists its occluders first, so that whatever draws or rasterizes
+// occluders takes a prefix, and the fingerprint tells the scenes apart
+// (databases of occluders made for one do not serve the other).
+TEST(Hierarchy, LeavesListTheirOccludersBeforeTheirSeeThroughTriangles)
+{
+    Scene s;
+    s.meshes.resize(3);
+    append_box(s.meshes[0], Aabb::of({0, 0, 0}, {1, 1, 1}));
+    append_box(s.meshes[1], Aabb::of({0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}));
+    append_box(s.meshes[2], Aabb::of({0.1f, 0.1f, 0.1f}, {0.9f, 0.9f, 0.9f}));
+    s.meshes[0].occluder = false;   // glass around two opaque boxes, listed first
+    s.update_bounds();
+    const Hierarchy h = Hierarchy::build(s);   // 36 triangles: one leaf
+    ASSERT_EQ(h.leaf_count(), 1u);
+    const HierarchyNode &leaf = h.root();
+    EXPECT_EQ(leaf.triangle_count, 36u);
+    EXPECT_EQ(leaf.occluder_triangles, 24u);
+    for (std::uint32_t i = 0; i < leaf.triangle_count; ++i)
+        EXPECT_EQ(s.meshes[h.triangles()[leaf.first_triangle + i].mesh].occluder, i < leaf.occluder_triangles) << i;
+
+    Scene opaque = s;
+    opaque.meshes[0].occluder = true;
+    const Hierarchy o = Hierarchy::build(opaque);
+    EXPECT_EQ(o.root().occluder_triangles, 36u);
+    EXPECT_NE(o.fingerprint(), h.fingerprint());
+    EXPECT_EQ(o.fingerprint(), Hierarchy::build(opaque).fingerprint());
+}
