@@ -88,10 +88,11 @@ TEST(Tokens, InNoVendorsBlockFarFromTheNextOne)
         ASSERT_NE(holder, nullptr) << t.name << " " << hex(t.value) << " is outside every block of gl.xml";
         EXPECT_TRUE(holder->reserved) << t.name << " " << hex(t.value) << " lies in " << holder->vendor
                                       << "'s block " << hex(holder->start) << "-" << hex(holder->end);
-        if (holder->reserved)
+        if (holder->reserved) {
             EXPECT_GE(t.value, holder->start + 16 * free_blocks_before_tokens)
                 << t.name << " " << hex(t.value) << " is among the next blocks the registry hands out from "
                 << hex(holder->start);
+        }
     }
 }
 
