@@ -21,6 +21,11 @@
  *   nan-passes-less-than-one      LESS against a buffer of 1.0: NOHC 256,
  *                                 and SAMPLES_PASSED in RENDER mode 256
  *   nan-fails-greater-than-half   GREATER against 0.5: NOHC 0, SAMPLES_PASSED 0
+ *
+ * and the same with a DEPTH_COMPONENT32F buffer (framebuffer object), where
+ * both drivers' tests take NaN as 0 too (issue 18; "Dependencies on
+ * ARB_depth_clamp and ARB_depth_buffer_float"):
+ *   float-buffer-nan-passes-less-than-one, float-buffer-nan-fails-greater-than-half
  */
 #include "ou_util.h"
 
@@ -136,5 +141,25 @@ int main(int argc, char **argv)
     check("finite-only-unchanged", "0.75", ou_depth(0.75), ou_depth(0.75));
     check_test("nan-passes-less-than-one", GL_LESS, 1.0, S * S);
     check_test("nan-fails-greater-than-half", GL_GREATER, 0.5, 0);
+
+    struct ou_fbo_functions f = ou_fbo_functions();
+    GLuint fbo, renderbuffers[2];
+    f.GenFramebuffers(1, &fbo);
+    f.GenRenderbuffers(2, renderbuffers);
+    f.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[0]);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, S, S);
+    f.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[1]);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, S, S);
+    f.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffers[0]);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffers[1]);
+    if (f.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        printf("a framebuffer object with a DEPTH_COMPONENT32F buffer is incomplete\n");
+        subtest(false, "float-buffer-nan-passes-less-than-one");
+        subtest(false, "float-buffer-nan-fails-greater-than-half");
+        piglit_report_result(result);
+    }
+    check_test("float-buffer-nan-passes-less-than-one", GL_LESS, 1.0, S * S);
+    check_test("float-buffer-nan-fails-greater-than-half", GL_GREATER, 0.5, 0);
     piglit_report_result(result);
 }
