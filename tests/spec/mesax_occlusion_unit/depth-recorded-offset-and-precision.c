@@ -69,7 +69,7 @@ check_offset(const char *name, int bits)
     offset_pass(GL_LESS, -4, nearer_less);
     offset_pass(GL_LESS, 4, farther_less);
     /* 4 units of 0.5 to 2 steps of the buffer, in record units. */
-    const double step = 4294967295.0 / (pow(2.0, bits) - 1.0);
+    const double step = 4294967295.0 / (double)((1ull << bits) - 1);
     const double low = 4 * 0.5 * step, high = 4 * 2.0 * step;
     const double down = (double)none[OU_ZMIN] - (double)nearer[OU_ZMIN];
     const double up = (double)farther[OU_ZMIN] - (double)none[OU_ZMIN];
