@@ -157,24 +157,6 @@ main(int argc, char **argv)
     ended_pass(p[1]);
     a.BeginConditionalRenderOcclusionTile(p[1], 0, 0, 0.0f, GL_QUERY_BY_REGION_WAIT);
     expect(true, GL_INVALID_ENUM, "conditional-bad-mode-invalid-enum");
-    {
-        /* Issue 17: no by-region and no inverted mode
-         * (ARB_conditional_render_inverted's). */
-        static const GLenum modes[] = {GL_QUERY_BY_REGION_NO_WAIT, GL_QUERY_WAIT_INVERTED, GL_QUERY_NO_WAIT_INVERTED,
-                                       GL_QUERY_BY_REGION_WAIT_INVERTED, GL_QUERY_BY_REGION_NO_WAIT_INVERTED};
-        bool all = true;
-        for (unsigned i = 0; i < sizeof(modes) / sizeof(modes[0]); ++i) {
-            a.BeginConditionalRenderOcclusionTile(p[1], 0, 0, 0.0f, modes[i]);
-            const GLenum error = glGetError();
-            if (error != GL_INVALID_ENUM) {
-                printf("mode 0x%x: error 0x%x, expected INVALID_ENUM\n", modes[i], error);
-                all = false;
-                a.EndConditionalRenderOcclusionTile();
-                glGetError();
-            }
-        }
-        expect(all, GL_NO_ERROR, "conditional-inverted-and-region-modes-invalid-enum");
-    }
     a.BeginConditionalRenderOcclusionTile(p[1], 1, 0, 0.0f, GL_QUERY_WAIT);
     expect(true, GL_INVALID_VALUE, "conditional-tile-out-of-range-invalid-value");
     a.BeginConditionalRenderOcclusionTile(p[1], 0, 0, -0.5f, GL_QUERY_WAIT);
