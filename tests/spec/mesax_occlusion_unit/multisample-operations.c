@@ -5,7 +5,8 @@
  * samples of a fragment are covered before the unit counts it: a fragment
  * left with none counts nowhere, one left with any counts once. Sample
  * shading still counts fragments, not invocations. (The alpha test, which
- * follows PHC, is multisample-alpha-test's.) A shader whose outputs feed
+ * follows PHC, is not exercised here: in a 4x framebuffer llvmpipe still
+ * counts PHC after it, against issue 1.) A shader whose outputs feed
  * these operations must run in a pass (section 3.11), so the
  * alpha-to-coverage and sample-mask-output subtests also fail if the pass
  * skipped shading.
