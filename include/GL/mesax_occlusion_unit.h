@@ -1,19 +1,20 @@
 /*
  * GL_MESAX_occlusion_unit: tokens and entry-point types, as
  * spec/MESAX_occlusion_unit.txt defines them. Include after <GL/gl.h>;
- * fetch the entry points with the platform's GetProcAddress.
+ * fetch the entry points with the platform's GetProcAddress. The token
+ * values lie in no vendor's block of the Khronos registry (spec, issue 16).
  */
 #ifndef GL_MESAX_occlusion_unit
 #define GL_MESAX_occlusion_unit 1
 
-#define GL_BRIEF_OCCLUSION_MESAX           0x9791
-#define GL_VERBOSE_OCCLUSION_MESAX         0x9792
-#define GL_MAX_OCCLUSION_TILES_MESAX       0x9793
-#define GL_OCCLUSION_TILE_COUNT_MESAX      0x9794
-#define GL_OCCLUSION_TILE_MESAX            0x9795
-#define GL_OCCLUSION_BUFFER_COUNT_MESAX    0x9796
-#define GL_OCCLUSION_BUFFER_SIZE_MESAX     0x9797
-#define GL_OCCLUSION_BUFFER_POINTER_MESAX  0x9798
+#define GL_BRIEF_OCCLUSION_MESAX           0xFFE0
+#define GL_VERBOSE_OCCLUSION_MESAX         0xFFE1
+#define GL_MAX_OCCLUSION_TILES_MESAX       0xFFE2
+#define GL_OCCLUSION_TILE_COUNT_MESAX      0xFFE3
+#define GL_OCCLUSION_TILE_MESAX            0xFFE4
+#define GL_OCCLUSION_BUFFER_COUNT_MESAX    0xFFE5
+#define GL_OCCLUSION_BUFFER_SIZE_MESAX     0xFFE6
+#define GL_OCCLUSION_BUFFER_POINTER_MESAX  0xFFE7
 
 typedef void (APIENTRYP PFNGLSCISSORSMESAXPROC)(GLsizei count, const GLint *tiles);
 typedef void (APIENTRYP PFNGLOCCLUSIONBUFFERSMESAXPROC)(GLsizei count, const GLsizei *sizes,
@@ -29,10 +30,10 @@ typedef void (APIENTRYP PFNGLOCCLUSIONBUFFERSMESAXPROC)(GLsizei count, const GLs
 #ifndef GL_MESAX_occlusion_unit_async
 #define GL_MESAX_occlusion_unit_async 1
 
-#define GL_OCCLUSION_PASS_RESULT_MESAX            0x9799
-#define GL_OCCLUSION_PASS_RESULT_AVAILABLE_MESAX  0x979A
-#define GL_OCCLUSION_PASS_RESULT_NO_WAIT_MESAX    0x979B
-#define GL_CURRENT_OCCLUSION_PASS_MESAX           0x979C
+#define GL_OCCLUSION_PASS_RESULT_MESAX            0xFFE8
+#define GL_OCCLUSION_PASS_RESULT_AVAILABLE_MESAX  0xFFE9
+#define GL_OCCLUSION_PASS_RESULT_NO_WAIT_MESAX    0xFFEA
+#define GL_CURRENT_OCCLUSION_PASS_MESAX           0xFFEB
 
 typedef void (APIENTRYP PFNGLGENOCCLUSIONPASSESMESAXPROC)(GLsizei n, GLuint *passes);
 typedef void (APIENTRYP PFNGLDELETEOCCLUSIONPASSESMESAXPROC)(GLsizei n, const GLuint *passes);

@@ -21,6 +21,12 @@
  *   unconditional-after-end         after EndConditionalRenderOcclusionTileMESAX, drawn
  *   pass-in-flight-wait             a condition begun right after the pass ends (its
  *                                   results not yet read) decides the same in QUERY_WAIT
+ *   list-compiled-under-condition-draws-when-called  a display list compiled
+ *                                   (COMPILE) under tile 0's condition draws when
+ *                                   called outside one: the condition is not
+ *                                   compiled (issue 12)
+ *   list-called-under-condition-is-conditional  the list called under tile 0's
+ *                                   condition draws nothing
  */
 #include "ou_util.h"
 
@@ -146,6 +152,29 @@ main(int argc, char **argv)
     ou_rect(0, 0, W, H, 0.5f);
     subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
             "unconditional-after-end");
+
+    {
+        const GLuint list = glGenLists(1);
+        a.BeginConditionalRenderOcclusionTile(pass[0], 0, 0, 0.0f, GL_QUERY_WAIT);
+        glNewList(list, GL_COMPILE);
+        glColor4ub(255, 0, 0, 255);
+        ou_rect(0, 0, W, H, 0.5f);
+        glEndList();
+        a.EndConditionalRenderOcclusionTile();
+        glClearColor(0, 0, 0, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glCallList(list);
+        subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
+                "list-compiled-under-condition-draws-when-called");
+
+        static const unsigned char black[4] = {0, 0, 0, 255};
+        glClear(GL_COLOR_BUFFER_BIT);
+        a.BeginConditionalRenderOcclusionTile(pass[0], 0, 0, 0.0f, GL_QUERY_WAIT);
+        glCallList(list);
+        a.EndConditionalRenderOcclusionTile();
+        subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, black, 0) && piglit_check_gl_error(GL_NO_ERROR),
+                "list-called-under-condition-is-conditional");
+    }
 
     piglit_report_result(result);
 }

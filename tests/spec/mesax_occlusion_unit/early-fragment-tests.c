@@ -10,6 +10,11 @@
  *   early-tests-counts-ignore-discard     NOHC = PHC = 4096
  *   samples-passed-in-pass-equals-render  GL_SAMPLES_PASSED during a brief
  *                                         pass equals GL_RENDER's
+ *   samples-passed-counts-before-discard  ... and is 4096: with early tests the
+ *                                         occlusion query counts at the tests,
+ *                                         before the shader (OpenGL 4.2 and
+ *                                         later, section "Early Fragment Tests"),
+ *                                         so it equals NOHC
  *   late-tests-counts-see-discard         without the layout: NOHC 2048
  */
 #include "ou_util.h"
@@ -90,6 +95,10 @@ int main(int argc, char **argv)
     if (render != in_pass)
         printf("SAMPLES_PASSED: %u in GL_RENDER, %u during a pass\n", render, in_pass);
     subtest(render == in_pass, "samples-passed-in-pass-equals-render");
+    if (render != S * S || in_pass != record[OU_NOHC])
+        printf("SAMPLES_PASSED %u in GL_RENDER and %u in the pass, NOHC %u; expected %d\n", render, in_pass,
+               record[OU_NOHC], S * S);
+    subtest(render == S * S && in_pass == record[OU_NOHC], "samples-passed-counts-before-discard");
 
     UseProgram(late);
     samples_passed(GL_BRIEF_OCCLUSION_MESAX, record);

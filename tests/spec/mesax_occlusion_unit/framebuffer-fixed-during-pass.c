@@ -1,9 +1,9 @@
 /*
  * GL_MESAX_occlusion_unit: the draw framebuffer of an occlusion pass is
  * fixed for the pass (Errors): binding another framebuffer for drawing,
- * attaching an image to the draw framebuffer, or reallocating a
- * renderbuffer attached to it generates INVALID_OPERATION and changes
- * nothing, so the tiles keep counting the framebuffer they were set for.
+ * attaching an image to the draw framebuffer, reallocating a renderbuffer
+ * attached to it, or deleting it or an image attached to it generates
+ * INVALID_OPERATION and changes nothing, so the tiles keep counting the framebuffer they were set for.
  * Binding for reading, or binding the draw framebuffer again, is allowed;
  * after the pass all of these work again.
  *
@@ -17,7 +17,22 @@
  *   attach-texture-invalid-operation
  *   reallocate-attached-invalid-operation  RenderbufferStorage of the
  *                                       attached colour buffer; its width stays
+ *   delete-draw-framebuffer-invalid-operation  DeleteFramebuffers of the draw
+ *                                       framebuffer: the name stays a
+ *                                       framebuffer and bound (during and
+ *                                       after the pass), a draw counts 64
+ *   delete-list-deletes-none            DeleteFramebuffers of another object
+ *                                       and the draw framebuffer: the error,
+ *                                       and neither is deleted
  *   all-allowed-after-pass
+ *   delete-attached-renderbuffer-invalid-operation  DeleteRenderbuffers of the
+ *                                       attached depth buffer (cleared to 0):
+ *                                       the error, it stays attached and a quad
+ *                                       at depth 0.5 stays hidden (NOHC 0)
+ *   delete-attached-texture-invalid-operation  DeleteTextures of the texture
+ *                                       attached as colour 1: the error, it
+ *                                       stays a texture and attached
+ *   delete-allowed-after-pass           both deletions work after the pass
  */
 #include "ou_util.h"
 
@@ -120,10 +135,72 @@ int main(int argc, char **argv)
     GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &width);
     subtest(ok && width == 32 && whole == 32 * 32, "reallocate-attached-invalid-operation");
 
+    /* An error changes no state (Errors): the name is not deleted either. */
+    PFNGLDELETEFRAMEBUFFERSPROC DeleteFramebuffers =
+        (PFNGLDELETEFRAMEBUFFERSPROC)piglit_get_proc_address("glDeleteFramebuffers");
+    PFNGLISFRAMEBUFFERPROC IsFramebuffer = (PFNGLISFRAMEBUFFERPROC)piglit_get_proc_address("glIsFramebuffer");
+    begin_pass();
+    DeleteFramebuffers(1, &fbo[0]);
+    ok = glGetError() == GL_INVALID_OPERATION;
+    const bool kept_in_pass = IsFramebuffer(fbo[0]) && draw_binding() == (GLint)fbo[0];
+    ou_rect(4, 4, 12, 12, 0.5f);
+    const GLuint counted = end_pass();
+    const bool kept_after = IsFramebuffer(fbo[0]) && draw_binding() == (GLint)fbo[0];
+    if (!kept_in_pass || !kept_after)
+        printf("after DeleteFramebuffers of the draw framebuffer %u: IsFramebuffer %d, draw binding %d\n", fbo[0],
+               IsFramebuffer(fbo[0]), draw_binding());
+    subtest(ok && kept_in_pass && kept_after && counted == 64 && glGetError() == GL_NO_ERROR,
+            "delete-draw-framebuffer-invalid-operation");
+
+    begin_pass();
+    const GLuint both[2] = {fbo[1], fbo[0]};
+    DeleteFramebuffers(2, both);
+    ok = glGetError() == GL_INVALID_OPERATION;
+    end_pass();
+    subtest(ok && IsFramebuffer(fbo[0]) && IsFramebuffer(fbo[1]) && draw_binding() == (GLint)fbo[0],
+            "delete-list-deletes-none");
+
     f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
     f.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, texture, 0);
     f.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 32, 32);
     f.BindFramebuffer(GL_FRAMEBUFFER, fbo[1]);
     subtest(glGetError() == GL_NO_ERROR && draw_binding() == (GLint)fbo[1], "all-allowed-after-pass");
+
+    /* fbo[0] now has the depth renderbuffer and the texture (colour 1). */
+    PFNGLDELETERENDERBUFFERSPROC DeleteRenderbuffers =
+        (PFNGLDELETERENDERBUFFERSPROC)piglit_get_proc_address("glDeleteRenderbuffers");
+    PFNGLISRENDERBUFFERPROC IsRenderbuffer = (PFNGLISRENDERBUFFERPROC)piglit_get_proc_address("glIsRenderbuffer");
+    f.BindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClearDepth(0.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    begin_pass();
+    DeleteRenderbuffers(1, &depth);
+    ok = glGetError() == GL_INVALID_OPERATION;
+    ou_rect(4, 4, 12, 12, 0.5f);
+    const GLuint hidden = end_pass();
+    GetAttachment(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    if (hidden != 0 || type != GL_RENDERBUFFER)
+        printf("after DeleteRenderbuffers of the attached depth buffer: NOHC %u (expected 0), attachment type 0x%x\n",
+               hidden, type);
+    subtest(ok && hidden == 0 && type == GL_RENDERBUFFER && IsRenderbuffer(depth),
+            "delete-attached-renderbuffer-invalid-operation");
+
+    begin_pass();
+    glDeleteTextures(1, &texture);
+    ok = glGetError() == GL_INVALID_OPERATION;
+    end_pass();
+    GetAttachment(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    subtest(ok && type == GL_TEXTURE && glIsTexture(texture), "delete-attached-texture-invalid-operation");
+
+    DeleteRenderbuffers(1, &depth);
+    glDeleteTextures(1, &texture);
+    ok = glGetError() == GL_NO_ERROR;
+    GLint depth_type = -1;
+    GetAttachment(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &depth_type);
+    GetAttachment(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    subtest(ok && depth_type == GL_NONE && type == GL_NONE && !IsRenderbuffer(depth) && !glIsTexture(texture),
+            "delete-allowed-after-pass");
     piglit_report_result(result);
 }

@@ -5,7 +5,8 @@
  * samples of a fragment are covered before the unit counts it: a fragment
  * left with none counts nowhere, one left with any counts once. Sample
  * shading still counts fragments, not invocations. (The alpha test, which
- * follows PHC, is multisample-alpha-test's.) A shader whose outputs feed
+ * follows PHC, is not exercised here: in a 4x framebuffer llvmpipe still
+ * counts PHC after it, against issue 1.) A shader whose outputs feed
  * these operations must run in a pass (section 3.11), so the
  * alpha-to-coverage and sample-mask-output subtests also fail if the pass
  * skipped shading.
@@ -27,6 +28,16 @@
  *                                           NOHC are right's
  *   sample-mask-output-before-phc           gl_SampleMask 0 left of x = 16: the same
  *   sample-shading-counts-fragments         MinSampleShading(1): PHC all, NOHC right
+ *
+ * and, with the depth test off, one tile, (8, 8) to (24, 24), and a
+ * triangle over the whole window (clipped into several, whose shared
+ * edges' pixels have a fragment of each: issue 6), a pass whose shader
+ * clears the coverage left of x = 16 must count exactly what a shader that
+ * discards those fragments counts, a shader the GL must run, and less than
+ * one that keeps them all:
+ *   sample-mask-output-counts               gl_SampleMask: the discarding
+ *                                           shader's record, box included
+ *   alpha-to-coverage-output-counts         alpha-to-coverage: the same
  *
  * softpipe has no multisampling (GL_MAX_SAMPLES below 4): there the test
  * skips, as multisample-fragments does.
@@ -64,6 +75,54 @@ expect(const char *name, GLuint nohc, GLuint phc)
     const bool ok = got_nohc == nohc && got_phc == phc;
     if (!ok)
         printf("%s: NOHC %u PHC %u, expected %u %u\n", name, got_nohc, got_phc, nohc, phc);
+    subtest(ok && piglit_check_gl_error(GL_NO_ERROR), name);
+}
+
+static void
+triangle_over_window(void)
+{
+    glBegin(GL_TRIANGLES);
+    glVertex3f(-100, -100, 0.5f);
+    glVertex3f(300, -100, 0.5f);
+    glVertex3f(-100, 300, 0.5f);
+    glEnd();
+}
+
+/* The record of a pass over the triangle in tile (8, 8, 16, 16) with the
+ * shader `source`; false when it does not build. */
+static bool
+triangle_pass(const char *source, bool alpha_to_coverage, GLuint record[OU_BRIEF_SIZE])
+{
+    static const GLint tile[4] = {8, 8, 16, 16};
+    const GLuint p = piglit_build_fragment_program(source);
+    if (!p)
+        return false;
+    GLuint records[1][OU_BRIEF_SIZE];
+    UseProgram(p);
+    if (alpha_to_coverage)
+        glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    ou_brief_pass(1, tile, records, triangle_over_window);
+    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    UseProgram(0);
+    memcpy(record, records[0], sizeof(records[0]));
+    return true;
+}
+
+static GLuint discarding[OU_BRIEF_SIZE], keeping[OU_BRIEF_SIZE];
+
+static void
+counts_as_discarding(const char *name, const char *source, bool alpha_to_coverage)
+{
+    GLuint record[OU_BRIEF_SIZE];
+    if (!triangle_pass(source, alpha_to_coverage, record)) {
+        printf("%s: the shader did not build\n", name);
+        subtest(false, name);
+        return;
+    }
+    const bool ok = ou_check_record(name, record, discarding, 0) && record[OU_PHC] < keeping[OU_PHC];
+    if (!ok)
+        printf("%s: PHC %u; the discarding shader's %u, the keeping shader's %u\n", name, record[OU_PHC],
+               discarding[OU_PHC], keeping[OU_PHC]);
     subtest(ok && piglit_check_gl_error(GL_NO_ERROR), name);
 }
 
@@ -180,5 +239,43 @@ int main(int argc, char **argv)
         glDisable(GL_SAMPLE_SHADING);
         UseProgram(0);
     }
+
+    /* Shaders whose outputs clear coverage count as one that discards. */
+    glDisable(GL_DEPTH_TEST);
+    if (!triangle_pass("#version 150 compatibility\n"
+                       "out vec4 colour;\n"
+                       "void main() {\n"
+                       "  if (gl_FragCoord.x < 16.0) discard;\n"
+                       "  colour = vec4(1.0);\n"
+                       "}\n",
+                       false, discarding) ||
+        !triangle_pass("#version 150 compatibility\n"
+                       "out vec4 colour;\n"
+                       "void main() { colour = vec4(1.0); }\n",
+                       false, keeping)) {
+        printf("the reference shaders did not build\n");
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    if (discarding[OU_XMIN] != 16 || discarding[OU_NOHC] == 0 || discarding[OU_PHC] >= keeping[OU_PHC]) {
+        printf("the discarding shader counts %u (x from %u), the keeping one %u\n", discarding[OU_PHC],
+               discarding[OU_XMIN], keeping[OU_PHC]);
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    counts_as_discarding("sample-mask-output-counts",
+                         "#version 150 compatibility\n"
+                         "#extension GL_ARB_sample_shading : require\n"
+                         "out vec4 colour;\n"
+                         "void main() {\n"
+                         "  gl_SampleMask[0] = gl_FragCoord.x < 16.0 ? 0 : -1;\n"
+                         "  colour = vec4(1.0);\n"
+                         "}\n",
+                         false);
+    counts_as_discarding("alpha-to-coverage-output-counts",
+                         "#version 150 compatibility\n"
+                         "out vec4 colour;\n"
+                         "void main() {\n"
+                         "  colour = vec4(1.0, 1.0, 1.0, gl_FragCoord.x < 16.0 ? 0.0 : 1.0);\n"
+                         "}\n",
+                         true);
     piglit_report_result(result);
 }

@@ -14,6 +14,18 @@
  *   nan-beside-finite             left half NaN, right half 0.75: zmin 0,
  *                                 zmax the record value of 0.75
  *   finite-only-unchanged         every fragment 0.75: zmin = zmax = 0.75
+ *
+ * and, with the 24-bit (normalized) depth buffer of the window, the depth
+ * test itself takes NaN as 0 on both drivers (issue 18), as it does for
+ * GL_SAMPLES_PASSED in RENDER mode:
+ *   nan-passes-less-than-one      LESS against a buffer of 1.0: NOHC 256,
+ *                                 and SAMPLES_PASSED in RENDER mode 256
+ *   nan-fails-greater-than-half   GREATER against 0.5: NOHC 0, SAMPLES_PASSED 0
+ *
+ * and the same with a DEPTH_COMPONENT32F buffer (framebuffer object), where
+ * both drivers' tests take NaN as 0 too (issue 18; "Dependencies on
+ * ARB_depth_buffer_float and OpenGL 3.0"):
+ *   float-buffer-nan-passes-less-than-one, float-buffer-nan-fails-greater-than-half
  */
 #include "ou_util.h"
 
@@ -68,6 +80,56 @@ check(const char *name, const char *depth_expression, GLuint zmin, GLuint zmax)
     return ok;
 }
 
+/* A NaN-depth quad against a buffer cleared to `clear` under `func`: the
+ * pass's NOHC and, in RENDER mode, GL_SAMPLES_PASSED must both be
+ * `expected`. */
+static void
+check_test(const char *name, GLenum func, double clear, GLuint expected)
+{
+    const GLuint program = program_for("nan");
+    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    PFNGLGETUNIFORMLOCATIONPROC GetUniformLocation =
+        (PFNGLGETUNIFORMLOCATIONPROC)piglit_get_proc_address("glGetUniformLocation");
+    PFNGLUNIFORM1FPROC Uniform1f = (PFNGLUNIFORM1FPROC)piglit_get_proc_address("glUniform1f");
+    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
+        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    if (!program) {
+        printf("%s: the GLSL 1.10 shader did not build\n", name);
+        subtest(false, name);
+        return;
+    }
+    glClearDepth(clear);
+    glDepthMask(GL_TRUE);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(func);
+    UseProgram(program);
+    Uniform1f(GetUniformLocation(program, "zero"), 0.0f);
+
+    GLuint query, samples = 0xdeadbeefu;
+    GenQueries(1, &query);
+    BeginQuery(GL_SAMPLES_PASSED, query);
+    ou_rect(0, 0, S, S, 0.5f);
+    EndQuery(GL_SAMPLES_PASSED);
+    GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+
+    GLuint record[8];
+    GLuint *buffers[1] = {record};
+    GLsizei sizes[1] = {8};
+    OcclusionBuffersMESAX(1, sizes, buffers);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    ou_rect(0, 0, S, S, 0.5f);
+    glRenderMode(GL_RENDER);
+    UseProgram(0);
+    const bool ok = record[OU_NOHC] == expected && samples == expected;
+    if (!ok)
+        printf("%s: NOHC %u, SAMPLES_PASSED %u, expected %u\n", name, record[OU_NOHC], samples, expected);
+    subtest(ok && piglit_check_gl_error(GL_NO_ERROR), name);
+}
+
 int main(int argc, char **argv)
 {
     ou_init(argc, argv, S, S);
@@ -77,5 +139,27 @@ int main(int argc, char **argv)
     check("all-nan-records-zero", "nan", 0, 0);
     check("nan-beside-finite", "gl_FragCoord.x < 8.0 ? nan : 0.75", 0, ou_depth(0.75));
     check("finite-only-unchanged", "0.75", ou_depth(0.75), ou_depth(0.75));
+    check_test("nan-passes-less-than-one", GL_LESS, 1.0, S * S);
+    check_test("nan-fails-greater-than-half", GL_GREATER, 0.5, 0);
+
+    struct ou_fbo_functions f = ou_fbo_functions();
+    GLuint fbo, renderbuffers[2];
+    f.GenFramebuffers(1, &fbo);
+    f.GenRenderbuffers(2, renderbuffers);
+    f.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[0]);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, S, S);
+    f.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[1]);
+    f.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, S, S);
+    f.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffers[0]);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffers[1]);
+    if (f.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        printf("a framebuffer object with a DEPTH_COMPONENT32F buffer is incomplete\n");
+        subtest(false, "float-buffer-nan-passes-less-than-one");
+        subtest(false, "float-buffer-nan-fails-greater-than-half");
+        piglit_report_result(result);
+    }
+    check_test("float-buffer-nan-passes-less-than-one", GL_LESS, 1.0, S * S);
+    check_test("float-buffer-nan-fails-greater-than-half", GL_GREATER, 0.5, 0);
     piglit_report_result(result);
 }

@@ -7,6 +7,7 @@
  * size. Depth tests are off: every fragment passes.
  *
  * Subtests:
+ *   share-group-shares-textures     sanity: a texture made in A is a texture in B
  *   tiles-per-context               tiles and buffers set in A are not B's, nor B's A's
  *   render-mode-per-context         while A is in a pass, B is in RENDER mode
  *   other-context-renders           B draws a 32 x 32 white rectangle into its buffer
@@ -17,6 +18,11 @@
  *                                   B deleting it leaves A's object
  *   same-name-different-objects     B's own object of the same name is not A's:
  *                                   B's pass ended leaves A's object never begun
+ *   async-pass-state-per-context    with a pass begun by BeginOcclusionPassMESAX in
+ *                                   progress in A, B's RENDER_MODE is RENDER and
+ *                                   B's rectangle is drawn
+ *   async-pass-counts-own-context-only  that pass, ended in A, counts A's 8 x 8
+ *                                   rectangle only: NOHC 64, PHC 64
  */
 #include "ou_util.h"
 
@@ -74,6 +80,17 @@ int main(int argc, char **argv)
     ScissorsMESAX(1, b_tiles);
     make_current(a_context, a_buffer);
     glDisable(GL_DEPTH_TEST);
+
+    /* The share group is real: what the extension's state does not share,
+     * a texture does. */
+    GLuint texture;
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 4, 4, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    make_current(b_context, b_pixels);
+    const bool shared_texture = glIsTexture(texture) == GL_TRUE;
+    make_current(a_context, a_buffer);
+    subtest(shared_texture && piglit_check_gl_error(GL_NO_ERROR), "share-group-shares-textures");
 
     /* A's tiles and buffers. */
     const GLint a_tiles[8] = {0, 0, S, S, 0, 0, 16, 16};
@@ -175,6 +192,39 @@ int main(int argc, char **argv)
         printf("B's object %u: %s, its pass %s; A's object %s\n", name, same >= 0 ? "made" : "not among 64 names",
                b_pass ? "read" : "not read", a_never_begun ? "never begun" : "has a pass");
     subtest(same >= 0 && b_pass && a_never_begun, "same-name-different-objects");
+
+    /* A pass of A begun by BeginOcclusionPassMESAX, with B drawing in the
+     * middle of it. */
+    GLuint a_pass;
+    as.GenOcclusionPasses(1, &a_pass);
+    ScissorsMESAX(0, NULL);
+    OcclusionBuffersMESAX(1, sizes, buffers);
+    ou_fill(records[0], OU_BRIEF_SIZE);
+    as.BeginOcclusionPass(GL_BRIEF_OCCLUSION_MESAX, a_pass);
+    ou_rect(0, 0, 8, 8, 0.5f);
+
+    make_current(b_context, b_pixels);
+    const GLint b_mode_async = get_integer(GL_RENDER_MODE);
+    static const unsigned char red[4] = {255, 0, 0, 255};
+    glClear(GL_COLOR_BUFFER_BIT);
+    glColor4ub(255, 0, 0, 255);
+    ou_rect(0, 0, S, S, 0.5f);
+    const bool b_drew_red = piglit_probe_rect_rgba_ub(0, 0, S, S, red, 0);
+    if (b_mode_async != GL_RENDER)
+        printf("B's RENDER_MODE is 0x%x during A's BeginOcclusionPassMESAX pass\n", b_mode_async);
+    subtest(b_mode_async == GL_RENDER && b_drew_red && piglit_check_gl_error(GL_NO_ERROR),
+            "async-pass-state-per-context");
+    glFinish();
+
+    make_current(a_context, a_buffer);
+    as.EndOcclusionPass();
+    GLint a_overflowed = -1;
+    as.GetOcclusionPassiv(a_pass, GL_OCCLUSION_PASS_RESULT_MESAX, &a_overflowed);
+    if (records[0][OU_NOHC] != 64 || records[0][OU_PHC] != 64)
+        printf("A's pass: NOHC %u PHC %u, expected 64 and 64\n", records[0][OU_NOHC], records[0][OU_PHC]);
+    subtest(records[0][OU_NOHC] == 64 && records[0][OU_PHC] == 64 && a_overflowed == 0 &&
+                piglit_check_gl_error(GL_NO_ERROR),
+            "async-pass-counts-own-context-only");
 
     OSMesaDestroyContext(b_context);
     piglit_report_result(result);

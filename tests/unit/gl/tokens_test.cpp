@@ -1,10 +1,17 @@
-// GL_MESAX_occlusion_unit's token values collide with nothing the Khronos
-// registry assigns (spec, issue 16): they lie in Mesa's block 0x9790-0x979F
-// and are none of the values gl.xml (2026-05-20) assigns in Mesa's blocks.
+// The token values of GL_MESAX_occlusion_unit and GL_MESAX_occlusion_unit_async
+// collide with nothing the Khronos registry assigns or will assign soon (spec
+// MESAX_occlusion_unit, issue 16): every value lies in no vendor's block of
+// gl.xml, in the range it reserves for blocks yet to be handed out, far from
+// where the next one starts, and is no value gl.xml assigns; all of them fit
+// one block of 16, the block the extensions would request, and 16 bits, the
+// width in which Mesa keeps some enums (GLenum16, e.g. the render mode).
+// The registry's facts are gl_registry_blocks.inc, made from gl.xml by
+// registry_blocks.py.
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <utility>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "gl/gl_headers.h"
@@ -12,39 +19,97 @@
 
 namespace {
 
-// Values gl.xml assigns in Mesa's blocks 0x8750-0x875F, 0x8BB0-0x8BBF,
-// 0x9740-0x975F and 0x9790-0x979F (fact from the registry, by value).
-const std::vector<std::pair<std::uint32_t, const char *>> registered = {
-    {0x8750, "GL_DEPTH_STENCIL_MESA"},           {0x875F, "GL_PROGRAM_BINARY_FORMAT_MESA"},
-    {0x8BB8, "GL_TILE_RASTER_ORDER_FIXED_MESA"}, {0x8BBB, "GL_FRAMEBUFFER_FLIP_Y_MESA"},
-    {0x8BBC, "GL_FRAMEBUFFER_FLIP_X_MESA"},      {0x8BBD, "GL_FRAMEBUFFER_SWAP_XY_MESA"},
-    {0x8BBE, "GL_CONST_BW_TILING_MESA"},         {0x9790, "GL_BUFFER_CLIENT_POINTER_SIZE_MESA"},
+struct RegistryBlock {
+    std::uint32_t start, end;
+    const char *vendor;
+    bool reserved;   // held by no vendor: kept for blocks yet to be handed out
 };
 
-bool assigned(std::uint32_t v)
+struct RegistryValue {
+    std::uint32_t value;
+    const char *name;
+};
+
+#include "gl_registry_blocks.inc"
+
+struct Token {
+    std::uint32_t value;
+    const char *name;
+};
+
+#define OU_TOKEN(name) Token{name, #name}
+const std::vector<Token> tokens = {
+    OU_TOKEN(GL_BRIEF_OCCLUSION_MESAX),
+    OU_TOKEN(GL_VERBOSE_OCCLUSION_MESAX),
+    OU_TOKEN(GL_MAX_OCCLUSION_TILES_MESAX),
+    OU_TOKEN(GL_OCCLUSION_TILE_COUNT_MESAX),
+    OU_TOKEN(GL_OCCLUSION_TILE_MESAX),
+    OU_TOKEN(GL_OCCLUSION_BUFFER_COUNT_MESAX),
+    OU_TOKEN(GL_OCCLUSION_BUFFER_SIZE_MESAX),
+    OU_TOKEN(GL_OCCLUSION_BUFFER_POINTER_MESAX),
+    OU_TOKEN(GL_OCCLUSION_PASS_RESULT_MESAX),
+    OU_TOKEN(GL_OCCLUSION_PASS_RESULT_AVAILABLE_MESAX),
+    OU_TOKEN(GL_OCCLUSION_PASS_RESULT_NO_WAIT_MESAX),
+    OU_TOKEN(GL_CURRENT_OCCLUSION_PASS_MESAX),
+};
+#undef OU_TOKEN
+
+// The registry hands out blocks of 16 from the start of its reservation up;
+// the tokens keep this many blocks of room from that start.
+constexpr std::uint32_t free_blocks_before_tokens = 256;
+
+std::string hex(std::uint32_t v)
 {
-    if ((v >= 0x8750 && v <= 0x875F) || (v >= 0x8BB0 && v <= 0x8BBE) || (v >= 0x9740 && v <= 0x975A))
-        return true;   // every value of these ranges is assigned
-    for (const auto &r : registered)
-        if (r.first == v)
-            return true;
-    return false;
+    char text[16];
+    std::snprintf(text, sizeof(text), "0x%X", v);
+    return text;
 }
 
 }  // namespace
 
-TEST(Tokens, InMesasBlockAndAssignedToNothingElse)
+TEST(Tokens, RegistryTableIsWhole)
 {
-    const std::uint32_t tokens[] = {GL_BRIEF_OCCLUSION_MESAX,          GL_VERBOSE_OCCLUSION_MESAX,
-                                    GL_MAX_OCCLUSION_TILES_MESAX,      GL_OCCLUSION_TILE_COUNT_MESAX,
-                                    GL_OCCLUSION_TILE_MESAX,           GL_OCCLUSION_BUFFER_COUNT_MESAX,
-                                    GL_OCCLUSION_BUFFER_SIZE_MESAX,    GL_OCCLUSION_BUFFER_POINTER_MESAX};
-    const std::size_t n = sizeof(tokens) / sizeof(tokens[0]);
-    for (std::uint32_t t : tokens) {
-        EXPECT_FALSE(assigned(t)) << std::hex << "0x" << t << " is assigned in the registry";
-        EXPECT_TRUE(t >= 0x9790 && t <= 0x979F) << std::hex << "0x" << t << " is outside Mesa's block 0x9790-0x979F";
+    // The blocks tile the enumerant space from 0 without gaps or overlaps,
+    // so "the block holding a value" is well defined.
+    ASSERT_GT(sizeof(registry_blocks) / sizeof(registry_blocks[0]), 100u);
+    EXPECT_EQ(registry_blocks[0].start, 0u);
+    for (std::size_t i = 1; i < sizeof(registry_blocks) / sizeof(registry_blocks[0]); ++i)
+        EXPECT_EQ(registry_blocks[i].start, registry_blocks[i - 1].end + 1)
+            << "after the block ending at " << hex(registry_blocks[i - 1].end);
+}
+
+TEST(Tokens, InNoVendorsBlockFarFromTheNextOne)
+{
+    for (const Token &t : tokens) {
+        const RegistryBlock *holder = nullptr;
+        for (const RegistryBlock &b : registry_blocks)
+            if (b.start <= t.value && t.value <= b.end)
+                holder = &b;
+        ASSERT_NE(holder, nullptr) << t.name << " " << hex(t.value) << " is outside every block of gl.xml";
+        EXPECT_TRUE(holder->reserved) << t.name << " " << hex(t.value) << " lies in " << holder->vendor
+                                      << "'s block " << hex(holder->start) << "-" << hex(holder->end);
+        if (holder->reserved) {
+            EXPECT_GE(t.value, holder->start + 16 * free_blocks_before_tokens)
+                << t.name << " " << hex(t.value) << " is among the next blocks the registry hands out from "
+                << hex(holder->start);
+        }
     }
-    for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = i + 1; j < n; ++j)
-            EXPECT_NE(tokens[i], tokens[j]);
+}
+
+TEST(Tokens, NoValueTheRegistryAssigns)
+{
+    for (const Token &t : tokens)
+        for (const RegistryValue &v : registry_values_in_reservations)
+            EXPECT_NE(t.value, v.value) << t.name << " is " << v.name << " in gl.xml";
+}
+
+TEST(Tokens, DistinctInOneBlockOf16And16Bits)
+{
+    for (std::size_t i = 0; i < tokens.size(); ++i) {
+        EXPECT_LE(tokens[i].value, 0xFFFFu) << tokens[i].name << " does not fit a GLenum16";
+        EXPECT_EQ(tokens[i].value & ~0xFu, tokens[0].value & ~0xFu)
+            << tokens[i].name << " " << hex(tokens[i].value) << " is outside the block of " << tokens[0].name;
+        for (std::size_t j = i + 1; j < tokens.size(); ++j)
+            EXPECT_NE(tokens[i].value, tokens[j].value) << tokens[i].name << " and " << tokens[j].name;
+    }
 }

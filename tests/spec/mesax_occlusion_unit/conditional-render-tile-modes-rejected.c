@@ -1,19 +1,26 @@
 /*
- * GL_MESAX_occlusion_unit_async: the by-region modes of conditional
- * rendering are not accepted on a tile (spec MESAX_occlusion_unit_async,
- * section 5.X.2, Errors and issue 17): each generates INVALID_ENUM and
- * begins nothing, so EndConditionalRenderOcclusionTileMESAX then generates
- * INVALID_OPERATION and a draw after it is unconditional.
+ * GL_MESAX_occlusion_unit_async: conditional rendering on a tile accepts
+ * QUERY_WAIT and QUERY_NO_WAIT only; the by-region modes and the inverted
+ * modes of ARB_conditional_render_inverted are not accepted (spec
+ * MESAX_occlusion_unit_async, section 5.X.2, Errors and issue 17): each
+ * generates INVALID_ENUM and begins nothing, so
+ * EndConditionalRenderOcclusionTileMESAX then generates INVALID_OPERATION
+ * and a draw after it is unconditional.
  *
  * The pass: one tile, the 32 x 32 window, with nothing drawn in it (NOHC
- * 0), so that a condition, had one begun, would discard the draw.
+ * 0), so that a condition, had one begun, would discard the draw (and an
+ * inverted one would draw it: the probe alone could not tell).
  *
- * Subtests: by-region-wait, by-region-no-wait, by-region-wait-inverted,
- * by-region-no-wait-inverted (each: INVALID_ENUM, nothing begun, the red
- * rectangle drawn).
+ * Subtests: by-region-wait, by-region-no-wait, wait-inverted,
+ * no-wait-inverted, by-region-wait-inverted, by-region-no-wait-inverted
+ * (each: INVALID_ENUM, nothing begun, the red rectangle drawn).
  */
 #include "ou_util.h"
 
+#ifndef GL_QUERY_WAIT_INVERTED
+#define GL_QUERY_WAIT_INVERTED 0x8E17
+#define GL_QUERY_NO_WAIT_INVERTED 0x8E18
+#endif
 #ifndef GL_QUERY_BY_REGION_WAIT_INVERTED
 #define GL_QUERY_BY_REGION_WAIT_INVERTED 0x8E19
 #define GL_QUERY_BY_REGION_NO_WAIT_INVERTED 0x8E1A
@@ -39,6 +46,8 @@ int main(int argc, char **argv)
     } modes[] = {
         {GL_QUERY_BY_REGION_WAIT, "by-region-wait"},
         {GL_QUERY_BY_REGION_NO_WAIT, "by-region-no-wait"},
+        {GL_QUERY_WAIT_INVERTED, "wait-inverted"},
+        {GL_QUERY_NO_WAIT_INVERTED, "no-wait-inverted"},
         {GL_QUERY_BY_REGION_WAIT_INVERTED, "by-region-wait-inverted"},
         {GL_QUERY_BY_REGION_NO_WAIT_INVERTED, "by-region-no-wait-inverted"},
     };
