@@ -7,12 +7,15 @@
 # `git format-patch` of every commit after the pristine one, under the
 # file names patches/mesa/series gives them in order; commits beyond the
 # series keep format-patch's names and are appended to it.
-# Usage: tools/export-mesa-patches.sh
+# Usage: tools/export-mesa-patches.sh [MESA_TREE]
+#   MESA_TREE   a git worktree of that repository holding the series to export
+#               (default: the cache's source/), e.g. one made with
+#               `git -C <cache>/source worktree add <dir> -b <branch> master`
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
-src=$OCCU_CACHE/mesa/$MESA_DEBIAN_VERSION/source
-[ -d "$src/.git" ] || die "no Mesa source tree at $src (run tools/mesa.sh first)"
+src=${1:-$OCCU_CACHE/mesa/$MESA_DEBIAN_VERSION/source}
+[ -e "$src/.git" ] || die "no Mesa source tree at $src (run tools/mesa.sh first)"
 cd "$src"
 uncommitted=$(git status --porcelain | grep -v -E '^\?\? \.occu-(pristine|applied)$' || true)
 [ -z "$uncommitted" ] || die "$src has changes in no commit; commit them into the patch they belong to first:
