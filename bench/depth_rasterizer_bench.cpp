@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "culling/culler.h"
+#include "evaluation/allocator.h"
 #include "evaluation/scene_setup.h"
 #include "strategies/leone_occluder_skins/skin_occluders.h"
 #include "raster/depth_rasterizer.h"
@@ -43,6 +44,7 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "usage: occu-bench-raster [FRAMES >= 1] [SIZE >= 1]\n");
         return 2;
     }
+    occu::control_allocator(occu::AllocatorPolicy::keep_freed);   // as every benchmark (evaluation/allocator.h)
     const occu::SceneSetup setup{occu::SceneChoice{}};
     const occu::Scene &scene = setup.scene();
     const occu::Hierarchy &hierarchy = setup.hierarchy();

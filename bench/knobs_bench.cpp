@@ -46,6 +46,7 @@
 
 #include "cli/arguments.h"
 #include "culling/registry.h"
+#include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
 
@@ -58,6 +59,7 @@ const char *const batch_knob = "batch (traversal)";
 const char *const leaf_knob = "leaf-triangles (hierarchy)";
 
 struct Options {
+    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
     std::vector<std::string> routes = {"dense", "medium", "open"};
     std::vector<std::string> strategies;   // empty: every family with a knob
     std::map<std::string, std::vector<std::string>> knobs;   // --knob: only these, with these values
@@ -78,6 +80,7 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-knobs [--routes ROUTE,...] [--strategies NAME,...] [--knob SETTING=V1,V2,...]...\n"
                  "                        [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--out DIR]\n"
+                 "                        [--allocator keep|system]\n"
                  "                        [--plots on|off] [--databases DIR] [--make-databases required|all]\n"
                  "Sweeps every approximation and cost setting of each strategy (default: every registered family\n"
                  "with one), and the common knobs batch and leaf-triangles, on each route (default\n"
@@ -293,6 +296,7 @@ Options parse(int argc, char **argv)
                 usage("--knob wants SETTING=V1,V2,..., got '" + v + "'");
             o.knobs[v.substr(0, eq)] = list_items(v.substr(eq + 1), ',');
         } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
+        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
         else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
         else if (a == "--driver") o.driver = v;
         else if (a == "--out") o.out = v;
@@ -327,6 +331,7 @@ void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup 
     const std::string &route_name = o.routes[route_index];
     const std::vector<Camera> route = setup.route(route_name, o.frames);
     SessionOptions so;
+    so.allocator = o.allocator;
     so.batch = default_batch;
     so.lost_pixels = SessionOptions::PixelCheck::all;
     DatabaseProvider databases(o.databases, o.make_databases);

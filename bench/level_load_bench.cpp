@@ -19,6 +19,7 @@
 
 #include <zip.h>
 
+#include "evaluation/allocator.h"
 #include "scene/quake3_bsp.h"
 #include "scene/scene_file.h"
 #include "spatial/hierarchy.h"
@@ -67,6 +68,7 @@ double ms_since(std::chrono::steady_clock::time_point t0)
 
 int main(int argc, char **argv)
 {
+    control_allocator(AllocatorPolicy::keep_freed);   // as every benchmark (evaluation/allocator.h)
     Quake3Options options;
     int repeat = 3;
     std::vector<std::string> levels;

@@ -34,6 +34,7 @@
 
 #include "cli/arguments.h"
 #include "culling/registry.h"
+#include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
 
@@ -44,6 +45,7 @@ using namespace occu;
 constexpr double target = 1.05;
 
 struct Options {
+    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
     std::vector<std::string> strategies;   // empty: every strategy of the registry (strategy_names(), without repeats)
     int frames = 120;
     int rounds = 1;   // walks of each route, strategies made anew for each
@@ -63,7 +65,7 @@ struct Options {
         std::fprintf(to, "occu-bench-no-occlusion: %s\n", error.c_str());
     std::fprintf(to,
                  "usage: occu-bench-no-occlusion [--strategies NAME,...] [--frames N] [--rounds R] [--size PIXELS]\n"
-                 "                               [--driver llvmpipe|softpipe] [--batch N] [--switch-off F]\n"
+                 "                               [--driver llvmpipe|softpipe] [--batch N] [--switch-off F] [--allocator keep|system]\n"
                  "                               [--coherence on|off] [--databases DIR] [--make-databases required|all]\n"
                  "Runs every strategy (default: every name of the registry, a preset that repeats its family's\n"
                  "defaults once) side by side with vfc on the city's open route and on the field's overhead route\n"
@@ -109,6 +111,7 @@ Options parse(int argc, char **argv)
         else if (a == "--rounds") o.rounds = int(integer_option(a, v, 1, 100));
         else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
         else if (a == "--driver") o.driver = v;
+        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
         else if (a == "--coherence") o.coherence = switch_option(a, v);
@@ -177,6 +180,7 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
     out.triangles = setup.scene().triangle_count();
     out.leaves = setup.hierarchy().leaf_count();
     SessionOptions so;
+    so.allocator = o.allocator;
     so.batch = std::size_t(o.batch);
     so.coherence = o.coherence;
     so.switch_off = o.switch_off;

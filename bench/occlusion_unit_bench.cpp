@@ -40,6 +40,7 @@
 #include <optional>
 #include <vector>
 
+#include "evaluation/allocator.h"
 #include "gl/extensions.h"
 #include "gl/gl_headers.h"
 #include "gl/occlusion_unit.h"
@@ -526,7 +527,8 @@ void case_render(const Options &o)
     if (error)
         std::fprintf(stderr, "occu-bench-ou: %s\n", error);
     std::fprintf(error ? stderr : stdout,
-                 "usage: occu-bench-ou [--driver softpipe|llvmpipe] [--size PIXELS] [--repeat N] [--only 0|1] CASE...\n"
+                 "usage: occu-bench-ou [--driver softpipe|llvmpipe] [--size PIXELS] [--repeat N] [--only 0|1]\n"
+                 "                     [--allocator keep|system] CASE...\n"
                  "cases: box, tiles:N, mesh:N, vmesh:N (N = 1..64), shaded, passes, render, async:N, passcost:N\n"
                  "prints CSV: case,driver,size,n,ms_occlusion_unit,ms_other,ratio\n"
                  "  (passes: case,driver,size,threads,ms,passes_per_s; render: case,driver,size,boxes,ms;\n"
@@ -551,15 +553,22 @@ int parse_int(const char *s, const char *what, int lo, int hi)
 int main(int argc, char **argv)
 {
     Options o;
+    occu::AllocatorPolicy allocator = occu::AllocatorPolicy::keep_freed;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "-h" || a == "--help")
             usage(nullptr);
-        else if ((a == "--driver" || a == "--size" || a == "--repeat" || a == "--only") && i + 1 >= argc)
+        else if ((a == "--driver" || a == "--size" || a == "--repeat" || a == "--only" || a == "--allocator") && i + 1 >= argc)
             usage((a + " needs a value").c_str());
         else if (a == "--driver") {
             try {
                 o.driver = occu::gl::parse_driver(argv[++i]);
+            } catch (const std::exception &e) {
+                usage(e.what());
+            }
+        } else if (a == "--allocator") {
+            try {
+                allocator = occu::parse_allocator_policy(a, argv[++i]);
             } catch (const std::exception &e) {
                 usage(e.what());
             }
@@ -579,6 +588,7 @@ int main(int argc, char **argv)
     if (o.cases.empty())
         usage("no case given");
 
+    occu::control_allocator(allocator);
     occu::gl::select_driver(o.driver);
     occu::gl::OffscreenContext ctx(o.size, o.size);
     GenQueries = reinterpret_cast<PFNGLGENQUERIESPROC>(get_proc_address("glGenQueries"));

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/allocator.h"
 #include "strategies/poon_wang_opacity_maps/opacity_map.h"
 #include "strategies/poon_wang_opacity_maps/sparse_depth_map.h"
 
@@ -40,6 +41,7 @@ volatile bool sink;
 
 int main(int argc, char **argv)
 {
+    occu::control_allocator(occu::AllocatorPolicy::keep_freed);   // as every benchmark (evaluation/allocator.h)
     const int size = 128;
     std::vector<int> widths = {8, 16, 32, 64};
     if (argc > 1) {

@@ -29,6 +29,7 @@
 
 #include "cli/arguments.h"
 #include "culling/registry.h"
+#include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
 
@@ -45,6 +46,7 @@ const char *const default_models[] = {
 };
 
 struct Options {
+    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
     std::vector<std::string> scenes;   // "city" or a file; empty: the city and default_models
     long views = 300;                  // over all scenes
     unsigned long seed = 2026;
@@ -72,6 +74,7 @@ struct Options {
                  "                         [--size PIXELS] [--strategies NAME[:key=value...],...]\n"
                  "                         [--driver llvmpipe|softpipe] [--fov MIN,MAX] [--leaf-triangles N]\n"
                  "                         [--batch N] [--coherence on|off] [--switch-off F] [--set key=value]...\n"
+                 "                         [--allocator keep|system]\n"
                  "                         [--databases DIR] [--make-databases required|all] [--out DIR]\n"
                  "Renders --views random cameras (300; shared evenly among the scenes) with every strategy and\n"
                  "counts the visible pixels each frame lost against the unculled frame of the same camera.\n"
@@ -118,6 +121,7 @@ Options parse(int argc, char **argv)
         }
         else if (a == "--driver") o.driver = v;
         else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--coherence") o.coherence = switch_option(a, v);
         else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
@@ -195,6 +199,7 @@ void run_scene(const Options &o, const SceneSetup &setup, long views, unsigned l
 
     gl::OffscreenContext ctx(o.size, o.size);
     SessionOptions so;
+    so.allocator = o.allocator;
     so.batch = std::size_t(o.batch);
     so.coherence = o.coherence;
     so.switch_off = o.switch_off;

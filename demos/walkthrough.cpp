@@ -25,6 +25,7 @@
 
 #include "cli/arguments.h"
 #include "culling/registry.h"
+#include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
 #include "evaluation/session_report.h"
 #include "gl/offscreen_context.h"
@@ -36,6 +37,7 @@ namespace {
 using namespace occu;
 
 struct Options {
+    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
     std::string route = "dense";
     std::string scene;   // empty or "city": the procedural city; "field": the flat field (no occlusion); else a file
     std::vector<std::string> strategies = {"none", "vfc", "ideal", "ou", "ou-shared", "om-ps"};
@@ -70,7 +72,7 @@ struct Options {
                  "                   [--occluder-db FILE (= --set database=FILE)]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--patch-segments N] [--leaf-triangles N] [--batch N] [--coherence on|off]\n"
-                 "                   [--switch-off F]\n"
+                 "                   [--switch-off F] [--allocator keep|system]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
                  "                   [--video STRATEGY,...] [--databases DIR] [--make-databases required|all]\n"
                  "       walkthrough --list-strategies [--markdown]\n"
@@ -119,6 +121,7 @@ Options parse(int argc, char **argv)
         else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
         else if (a == "--patch-segments") o.patch_segments = int(integer_option(a, v, 1, 64));
         else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 100000));
         else if (a == "--out") o.out = v;
@@ -258,6 +261,7 @@ int main(int argc, char **argv)
 
         gl::OffscreenContext ctx(o.size, o.size);
         SessionOptions so;
+    so.allocator = o.allocator;
         so.batch = std::size_t(o.batch);
         so.coherence = o.coherence;
         so.switch_off = o.switch_off;
@@ -269,9 +273,9 @@ int main(int argc, char **argv)
             session.add(spec, o.common);
         std::filesystem::create_directories(o.out);
         FramesCsv csv(o.out + "/frames.csv", o.route, setup.scene().triangle_count());
-        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s\n",
+        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s; allocator %s\n",
                     setup.scene().triangle_count(), setup.hierarchy().leaf_count(), o.route.c_str(), route.size(),
-                    o.size, o.size, ctx.renderer().c_str());
+                    o.size, o.size, ctx.renderer().c_str(), allocator_policy_name(o.allocator));
         session.walk(route, "frames", [&](const SessionStrategy &s, const StrategyFrame &f) {
             if (o.png_every > 0 && f.index % std::size_t(o.png_every) == 0)
                 write_images(o, ctx, setup, s, f);

@@ -105,6 +105,7 @@ MeasurementSession::MeasurementSession(const SceneSetup &scene, gl::OffscreenCon
       unculled_strategy_(make_strategy("none", {scene_.scene(), scene_.hierarchy(), renderer_})),
       order_state_(options.order_seed)
 {
+    control_allocator(options_.allocator);
     if (options_.oracle)
         oracle_.emplace(renderer_, scene_.hierarchy());
 }

@@ -18,7 +18,8 @@
 // unculled frame and the lost pixels are drawn untimed. The minor page
 // faults the process takes while a strategy draws (getrusage) are counted
 // per frame: freed memory faulted in again costs time that depends on the
-// process, not on the strategy.
+// process, not on the strategy, so the session keeps freed memory in the
+// process (SessionOptions::allocator, evaluation/allocator.h).
 #pragma once
 
 #include <cstdint>
@@ -30,6 +31,7 @@
 #include <vector>
 
 #include "culling/databases.h"
+#include "evaluation/allocator.h"
 #include "culling/registry.h"
 #include "evaluation/lost_pixels.h"
 #include "evaluation/oracle.h"
@@ -69,6 +71,8 @@ struct SessionOptions {
     enum class PixelCheck { none, approximate, all };
     PixelCheck lost_pixels = PixelCheck::approximate;
     std::uint64_t order_seed = 1998;   // the strategies' shuffled order in each frame
+    // Applied to the process when the session is made (evaluation/allocator.h).
+    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;
     float clear_colour[4] = {0.55f, 0.7f, 0.9f, 1.0f};
     // Makes or finds the databases the strategies read and were not given
     // (culling/databases.h); none: a strategy that requires one and was

@@ -38,6 +38,7 @@ expect_error "'threshold'" "$walkthrough" --strategies ou:threshold=0.1
 expect_error "proxy" "$walkthrough" --strategies ou:proxy=maybe
 expect_error "'passes'" "$walkthrough" --strategies vfc,om-ps --set passes=shared
 expect_error "--coherence" "$walkthrough" --coherence maybe
+expect_error "--allocator" "$walkthrough" --allocator glibc
 expect_error "--make-databases" "$walkthrough" --make-databases some
 # A database a strategy requires is made on demand, where it can be written.
 expect_error "cannot make the database directory '/proc/occu-databases'" "$walkthrough" --frames 1 --size 16 \
