@@ -55,6 +55,11 @@ struct Frame {
     // The exact-visibility oracle's answer for this frame, when the caller
     // computed one (evaluation/oracle.h); only the `ideal` reference uses it.
     const VisibilityTruth *truth;
+    // A frame of the switch-off's probes (traversal/policies.h), whose
+    // tests only decide whether testing resumes: a strategy may prepare it
+    // more cheaply (cheaper occluders), as long as its answers stay
+    // conservative.
+    bool probe = false;
 
     // The box's footprint in this frame (camera/footprint.h).
     std::optional<Footprint> footprint(const Aabb &box) const
@@ -107,11 +112,6 @@ class Culler {
 public:
     virtual ~Culler() = default;
     virtual void begin_frame(const Frame &frame) = 0;
-    // A frame of the switch-off's probes (traversal/policies.h), whose tests
-    // only decide whether testing resumes: a strategy may prepare it more
-    // cheaply than a frame (cheaper occluders), as long as its answers stay
-    // conservative. By default it is a frame.
-    virtual void begin_probe(const Frame &frame) { begin_frame(frame); }
     // Answers every test, in the order given (front to back).
     virtual void test(std::vector<NodeTest> &tests) = 0;
     // The caller drew leaf `node`.

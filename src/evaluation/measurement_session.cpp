@@ -50,8 +50,10 @@ TraversalOptions TraversalPolicies::options(std::size_t batch)
 {
     TraversalOptions t;
     t.batch = batch;
-    t.coherence = coherence ? &*coherence : nullptr;
-    t.switch_off = switch_off ? &*switch_off : nullptr;
+    if (coherence)
+        t.policies.push_back(&*coherence);
+    if (switch_off)
+        t.policies.push_back(&*switch_off);
     return t;
 }
 

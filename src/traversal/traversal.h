@@ -16,6 +16,7 @@
 #include "culling/culler.h"
 #include "render/scene_renderer.h"
 #include "spatial/hierarchy.h"
+#include "traversal/frame_stats.h"
 #include "traversal/policies.h"
 
 namespace occu {
@@ -24,32 +25,9 @@ struct TraversalOptions {
     // Nodes tested together (in one occlusion pass where the strategy can).
     // 1: strictly front to back, the most culling; more: fewer passes.
     std::size_t batch = 32;
-    VisibleNodeList *coherence = nullptr;   // temporal coherence, if any
-    SwitchOff *switch_off = nullptr;        // adaptive switch-off, if any
-};
-
-struct FrameStats {
-    std::uint64_t triangles = 0;
-    std::uint32_t leaves_drawn = 0;
-    // Of leaves_drawn, those issued under conditional rendering on a tile
-    // (FrameSink::draw_leaf_conditionally): the GL drew only those its test
-    // found visible. They count as drawn here and in `drawn`.
-    std::uint32_t leaves_conditional = 0;
-    std::uint32_t nodes_tested = 0;
-    std::uint32_t nodes_view_culled = 0;
-    std::uint32_t nodes_occluded = 0;
-    std::uint32_t passes = 0;               // the culler's report
-    // In the subtrees of nodes found occluded, less the leaves wholly outside
-    // the frustum (view-frustum culling would not have drawn them either):
-    // what the occlusion tests saved, which the switch-off judges by.
-    std::uint64_t triangles_occluded = 0;
-    bool occlusion_tested = true;           // false while switched off
-    // Wall time in the culler, apart from what it saves: begin_frame
-    // (occluders, maps: setup_ms) and the tests (test_ms), including waits
-    // for the rasterizer they cause (an occlusion pass waits for the leaves
-    // drawn before it); the rest of the frame is drawing.
-    double setup_ms = 0.0, test_ms = 0.0;
-    std::vector<std::uint32_t> drawn;   // leaf node indices, in drawing order
+    // Called in this order; they outlive the frame and keep their state
+    // across frames.
+    std::vector<TraversalPolicy *> policies;
 };
 
 // Draws one frame into the current context's bound framebuffer (the caller

@@ -86,7 +86,7 @@ TEST(Traversal, SwitchedOffProbesBackOff)
     const Strategy none = make_strategy("none", {row.scene, *row.h, *row.renderer});   // never finds anything occluded
     SwitchOff switch_off;
     TraversalOptions options;
-    options.switch_off = &switch_off;
+    options.policies = {&switch_off};
     const Frame frame(row.camera, 32, 32);
     std::vector<std::uint32_t> tested;
     for (std::uint32_t f = 0; f < 200; ++f)
@@ -100,11 +100,10 @@ TEST(Traversal, SwitchedOffProbesBackOff)
 class CountingCuller final : public Culler {
 public:
     explicit CountingCuller(const Hierarchy &h) : h_(h) {}
-    void begin_frame(const Frame &frame) override { frustum_.emplace(frame.frustum); }
-    void begin_probe(const Frame &frame) override
+    void begin_frame(const Frame &frame) override
     {
-        ++probes;
-        begin_frame(frame);
+        probes += frame.probe;
+        frustum_.emplace(frame.frustum);
     }
     void test(std::vector<NodeTest> &tests) override
     {
@@ -121,14 +120,14 @@ private:
     std::optional<Frustum> frustum_;
 };
 
-// A probe (traversal/policies.h) is begun with begin_probe, tests inner
+// A probe (traversal/policies.h) is begun as a Frame::probe, tests inner
 // nodes only and draws what a frame draws; a frame tests leaves too.
 TEST(Traversal, ProbesTestInnerNodesOnlyAndDrawWhatAFrameDraws)
 {
     const BoxRow row(40);
     SwitchOff switch_off;   // culls nothing: off after frame 0, probe at frame 8
     TraversalOptions options;
-    options.switch_off = &switch_off;
+    options.policies = {&switch_off};
     CountingCuller counting(*row.h);
     const Frame frame(row.camera, 32, 32);
     std::vector<FrameStats> stats;
@@ -146,7 +145,7 @@ TEST(Traversal, ProbesTestInnerNodesOnlyAndDrawWhatAFrameDraws)
     // The leaves were tested in frame 0 only.
     CountingCuller probe_only(*row.h);
     SwitchOff fresh;
-    options.switch_off = &fresh;
+    options.policies = {&fresh};
     for (int f = 0; f <= 8; ++f) {
         if (f == 8)
             probe_only.leaves = probe_only.inner = 0;
@@ -164,7 +163,7 @@ TEST(Traversal, VisibleNodeListSkipsTestsOfLastFramesVisibleNodes)
     const Strategy vfc = make_strategy("vfc", {row.scene, *row.h, *row.renderer});
     VisibleNodeList coherence(1000);
     TraversalOptions options;
-    options.coherence = &coherence;
+    options.policies = {&coherence};
     const Frame frame(row.camera, 32, 32);
     const FrameStats first = render_hierarchy(*row.renderer, *row.h, *vfc.culler, frame, options);
     const FrameStats second = render_hierarchy(*row.renderer, *row.h, *vfc.culler, frame, options);
