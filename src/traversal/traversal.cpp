@@ -46,8 +46,8 @@ public:
         // while it tests; switched off, it is not called at all and the
         // frame below is view-frustum culling alone, as for any strategy;
         // its probes are the common traversal's, through its test().
-        if (culler_.orders_frame() && testing == FrameTesting::full)
-            return run_ordered();
+        if (OwnTraversal *own = own_traversal(culler_); own && testing == FrameTesting::full)
+            return run_ordered(*own);
         frame_testing_ = testing;
         stats_.occlusion_tested = testing_;
         // A frame switched off costs the strategy nothing: no occluders
@@ -85,7 +85,7 @@ public:
     }
 
 private:
-    // A strategy that orders the frame itself (Culler::orders_frame): it
+    // A strategy that walks the hierarchy itself (OwnTraversal): it
     // traverses and tests, this draws and counts. Its test time is the
     // traversal's time less the drawing's.
     class Sink final : public FrameSink {
@@ -112,13 +112,13 @@ private:
         FrameTraversal &t_;
     };
 
-    FrameStats run_ordered()
+    FrameStats run_ordered(OwnTraversal &own)
     {
         ordered_ = true;
         watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(frame_); });
         Sink sink(*this);
         double traverse_ms = 0.0;
-        watch_.time(traverse_ms, [&] { culler_.traverse(sink); });
+        watch_.time(traverse_ms, [&] { own.traverse(sink); });
         stats_.test_ms = std::max(0.0, traverse_ms - sink.draw_ms);
         stats_.passes = culler_.stats().passes;
         draw_see_through();
@@ -258,6 +258,16 @@ private:
 };
 
 }  // namespace
+
+OwnTraversal *own_traversal(Culler &culler)
+{
+    return dynamic_cast<OwnTraversal *>(&culler);
+}
+
+bool orders_frame(const Culler &culler)
+{
+    return dynamic_cast<const OwnTraversal *>(&culler) != nullptr;
+}
 
 FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler,
                             const Frame &frame, const TraversalOptions &options)

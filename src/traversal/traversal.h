@@ -3,11 +3,11 @@
 // back (Bartz et al. 1998, section 3: test a node's box, draw it if it is a
 // visible leaf, else open it), a batch of nodes at a time, with the
 // policies of traversal/policies.h where the caller gives them. A culler
-// that orders the frame itself (Culler::orders_frame: chc) walks the
-// hierarchy in its own way; this then only draws and counts for it, and
-// its batch and temporal coherence do not apply; switch-off does (a
-// switched-off frame is view-frustum culled here without calling it; a
-// probe is a whole frame of its own traversal).
+// that is also an OwnTraversal (chc) walks the hierarchy in its own way in
+// the frames that test in full; this then only draws and counts for it,
+// and its batch does not apply. A switched-off frame is view-frustum
+// culled here without calling it, and a probe is this traversal's,
+// through its Culler::test.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +29,44 @@ struct TraversalOptions {
     // across frames.
     std::vector<TraversalPolicy *> policies;
 };
+
+
+// What a strategy that walks the hierarchy itself tells the traversal,
+// which draws and counts for it.
+class FrameSink {
+public:
+    // Draws leaf `node` now (found visible, or taken as visible untested).
+    virtual void draw_leaf(std::uint32_t node) = 0;
+    // Draws leaf `node` now under the condition of a test whose answer the
+    // strategy has not read (AsyncCuller::draw_if_visible): the GL draws it
+    // only if the test found it visible. Counted as drawn (what was issued).
+    virtual void draw_leaf_conditionally(std::uint32_t node) = 0;
+    // `node`'s subtree is not drawn this frame: `why` is view_culled or occluded.
+    virtual void cull(std::uint32_t node, Visibility why) = 0;
+    // `count` more nodes had their occlusion tested.
+    virtual void tested(std::uint32_t count) = 0;
+
+protected:
+    ~FrameSink() = default;
+};
+
+// A strategy whose tests run alongside drawing (coherent hierarchical
+// culling, Bittner et al. 2004: results read when they are ready, drawing
+// going on meanwhile) walks the hierarchy itself, with its own temporal
+// coherence. Its culler is also an OwnTraversal: the traversal calls its
+// Culler::begin_frame, then traverse, which draws through `sink`.
+class OwnTraversal {
+public:
+    virtual void traverse(FrameSink &sink) = 0;
+
+protected:
+    ~OwnTraversal() = default;
+};
+
+// `culler`'s own traversal; null when it has none.
+OwnTraversal *own_traversal(Culler &culler);
+// Whether `culler` orders the frames it tests in full itself.
+bool orders_frame(const Culler &culler);
 
 // Draws one frame into the current context's bound framebuffer (the caller
 // clears it and loads the camera's matrices, gl/state.h) and returns what it

@@ -111,7 +111,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
                 const DrawnFrame reference = draw_frame(small.ctx, renderer, h, *none.culler, frame, {});
                 const DrawnFrame culled = draw_frame(small.ctx, renderer, h, *s.culler, frame, options);
                 // A strategy that orders the frame itself: the unculled frame in its order.
-                const bool ordered = s.culler->orders_frame();
+                const bool ordered = orders_frame(*s.culler);
                 const std::vector<std::uint8_t> in_order =
                     ordered ? integration::draw_unculled_after(small.ctx, renderer, h, frame, culled.leaves).pixels
                             : std::vector<std::uint8_t>{};
