@@ -170,3 +170,48 @@ TEST(Traversal, VisibleNodeListSkipsTestsOfLastFramesVisibleNodes)
     EXPECT_EQ(first.leaves_drawn, second.leaves_drawn);
     EXPECT_LT(second.nodes_tested, first.nodes_tested);
 }
+
+// The visible node list takes last frame's visible nodes as visible in
+// frames that test in full only: a probe judges what tests find.
+TEST(TraversalPolicies, VisibleNodeListAppliesToFullFramesOnly)
+{
+    VisibleNodeList coherence(1000);
+    coherence.begin_frame(4);
+    coherence.visible(2);
+    coherence.end_frame({});
+    EXPECT_EQ(coherence.begin_frame(4), FrameTesting::full);
+    EXPECT_EQ(coherence.node_testing(2, true, FrameTesting::full), NodeTesting::assumed_visible);
+    EXPECT_EQ(coherence.node_testing(1, true, FrameTesting::full), NodeTesting::test);
+    EXPECT_EQ(coherence.node_testing(2, true, FrameTesting::probe), NodeTesting::test);
+}
+
+// A probe skips leaves, stops once its node tests reach the budget, and is
+// judged by what it had seen at that point, not by the frame's end.
+TEST(TraversalPolicies, ProbeStopsAtItsBudgetAndIsJudgedThere)
+{
+    SwitchOff::Settings settings;
+    settings.min_gain = 0.5;
+    settings.probe_period = 1;
+    settings.probe_nodes = 10;
+    SwitchOff switch_off(settings);
+    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+    FrameStats nothing_hidden;
+    nothing_hidden.triangles = 100;
+    switch_off.end_frame(nothing_hidden);
+    ASSERT_TRUE(switch_off.off());
+    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::probe);
+    EXPECT_EQ(switch_off.node_testing(3, true, FrameTesting::probe), NodeTesting::skipped);
+    EXPECT_EQ(switch_off.node_testing(0, false, FrameTesting::probe), NodeTesting::test);
+    FrameStats so_far;
+    so_far.nodes_tested = 9;
+    EXPECT_FALSE(switch_off.stop_testing(so_far));
+    so_far.nodes_tested = 10;
+    so_far.triangles = 100;
+    so_far.triangles_occluded = 80;   // worth it, as far as it tested
+    EXPECT_TRUE(switch_off.stop_testing(so_far));
+    FrameStats whole = so_far;
+    whole.triangles = 1000;            // drawn untested after the cut
+    switch_off.end_frame(whole);
+    EXPECT_FALSE(switch_off.off());
+    EXPECT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+}
