@@ -358,7 +358,7 @@ void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup 
         const SessionStrategy &s = session.strategies()[k];
         Variant &v = sweep.variants[variant_of[k]];
         v.routes[route_index] = s.measured;
-        if (s.strategy.culler->orders_frame() && v.batch != default_batch)
+        if (orders_frame(*s.strategy.culler) && v.batch != default_batch)
             notes.insert(v.spec + " at batch " + std::to_string(v.batch) +
                          ": orders its frame itself, the traversal's batch does not apply (its own `batch` setting does)");
     }

@@ -24,6 +24,8 @@
 // are not worth an occlusion test (Poon and Wang's adaptive overlap test,
 // section 5.2): the traversal draws them with frustum culling only.
 // Statistics (passes) are reported, never used to steer the traversal.
+// Tests answered later, while drawing goes on, are another interface
+// (culling/async_culler.h), which a strategy's own traversal drives.
 #pragma once
 
 #include <cstdint>
@@ -55,6 +57,11 @@ struct Frame {
     // The exact-visibility oracle's answer for this frame, when the caller
     // computed one (evaluation/oracle.h); only the `ideal` reference uses it.
     const VisibilityTruth *truth;
+    // A frame of the switch-off's probes (traversal/policies.h), whose
+    // tests only decide whether testing resumes: a strategy may prepare it
+    // more cheaply (cheaper occluders), as long as its answers stay
+    // conservative.
+    bool probe = false;
 
     // The box's footprint in this frame (camera/footprint.h).
     std::optional<Footprint> footprint(const Aabb &box) const
@@ -83,35 +90,10 @@ struct CullerStats {
     std::uint32_t passes = 0;   // occlusion passes (or map builds) since begin_frame
 };
 
-// What a strategy that orders the frame itself (Culler::orders_frame) tells
-// the traversal, which draws and counts for it.
-class FrameSink {
-public:
-    // Draws leaf `node` now (found visible, or taken as visible untested).
-    virtual void draw_leaf(std::uint32_t node) = 0;
-    // Draws leaf `node` now under the conditional rendering the strategy
-    // has begun (GL_MESAX_occlusion_unit_async's conditional rendering on a
-    // tile): the GL draws it only if its test found it visible, and the
-    // strategy does not know yet which. Counted as drawn (what was issued).
-    virtual void draw_leaf_conditionally(std::uint32_t node) = 0;
-    // `node`'s subtree is not drawn this frame: `why` is view_culled or occluded.
-    virtual void cull(std::uint32_t node, Visibility why) = 0;
-    // `count` more nodes had their occlusion tested.
-    virtual void tested(std::uint32_t count) = 0;
-
-protected:
-    ~FrameSink() = default;
-};
-
 class Culler {
 public:
     virtual ~Culler() = default;
     virtual void begin_frame(const Frame &frame) = 0;
-    // A frame of the switch-off's probes (traversal/policies.h), whose tests
-    // only decide whether testing resumes: a strategy may prepare it more
-    // cheaply than a frame (cheaper occluders), as long as its answers stay
-    // conservative. By default it is a frame.
-    virtual void begin_probe(const Frame &frame) { begin_frame(frame); }
     // Answers every test, in the order given (front to back).
     virtual void test(std::vector<NodeTest> &tests) = 0;
     // The caller drew leaf `node`.
@@ -120,16 +102,6 @@ public:
     // A sentence for the run's summary about what the figures do not show
     // (frames it could not cull as it claims to, work done on the way); empty: none.
     virtual std::string note() const { return {}; }
-
-    // Strategies whose tests run alongside drawing (coherent hierarchical
-    // culling: a pass's results are read when they are ready, and drawing
-    // goes on meanwhile) walk the hierarchy themselves. For them the
-    // traversal (traversal/traversal.h) calls begin_frame, then traverse,
-    // which draws through `sink`; its batches and its policies across
-    // frames do not apply (such a strategy has its own temporal coherence).
-    // test() must still answer callers that test nodes themselves.
-    virtual bool orders_frame() const { return false; }
-    virtual void traverse(FrameSink &sink) { (void)sink; }
 };
 
 }  // namespace occu

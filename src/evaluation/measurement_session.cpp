@@ -50,8 +50,10 @@ TraversalOptions TraversalPolicies::options(std::size_t batch)
 {
     TraversalOptions t;
     t.batch = batch;
-    t.coherence = coherence ? &*coherence : nullptr;
-    t.switch_off = switch_off ? &*switch_off : nullptr;
+    if (coherence)
+        t.policies.push_back(&*coherence);
+    if (switch_off)
+        t.policies.push_back(&*switch_off);
     return t;
 }
 
@@ -200,7 +202,7 @@ void MeasurementSession::measure(std::size_t index, const Camera &camera, const 
             // A strategy that ordered the frame itself is compared with its
             // own reference; the others first with the common unculled frame.
             // The reference overwrites the frame, which is put back for the observer.
-            const bool own_order = s.strategy.culler->orders_frame() && out.stats.occlusion_tested;
+            const bool own_order = orders_frame(*s.strategy.culler) && out.stats.occlusion_tested;
             culled_.assign(gl_.pixels(), gl_.pixels() + 4 * pixels);
             out.loss = count_lost_pixels(renderer_, hierarchy, camera, out.stats.drawn,
                                          own_order ? nullptr : unculled_.data(), gl_.pixels(), pixels);

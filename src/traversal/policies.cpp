@@ -4,30 +4,60 @@
 
 namespace occu {
 
-void VisibleNodeList::begin_frame(std::size_t nodes)
+FrameTesting VisibleNodeList::begin_frame(std::size_t nodes)
 {
     last_.resize(nodes, 0);
     now_.assign(nodes, 0);
+    return FrameTesting::full;
 }
 
-void VisibleNodeList::end_frame()
+NodeTesting VisibleNodeList::node_testing(std::uint32_t node, bool leaf, FrameTesting frame) const
 {
+    (void)leaf;
+    const bool assumed = frame == FrameTesting::full && last_[node] && (frame_ + node) % retest_period_ != 0;
+    return assumed ? NodeTesting::assumed_visible : NodeTesting::test;
+}
+
+void VisibleNodeList::end_frame(const FrameStats &stats)
+{
+    (void)stats;
     last_.swap(now_);
     ++frame_;
 }
 
-bool SwitchOff::begin_frame()
+FrameTesting SwitchOff::begin_frame(std::size_t nodes)
 {
+    (void)nodes;
+    cut_ = false;
     probe_ = off_ && frames_to_probe_ <= 1;
     if (off_ && !probe_)
         --frames_to_probe_;
-    return !off_ || probe_;
+    return !off_ ? FrameTesting::full : probe_ ? FrameTesting::probe : FrameTesting::off;
 }
 
-void SwitchOff::end_frame(bool tested, double triangles_drawn, double triangles_occluded)
+NodeTesting SwitchOff::node_testing(std::uint32_t node, bool leaf, FrameTesting frame) const
 {
-    if (!tested)
+    (void)node;
+    (void)frame;
+    return probe_ && !settings_.probe_leaves && leaf ? NodeTesting::skipped : NodeTesting::test;
+}
+
+bool SwitchOff::stop_testing(const FrameStats &so_far)
+{
+    if (!probe_ || so_far.nodes_tested < settings_.probe_nodes)
+        return false;
+    cut_ = true;
+    judged_triangles_ = so_far.triangles;
+    judged_occluded_ = so_far.triangles_occluded;
+    return true;
+}
+
+void SwitchOff::end_frame(const FrameStats &stats)
+{
+    if (!stats.occlusion_tested)
         return;
+    const double triangles_drawn = double(cut_ ? judged_triangles_ : stats.triangles);
+    const double triangles_occluded = double(cut_ ? judged_occluded_ : stats.triangles_occluded);
     const bool was_off = off_;
     off_ = triangles_occluded < settings_.min_gain * triangles_drawn;
     if (!off_)

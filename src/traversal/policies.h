@@ -1,14 +1,49 @@
-// The traversal's two policies across frames, each its own settings and
-// state, kept per strategy and hierarchy. Both only decide where occlusion
-// tests are worth their cost; neither changes a pixel, so a conservative
-// strategy stays conservative under them. The walkthrough applies them to
-// the strategies whose tests query the rasterizer (culling/registry.h).
+// The traversal's policies across frames, each an object the traversal
+// calls (traversal/traversal.h), with its own settings and state, kept per
+// strategy and hierarchy. They only decide where occlusion tests are worth
+// their cost; none changes a pixel, so a conservative strategy stays
+// conservative under them. The programs give a strategy those its family
+// wants (culling/registry.h: TraversalWants).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "traversal/frame_stats.h"
+
 namespace occu {
+
+// Whether a frame tests occlusion: in full, as a probe of the switch-off
+// (its tests only decide whether testing resumes; the culler sees
+// Frame::probe), or not at all (view-frustum culling only). Of the
+// policies' answers the least holds.
+enum class FrameTesting { off, probe, full };
+
+// How the traversal takes one node of a testing frame. Of the policies'
+// answers the last in this order holds.
+enum class NodeTesting {
+    test,              // its occlusion is tested
+    // Drawn or opened without a test where it lies in the frustum; where it
+    // does not, tested (the culler culls it to the frustum).
+    assumed_visible,
+    // Not tested: the traversal culls it to the frustum, draws or opens it.
+    skipped,
+};
+
+class TraversalPolicy {
+public:
+    virtual ~TraversalPolicy() = default;
+    // A frame over a hierarchy of `nodes` nodes begins.
+    virtual FrameTesting begin_frame(std::size_t nodes) = 0;
+    // `node` comes off the front of a frame that tests as `frame`.
+    virtual NodeTesting node_testing(std::uint32_t node, bool leaf, FrameTesting frame) const = 0;
+    // `node` was found visible (tested or not) in a frame of the common traversal.
+    virtual void visible(std::uint32_t node) { (void)node; }
+    // After each batch of tests: whether the frame stops testing here.
+    virtual bool stop_testing(const FrameStats &so_far) { (void)so_far; return false; }
+    // The frame ended, having done `stats`.
+    virtual void end_frame(const FrameStats &stats) = 0;
+};
 
 // Temporal coherence: Greene et al.'s visible node list, as Moeller and
 // Haines describe it ("Hierarchical Z-Buffering"): nodes that were visible
@@ -16,17 +51,14 @@ namespace occu {
 // test, except every `retest_period` frames (staggered by node), so that
 // nodes which became hidden are found. Drawing a hidden node is only
 // wasted work, and it removes the test cost where little is hidden.
-class VisibleNodeList {
+// Probes test without it: they judge what tests find.
+class VisibleNodeList final : public TraversalPolicy {
 public:
     explicit VisibleNodeList(std::uint32_t retest_period = 8) : retest_period_(retest_period ? retest_period : 1) {}
-    void begin_frame(std::size_t nodes);
-    // Taken as visible without a test this frame.
-    bool assumed_visible(std::uint32_t node) const
-    {
-        return last_[node] && (frame_ + node) % retest_period_ != 0;
-    }
-    void mark_visible(std::uint32_t node) { now_[node] = 1; }
-    void end_frame();
+    FrameTesting begin_frame(std::size_t nodes) override;
+    NodeTesting node_testing(std::uint32_t node, bool leaf, FrameTesting frame) const override;
+    void visible(std::uint32_t node) override { now_[node] = 1; }
+    void end_frame(const FrameStats &stats) override;
 
 private:
     std::uint32_t retest_period_;
@@ -60,7 +92,7 @@ private:
 // planes off on the street route, where they cull 71% of what is hidden.
 // A strategy that orders its frame itself probes through the common
 // traversal (Culler::test): its own traversal cannot be cut.
-class SwitchOff {
+class SwitchOff final : public TraversalPolicy {
 public:
     struct Settings {
         double min_gain = 0.5;                 // 0: never switch off
@@ -72,21 +104,22 @@ public:
     SwitchOff() = default;
     explicit SwitchOff(const Settings &settings) : settings_(settings) {}
 
-    // Whether this frame tests occlusion (also true for a probe frame).
-    bool begin_frame();
-    bool probing() const { return probe_; }
-    // In a probe: whether leaves are drawn untested.
-    bool probe_skips_leaves() const { return probe_ && !settings_.probe_leaves; }
-    // In a probe: whether the node tests so far used up its budget.
-    bool probe_spent(std::uint32_t nodes_tested) const { return probe_ && nodes_tested >= settings_.probe_nodes; }
-    // The frame's triangles drawn and triangles in the subtrees found
-    // occluded, as far as the frame tested (for a cut probe, up to the cut).
-    void end_frame(bool tested, double triangles_drawn, double triangles_occluded);
+    FrameTesting begin_frame(std::size_t nodes) override;
+    // In a probe, leaves are drawn untested (unless probe_leaves).
+    NodeTesting node_testing(std::uint32_t node, bool leaf, FrameTesting frame) const override;
+    // A probe stops once its node tests used up its budget, and judges by
+    // what it saw until then.
+    bool stop_testing(const FrameStats &so_far) override;
+    // Judged by the frame's triangles drawn and triangles in the subtrees
+    // found occluded, as far as the frame tested (for a cut probe, up to the cut).
+    void end_frame(const FrameStats &stats) override;
     bool off() const { return off_; }
 
 private:
     Settings settings_;
     bool off_ = false, probe_ = false;
+    bool cut_ = false;                   // this probe stopped testing
+    std::uint64_t judged_triangles_ = 0, judged_occluded_ = 0;   // at the cut
     std::uint32_t wait_ = 0;             // frames between probes now
     std::uint32_t frames_to_probe_ = 0;
 };

@@ -38,26 +38,28 @@ public:
 
     FrameStats run()
     {
-        testing_ = !options_.switch_off || options_.switch_off->begin_frame();
+        FrameTesting testing = FrameTesting::full;
+        for (TraversalPolicy *p : options_.policies)
+            testing = std::min(testing, p->begin_frame(nodes_.size()));
+        testing_ = testing != FrameTesting::off;
         // A strategy that orders the frame itself runs its own traversal
         // while it tests; switched off, it is not called at all and the
         // frame below is view-frustum culling alone, as for any strategy;
         // its probes are the common traversal's, through its test().
-        if (culler_.orders_frame() && testing_ && !(options_.switch_off && options_.switch_off->probing()))
-            return run_ordered();
-        VisibleNodeList *coherence = culler_.orders_frame() ? nullptr : options_.coherence;
-        if (coherence)
-            coherence->begin_frame(nodes_.size());
+        if (OwnTraversal *own = own_traversal(culler_); own && testing == FrameTesting::full)
+            return run_ordered(*own);
+        frame_testing_ = testing;
         stats_.occlusion_tested = testing_;
         // A frame switched off costs the strategy nothing: no occluders
         // drawn, no tests (the traversal culls to the frustum itself).
-        if (testing_)
-            watch_.time(stats_.setup_ms, [&] {
-                if (options_.switch_off && options_.switch_off->probing())
-                    culler_.begin_probe(frame_);
-                else
-                    culler_.begin_frame(frame_);
-            });
+        if (testing == FrameTesting::probe) {
+            Frame probe = frame_;
+            probe.probe = true;
+            watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(probe); });
+        }
+        else if (testing_) {
+            watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(frame_); });
+        }
         push(0);
         std::vector<NodeTest> batch;
         while (!front_.empty()) {
@@ -66,31 +68,24 @@ public:
                 watch_.time(stats_.test_ms, [&] { culler_.test(batch); });
                 stats_.nodes_tested += std::uint32_t(batch.size());
             }
-            // A probe stops testing once its budget is spent; it judges by
-            // what it saw up to this batch.
-            const bool cut = testing_ && options_.switch_off && options_.switch_off->probe_spent(stats_.nodes_tested);
             for (const NodeTest &t : batch)
                 settle(t.node, t.result, t.test_below);
-            if (cut) {
-                testing_ = false;
-                judged_triangles_ = stats_.triangles;
-                judged_occluded_ = stats_.triangles_occluded;
-                cut_ = true;
-            }
+            // A policy may stop the tests after a batch (a probe whose
+            // budget is spent: it judges by what it saw up to here).
+            if (testing_)
+                for (TraversalPolicy *p : options_.policies)
+                    if (p->stop_testing(stats_))
+                        testing_ = false;
         }
         stats_.passes = culler_.stats().passes;
         draw_see_through();
-        if (coherence)
-            coherence->end_frame();
-        if (options_.switch_off)
-            options_.switch_off->end_frame(stats_.occlusion_tested,
-                                           double(cut_ ? judged_triangles_ : stats_.triangles),
-                                           double(cut_ ? judged_occluded_ : stats_.triangles_occluded));
+        for (TraversalPolicy *p : options_.policies)
+            p->end_frame(stats_);
         return std::move(stats_);
     }
 
 private:
-    // A strategy that orders the frame itself (Culler::orders_frame): it
+    // A strategy that walks the hierarchy itself (OwnTraversal): it
     // traverses and tests, this draws and counts. Its test time is the
     // traversal's time less the drawing's.
     class Sink final : public FrameSink {
@@ -117,21 +112,20 @@ private:
         FrameTraversal &t_;
     };
 
-    FrameStats run_ordered()
+    FrameStats run_ordered(OwnTraversal &own)
     {
         ordered_ = true;
         watch_.time(stats_.setup_ms, [&] { culler_.begin_frame(frame_); });
         Sink sink(*this);
         double traverse_ms = 0.0;
-        watch_.time(traverse_ms, [&] { culler_.traverse(sink); });
+        watch_.time(traverse_ms, [&] { own.traverse(sink); });
         stats_.test_ms = std::max(0.0, traverse_ms - sink.draw_ms);
         stats_.passes = culler_.stats().passes;
         draw_see_through();
         // Judged as any tested frame is: the triangles its answers culled
-        // against those it drew. Its own traversal cannot be cut, so a probe
-        // is a whole frame of it.
-        if (options_.switch_off)
-            options_.switch_off->end_frame(true, double(stats_.triangles), double(stats_.triangles_occluded));
+        // against those it drew.
+        for (TraversalPolicy *p : options_.policies)
+            p->end_frame(stats_);
         return std::move(stats_);
     }
 
@@ -143,6 +137,19 @@ private:
     void push(std::uint32_t node) { front_.push({distance_to(nodes_[node].bounds, frame_.camera.position), node}); }
 
     bool untested(std::uint32_t node) const { return !untested_.empty() && untested_[node]; }
+
+    // How node n is tested: not at all in a frame that does not test (or
+    // no longer does); taken as visible below a "do not test below"
+    // answer; else as the policies say.
+    NodeTesting node_testing(std::uint32_t n) const
+    {
+        if (!testing_)
+            return NodeTesting::skipped;
+        NodeTesting how = untested(n) ? NodeTesting::assumed_visible : NodeTesting::test;
+        for (const TraversalPolicy *p : options_.policies)
+            how = std::max(how, p->node_testing(n, nodes_[n].leaf(), frame_testing_));
+        return how;
+    }
 
     // Takes nodes off the front until `batch` holds options.batch nodes to
     // test. Nodes taken as visible without a test are drawn (or opened) at
@@ -156,15 +163,10 @@ private:
         while (!front_.empty() && batch.size() < size) {
             const std::uint32_t n = front_.top().second;
             front_.pop();
-            const bool probing = options_.switch_off && options_.switch_off->probing();
-            // A probe draws leaves untested (policies.h), and culls those
-            // outside the frustum itself.
-            const bool probe_leaf = probing && options_.switch_off->probe_skips_leaves() && nodes_[n].leaf();
-            const bool assumed = !testing_ || untested(n) || probe_leaf ||
-                                 (options_.coherence && !probing && options_.coherence->assumed_visible(n));
-            if (assumed) {
+            const NodeTesting how = node_testing(n);
+            if (how != NodeTesting::test) {
                 const bool outside = frame_.frustum.classify(nodes_[n].bounds) == Frustum::Side::outside;
-                if (!outside || !testing_ || probe_leaf) {
+                if (!outside || how == NodeTesting::skipped) {
                     settle(n, outside ? Visibility::view_culled : Visibility::visible, !untested(n));
                     continue;
                 }
@@ -191,8 +193,9 @@ private:
             stats_.triangles_occluded += in_frustum_triangles(node);
             return;
         }
-        if (options_.coherence && !ordered_)
-            options_.coherence->mark_visible(node);
+        if (!ordered_)
+            for (TraversalPolicy *p : options_.policies)
+                p->visible(node);
         if (n.leaf()) {
             stats_.triangles += renderer_.draw_leaf(node);
             ++stats_.leaves_drawn;
@@ -247,14 +250,24 @@ private:
     using Entry = std::pair<float, std::uint32_t>;   // distance, node
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front_;
     std::vector<std::uint8_t> untested_;   // below a "do not test below" answer
-    bool testing_ = true, cut_ = false;
+    bool testing_ = true;    // the frame tests occlusion (until a policy stops it)
+    FrameTesting frame_testing_ = FrameTesting::full;
     bool ordered_ = false;   // the culler orders the frame (run_ordered)
-    std::uint64_t judged_triangles_ = 0, judged_occluded_ = 0;
     Stopwatch watch_;
     FrameStats stats_;
 };
 
 }  // namespace
+
+OwnTraversal *own_traversal(Culler &culler)
+{
+    return dynamic_cast<OwnTraversal *>(&culler);
+}
+
+bool orders_frame(const Culler &culler)
+{
+    return dynamic_cast<const OwnTraversal *>(&culler) != nullptr;
+}
 
 FrameStats render_hierarchy(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler,
                             const Frame &frame, const TraversalOptions &options)

@@ -3,11 +3,11 @@
 // back (Bartz et al. 1998, section 3: test a node's box, draw it if it is a
 // visible leaf, else open it), a batch of nodes at a time, with the
 // policies of traversal/policies.h where the caller gives them. A culler
-// that orders the frame itself (Culler::orders_frame: chc) walks the
-// hierarchy in its own way; this then only draws and counts for it, and
-// its batch and temporal coherence do not apply; switch-off does (a
-// switched-off frame is view-frustum culled here without calling it; a
-// probe is a whole frame of its own traversal).
+// that is also an OwnTraversal (chc) walks the hierarchy in its own way in
+// the frames that test in full; this then only draws and counts for it,
+// and its batch does not apply. A switched-off frame is view-frustum
+// culled here without calling it, and a probe is this traversal's,
+// through its Culler::test.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +16,7 @@
 #include "culling/culler.h"
 #include "render/scene_renderer.h"
 #include "spatial/hierarchy.h"
+#include "traversal/frame_stats.h"
 #include "traversal/policies.h"
 
 namespace occu {
@@ -24,33 +25,48 @@ struct TraversalOptions {
     // Nodes tested together (in one occlusion pass where the strategy can).
     // 1: strictly front to back, the most culling; more: fewer passes.
     std::size_t batch = 32;
-    VisibleNodeList *coherence = nullptr;   // temporal coherence, if any
-    SwitchOff *switch_off = nullptr;        // adaptive switch-off, if any
+    // Called in this order; they outlive the frame and keep their state
+    // across frames.
+    std::vector<TraversalPolicy *> policies;
 };
 
-struct FrameStats {
-    std::uint64_t triangles = 0;
-    std::uint32_t leaves_drawn = 0;
-    // Of leaves_drawn, those issued under conditional rendering on a tile
-    // (FrameSink::draw_leaf_conditionally): the GL drew only those its test
-    // found visible. They count as drawn here and in `drawn`.
-    std::uint32_t leaves_conditional = 0;
-    std::uint32_t nodes_tested = 0;
-    std::uint32_t nodes_view_culled = 0;
-    std::uint32_t nodes_occluded = 0;
-    std::uint32_t passes = 0;               // the culler's report
-    // In the subtrees of nodes found occluded, less the leaves wholly outside
-    // the frustum (view-frustum culling would not have drawn them either):
-    // what the occlusion tests saved, which the switch-off judges by.
-    std::uint64_t triangles_occluded = 0;
-    bool occlusion_tested = true;           // false while switched off
-    // Wall time in the culler, apart from what it saves: begin_frame
-    // (occluders, maps: setup_ms) and the tests (test_ms), including waits
-    // for the rasterizer they cause (an occlusion pass waits for the leaves
-    // drawn before it); the rest of the frame is drawing.
-    double setup_ms = 0.0, test_ms = 0.0;
-    std::vector<std::uint32_t> drawn;   // leaf node indices, in drawing order
+
+// What a strategy that walks the hierarchy itself tells the traversal,
+// which draws and counts for it.
+class FrameSink {
+public:
+    // Draws leaf `node` now (found visible, or taken as visible untested).
+    virtual void draw_leaf(std::uint32_t node) = 0;
+    // Draws leaf `node` now under the condition of a test whose answer the
+    // strategy has not read (AsyncCuller::draw_if_visible): the GL draws it
+    // only if the test found it visible. Counted as drawn (what was issued).
+    virtual void draw_leaf_conditionally(std::uint32_t node) = 0;
+    // `node`'s subtree is not drawn this frame: `why` is view_culled or occluded.
+    virtual void cull(std::uint32_t node, Visibility why) = 0;
+    // `count` more nodes had their occlusion tested.
+    virtual void tested(std::uint32_t count) = 0;
+
+protected:
+    ~FrameSink() = default;
 };
+
+// A strategy whose tests run alongside drawing (coherent hierarchical
+// culling, Bittner et al. 2004: results read when they are ready, drawing
+// going on meanwhile) walks the hierarchy itself, with its own temporal
+// coherence. Its culler is also an OwnTraversal: the traversal calls its
+// Culler::begin_frame, then traverse, which draws through `sink`.
+class OwnTraversal {
+public:
+    virtual void traverse(FrameSink &sink) = 0;
+
+protected:
+    ~OwnTraversal() = default;
+};
+
+// `culler`'s own traversal; null when it has none.
+OwnTraversal *own_traversal(Culler &culler);
+// Whether `culler` orders the frames it tests in full itself.
+bool orders_frame(const Culler &culler);
 
 // Draws one frame into the current context's bound framebuffer (the caller
 // clears it and loads the camera's matrices, gl/state.h) and returns what it

@@ -202,7 +202,7 @@ MarkedFrame draw_marked(const WallAndCluster &s, Culler &culler, const Frame &fr
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     gl::load_camera(frame.camera);
     culler.begin_frame(frame);
-    culler.traverse(m.sink);
+    own_traversal(culler)->traverse(m.sink);
     glFinish();
     const std::size_t n = std::size_t(s.ctx.width()) * std::size_t(s.ctx.height()) * 4;
     m.pixels.assign(s.ctx.pixels(), s.ctx.pixels() + n);

@@ -47,7 +47,7 @@ struct Variant {
     bool coherence = false;
     // Switched off after the first frame, probing as soon as it can (frames
     // 1, 3, 7 and 15 of the 20 of its routes): the switch-off's probes (inner nodes only,
-    // Culler::begin_probe, chc through the common traversal) stay exact.
+    // Frame::probe, chc through the common traversal) stay exact.
     bool probes = false;
 };
 
@@ -91,12 +91,14 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
         VisibleNodeList coherence(3);
         TraversalOptions options;
         options.batch = v.batch;
-        options.coherence = v.coherence ? &coherence : nullptr;
+        if (v.coherence)
+            options.policies.push_back(&coherence);
         SwitchOff::Settings probe_every_frame;
         probe_every_frame.min_gain = 1e9;
         probe_every_frame.probe_period = 1;
         SwitchOff switch_off(probe_every_frame);
-        options.switch_off = v.probes ? &switch_off : nullptr;
+        if (v.probes)
+            options.policies.push_back(&switch_off);
         const std::string key =
             v.spec + "/" + std::to_string(v.batch) + (v.coherence ? "/coherent" : "") + (v.probes ? "/probes" : "");
         // The city's routes, and random views from inside its bounds (eyes in
@@ -109,7 +111,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
                 const DrawnFrame reference = draw_frame(small.ctx, renderer, h, *none.culler, frame, {});
                 const DrawnFrame culled = draw_frame(small.ctx, renderer, h, *s.culler, frame, options);
                 // A strategy that orders the frame itself: the unculled frame in its order.
-                const bool ordered = s.culler->orders_frame();
+                const bool ordered = orders_frame(*s.culler);
                 const std::vector<std::uint8_t> in_order =
                     ordered ? integration::draw_unculled_after(small.ctx, renderer, h, frame, culled.leaves).pixels
                             : std::vector<std::uint8_t>{};

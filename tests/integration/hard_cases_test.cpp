@@ -741,7 +741,7 @@ TEST_P(HardCaseTest, EveryConservativeStrategyDrawsTheUnculledFrame)
         // different), and the frame must then equal the unculled frame in
         // its own order, where a culled leaf changes a pixel only where it
         // is strictly in front (frame_comparison.h).
-        const bool in_batches = !s.culler->orders_frame() &&
+        const bool in_batches = !orders_frame(*s.culler) &&
                                 differing_pixels(unculled[v.batch].pixels, culled.pixels) == 0;
         const DrawnFrame &reference =
             in_batches ? unculled[v.batch]

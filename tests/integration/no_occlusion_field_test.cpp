@@ -157,7 +157,7 @@ TEST(NoOcclusionField, EveryStrategyDrawsUnculledFramesAndSwitchesOff)
             const Drawn d = draw(ctx, renderer, h, *s.culler, frame, policies.options(32));
             // A strategy that orders its frame, when it tested: the unculled
             // frame in its order (frame_comparison.h says why).
-            const bool ordered = s.culler->orders_frame() && d.stats.occlusion_tested;
+            const bool ordered = orders_frame(*s.culler) && d.stats.occlusion_tested;
             const std::vector<std::uint8_t> reference =
                 ordered ? integration::draw_unculled_after(ctx, renderer, h, frame, d.stats.drawn).pixels : unculled[f];
             EXPECT_EQ(integration::differing_pixels(reference, d.pixels), 0u) << "frame " << f;

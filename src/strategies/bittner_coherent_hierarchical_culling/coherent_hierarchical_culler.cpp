@@ -9,10 +9,9 @@
 #include <random>
 #include <stdexcept>
 
-#include "gl/occlusion_unit.h"
-#include "render/occlusion_proxy.h"
 #include "spatial/hierarchy.h"
-#include "strategies/bartz_occlusion_unit/family.h"
+#include "strategies/bittner_coherent_hierarchical_culling/occlusion_unit_async_culler.h"
+#include "traversal/traversal.h"
 
 namespace occu::strategies {
 
@@ -24,48 +23,43 @@ float distance_to(const Aabb &box, const glm::vec3 &p)
     return glm::length(d);
 }
 
-// What a node's test draws: proxies (its own box's, or its tight bounds')
-// and the tile that counts them.
-struct Probe {
-    PixelRect tile;
-    std::vector<Aabb> proxies;
-};
-
-// One node in a pass. `retest`: a previously visible leaf, already drawn
+// One node in a batch. `retest`: a previously visible leaf, already drawn
 // this frame, whose result only classifies it for the next frame.
-// `conditional`: a previously invisible leaf drawn under conditional
-// rendering on its tile right after the pass ended (the GL decides); its
-// result, too, only classifies it for the next frame (and pulls it up).
+// `conditional`: a previously invisible leaf drawn under the condition of
+// its test right after the batch was issued (the GL decides); its result,
+// too, only classifies it for the next frame (and pulls it up).
 struct Query {
     std::uint32_t node;
     bool retest;
-    Probe probe;
+    AsyncTest test;
     bool conditional = false;
 };
 
 struct InFlight {
-    std::unique_ptr<gl::AsyncOcclusionPass> pass;
-    std::vector<Query> queries;   // tile k is queries[k]
+    AsyncCuller::Batch batch = 0;
+    std::vector<Query> queries;   // test k is queries[k]
     std::int64_t frame = 0;       // the frame it was issued in
     // Some result decides this frame's drawing (an inner node to open or
     // cull, a leaf drawn only once found visible): read before the frame
-    // ends. Otherwise the pass may be carried over and read at the start of
+    // ends. Otherwise the batch may be carried over and read at the start of
     // the next frame.
     bool needed = false;
 };
 
-class CoherentHierarchicalCuller final : public Culler {
+// The strategy: CHC++'s traversal over an asynchronous culler (the
+// Occlusion Unit's passes). As a Culler it answers the callers that test
+// nodes themselves (the switch-off's probes) and tells the common
+// traversal that it walks the hierarchy itself (OwnTraversal).
+class CoherentHierarchicalCuller final : public Culler, public OwnTraversal {
 public:
     CoherentHierarchicalCuller(const StrategyContext &context, const Settings &settings)
-        : nodes_(context.hierarchy.nodes()), period_(std::uint32_t(settings.integer("period"))),
-          max_bounds_(std::size_t(settings.integer("bounds"))), threshold_(settings.number("tolerance")),
-          max_test_area_(settings.number("max-test-area")), shared_passes_(settings.text("passes") == "shared"),
+        : async_(make_occlusion_unit_async_culler(settings)), nodes_(context.hierarchy.nodes()),
+          period_(std::uint32_t(settings.integer("period"))), max_bounds_(std::size_t(settings.integer("bounds"))),
+          max_test_area_(settings.number("max-test-area")), tiles_per_pass_(async_->batch_capacity()),
           conditional_(settings.text("conditional") == "off"      ? Conditional::off
                        : settings.text("conditional") == "always" ? Conditional::always
                                                                   : Conditional::waits)
     {
-        // The unit holds at most max_tiles tiles; a batch is one pass.
-        tiles_per_pass_ = std::size_t(std::clamp<long>(settings.integer("batch"), 1, std::min(unit_.max_tiles(), 64)));
         parent_.assign(nodes_.size(), none);
         for (std::uint32_t n = 0; n < nodes_.size(); ++n)
             for (std::uint32_t c = 0; c < nodes_[n].child_count; ++c)
@@ -83,11 +77,7 @@ public:
     void begin_frame(const Frame &frame) override
     {
         frame_.emplace(frame);
-        GLint viewport[4];
-        glGetIntegerv(GL_VIEWPORT, viewport);
-        origin_x_ = viewport[0];
-        origin_y_ = viewport[1];
-        stats_ = {};
+        async_->begin_frame(frame);
         ++frame_number_;
         // The passes the previous frame did not wait for: their results
         // classify nodes for this frame (they were tested against that
@@ -100,8 +90,8 @@ public:
             handle(f);
     }
 
-    // Callers that test nodes themselves get plain answers: one pass per
-    // batch of tiles, read at once, no temporal coherence.
+    // Callers that test nodes themselves get plain answers: one batch per
+    // group of tests, read at once, no temporal coherence.
     void test(std::vector<NodeTest> &tests) override
     {
         std::vector<std::pair<std::size_t, Query>> pending;
@@ -112,32 +102,27 @@ public:
                 t.result = Visibility::view_culled;
                 continue;
             }
-            Probe p;
-            if (probe(t.node, p))
-                pending.push_back({i, Query{t.node, false, std::move(p)}});
+            AsyncTest a;
+            if (prepare(t.node, a))
+                pending.push_back({i, Query{t.node, false, std::move(a)}});
         }
         std::vector<PixelRect> rects;
         std::vector<std::size_t> members;
         for (std::size_t k = 0; k < pending.size(); ++k) {
-            rects.push_back(pending[k].second.probe.tile);
+            rects.push_back(pending[k].second.test.area);
             members.push_back(k);
         }
-        for (const std::vector<std::size_t> &group : disjoint_groups(rects, members, tiles_per_pass_, shared_passes_)) {
-            std::vector<Query> queries;
+        for (const std::vector<std::size_t> &group :
+             disjoint_groups(rects, members, tiles_per_pass_, async_->shares_overlapping())) {
+            std::vector<AsyncTest> batch;
             for (std::size_t k : group)
-                queries.push_back(pending[k].second);
-            InFlight f = issue(std::move(queries));
-            const std::vector<gl::OcclusionRecord> &records = f.pass->records();
-            for (std::size_t j = 0; j < group.size(); ++j) {
-                const gl::OcclusionRecord &r = records[j];
-                tests[pending[group[j]].first].result =
-                    adaptive_culling_occludes(r.nohc, r.phc, threshold_) ? Visibility::occluded : Visibility::visible;
-            }
-            free_.push_back(std::move(f.pass));
+                batch.push_back(pending[k].second.test);
+            const AsyncCuller::Batch b = async_->issue(std::move(batch));
+            for (std::size_t j = 0; j < group.size(); ++j)
+                tests[pending[group[j]].first].result = async_->answer(b, j);
+            async_->release(b);
         }
     }
-
-    bool orders_frame() const override { return true; }
 
     // CHC++'s traversal: the distance queue, the queue of passes in flight
     // (results handled in the order issued, each as soon as it is
@@ -154,7 +139,7 @@ public:
             // order, so the front one is asked first.
             while (!flight_.empty()) {
                 auto next = flight_.begin();
-                if (!next->pass->available()) {
+                if (!async_->ready(next->batch)) {
                     if (!distance_.empty() || !iqueue_.empty())
                         break;   // traverse (or issue the batch) first
                     if (!vqueue_.empty()) {
@@ -173,7 +158,7 @@ public:
                     next = std::find_if(flight_.begin(), flight_.end(), [](const InFlight &f) { return f.needed; });
                     if (next == flight_.end())
                         break;
-                    ++waits_;   // records() below waits
+                    ++waits_;   // handle() below waits
                 }
                 InFlight f = std::move(*next);
                 flight_.erase(next);
@@ -195,15 +180,8 @@ public:
         sink_ = nullptr;
     }
 
-    CullerStats stats() const override { return stats_; }
-
-    std::string note() const override
-    {
-        if (unit_.native_async())
-            return {};
-        return "chc: GL_MESAX_occlusion_unit_async is absent, so its passes are emulated on glRenderMode and each "
-               "waits for the rasterizer at its end, as ou's do";
-    }
+    CullerStats stats() const override { return async_->stats(); }
+    std::string note() const override { return async_->note(); }
 
 private:
     static constexpr std::uint32_t none = 0xFFFFFFFFu;
@@ -247,13 +225,13 @@ private:
             sink_->cull(n, Visibility::view_culled);
             return;
         }
-        Probe p;
+        AsyncTest a;
         if (was_visible(n)) {
             // Not waited for: drawn or opened now.
             if (node.leaf()) {
                 sink_->draw_leaf(n);
-                if (retest_due(n) && probe(n, p))
-                    vqueue_.push_back({n, true, std::move(p)});
+                if (retest_due(n) && prepare(n, a))
+                    vqueue_.push_back({n, true, std::move(a)});
                 else
                     mark_visible(n);
             }
@@ -262,29 +240,31 @@ private:
             }
             return;
         }
-        if (!probe(n, p)) {
+        if (!prepare(n, a)) {
             mark_visible(n);   // untestable: visible untested
             open(n);
             return;
         }
-        iqueue_.push_back({n, false, std::move(p)});
+        iqueue_.push_back({n, false, std::move(a)});
         if (iqueue_.size() >= tiles_per_pass_)
             issue_batch();
     }
 
-    // One pass: the i-queue's nodes first, free tiles filled with re-tests.
-    // With passes=disjoint a node joins only where its tile overlaps none of
-    // the pass's (a tile counts every proxy's fragments in it, and a
-    // visible node's proxy, a re-tested leaf's above all, would keep every
-    // node under it visible); the others wait for the next pass.
+    // One batch: the i-queue's nodes first, free room filled with re-tests.
+    // Where the culler does not share overlapping areas (passes=disjoint) a
+    // node joins only where its area overlaps none of the batch's (a tile
+    // counts every proxy's fragments in it, and a visible node's proxy, a
+    // re-tested leaf's above all, would keep every node under it visible);
+    // the others wait for the next batch.
     void issue_batch()
     {
         std::vector<Query> queries;
         auto take = [&](std::deque<Query> &queue) {
             for (auto it = queue.begin(); it != queue.end() && queries.size() < tiles_per_pass_;) {
-                const bool fits = shared_passes_ || std::none_of(queries.begin(), queries.end(), [&](const Query &q) {
-                                      return q.probe.tile.overlaps(it->probe.tile);
-                                  });
+                const bool fits =
+                    async_->shares_overlapping() || std::none_of(queries.begin(), queries.end(), [&](const Query &q) {
+                        return q.test.area.overlaps(it->test.area);
+                    });
                 if (!fits) {
                     ++it;
                     continue;
@@ -314,13 +294,11 @@ private:
                            [&](const Query &q) { return !q.retest && !nodes_[q.node].leaf(); });
     }
 
-    // The previously invisible leaves of pass f drawn now, each under
-    // conditional rendering on its own tile: the GL draws it only if the
-    // pass found it visible (GL_QUERY_WAIT: llvmpipe bins the draw with the
-    // predicate and its rasterizer decides once the pass is done; the CPU
-    // does not wait). Emulated, the records are there and the CPU decides
-    // (draws() false: culled as the records say). The pass is then needed
-    // this frame only if it holds inner nodes.
+    // The previously invisible leaves of batch f drawn now, each under the
+    // condition of its own test: drawn only if the test finds it visible,
+    // nobody waiting for the answer (the culler culls it where it knows the
+    // answer already). The batch is then needed this frame only if it holds
+    // inner nodes.
     void draw_conditionally(InFlight &f)
     {
         for (std::size_t k = 0; k < f.queries.size(); ++k) {
@@ -328,10 +306,7 @@ private:
             if (q.retest || q.conditional || !nodes_[q.node].leaf())
                 continue;
             q.conditional = true;
-            gl::ConditionalTileRender c(*f.pass, k, 0, float(threshold_), true);
-            if (c.draws())
-                sink_->draw_leaf_conditionally(q.node);
-            else
+            if (!async_->draw_if_visible(f.batch, k, [&] { sink_->draw_leaf_conditionally(q.node); }))
                 sink_->cull(q.node, Visibility::occluded);
         }
         f.needed = opens_nodes(f);
@@ -340,43 +315,22 @@ private:
     InFlight issue(std::vector<Query> queries)
     {
         InFlight f;
-        if (free_.empty())
-            free_.push_back(std::make_unique<gl::AsyncOcclusionPass>(unit_));
-        f.pass = std::move(free_.back());
-        free_.pop_back();
-        std::vector<PixelRect> tiles;
-        for (const Query &q : queries) {
-            const PixelRect &r = q.probe.tile;
-            tiles.push_back({r.x0 + origin_x_, r.y0 + origin_y_, r.x1 + origin_x_, r.y1 + origin_y_});
-        }
-        {
-            const ProxyTestState proxy_state;   // render/occlusion_proxy.h
-            f.pass->begin(gl::OcclusionMode::brief, tiles);
-            for (const Query &q : queries)
-                for (const Aabb &proxy : q.probe.proxies)
-                    draw_proxy_box(proxy);
-            f.pass->end();
-        }
-        ++stats_.passes;
+        std::vector<AsyncTest> tests;
+        for (const Query &q : queries)
+            tests.push_back(q.test);
+        f.batch = async_->issue(std::move(tests));
         f.queries = std::move(queries);
         return f;
     }
 
-    // A pass's results. Carried over from the previous frame (sink_ null),
-    // a pass holds only re-tests and conditional draws.
+    // A batch's results. Carried over from the previous frame (sink_ null),
+    // a batch holds only re-tests and conditional draws.
     void handle(InFlight &f)
     {
-        const std::vector<gl::OcclusionRecord> &records = f.pass->records();
         for (std::size_t k = 0; k < f.queries.size(); ++k) {
             const Query &q = f.queries[k];
-            if (q.conditional) {
-                // The GL's decision, made again on the record.
-                if (gl::ConditionalTileRender::passes(records[k], 0, float(threshold_)))
-                    mark_visible(q.node, f.frame);
-                continue;
-            }
-            const bool occluded = adaptive_culling_occludes(records[k].nohc, records[k].phc, threshold_);
-            if (q.retest) {
+            const bool occluded = async_->answer(f.batch, k) == Visibility::occluded;
+            if (q.conditional || q.retest) {
                 if (!occluded)
                     mark_visible(q.node, f.frame);   // else hidden: tested before it is drawn next frame
                 continue;
@@ -390,16 +344,16 @@ private:
             mark_visible(q.node);
             open(q.node);
         }
-        free_.push_back(std::move(f.pass));
+        async_->release(f.batch);
     }
 
-    // What testing node n draws, or false when n is visible untested: its
-    // box has no footprint, no proxy, or covers more than max-test-area of
-    // the viewport. Tight bounds: the boxes of n's descendants, level by
-    // level while they number at most `bounds` (those wholly outside the
-    // frustum left out: nothing in them is seen); the tile is the union of
-    // their footprints.
-    bool probe(std::uint32_t n, Probe &p) const
+    // Node n's test, or false when n is visible untested: its box has no
+    // footprint, covers more than max-test-area of the viewport, or the
+    // culler cannot test it. Tight bounds: the boxes of n's descendants,
+    // level by level while they number at most `bounds` (those wholly
+    // outside the frustum left out: nothing in them is seen); where the
+    // culler cannot test those, n's own box.
+    bool prepare(std::uint32_t n, AsyncTest &a) const
     {
         const Frame &f = *frame_;
         const auto footprint = f.footprint(nodes_[n].bounds);
@@ -424,59 +378,33 @@ private:
                 break;
             cut.swap(deeper);
         }
-        if (cut.size() > 1 && bounds_for(cut, p))
-            return true;
-        // The node's own box.
-        const auto proxy = proxy_box(nodes_[n].bounds, f.camera, f.view_projection, f.height);
-        if (!proxy)
-            return false;
-        p.proxies.assign(1, *proxy);
-        p.tile = footprint->rect;
-        return true;
-    }
-
-    // The proxies and tile of the boxes of `cut`; false when one of them
-    // has no footprint or proxy (the node's own box serves then).
-    bool bounds_for(const std::vector<std::uint32_t> &cut, Probe &p) const
-    {
-        const Frame &f = *frame_;
-        p.proxies.clear();
-        std::optional<PixelRect> tile;
-        for (std::uint32_t m : cut) {
-            const auto footprint = f.footprint(nodes_[m].bounds);
-            const auto proxy = proxy_box(nodes_[m].bounds, f.camera, f.view_projection, f.height);
-            if (!footprint || !proxy)
-                return false;
-            p.proxies.push_back(*proxy);
-            const PixelRect &r = footprint->rect;
-            if (r.empty())
-                continue;
-            tile = tile ? PixelRect{std::min(tile->x0, r.x0), std::min(tile->y0, r.y0), std::max(tile->x1, r.x1),
-                                    std::max(tile->y1, r.y1)}
-                        : r;
+        a.node = n;
+        if (cut.size() > 1) {
+            a.boxes.clear();
+            for (std::uint32_t m : cut)
+                a.boxes.push_back(nodes_[m].bounds);
+            if (async_->prepare(a))
+                return true;
         }
-        p.tile = tile.value_or(PixelRect{});
-        return true;
+        a.boxes.assign(1, nodes_[n].bounds);
+        return async_->prepare(a);
     }
 
-    gl::OcclusionUnit unit_;
+    std::unique_ptr<AsyncCuller> async_;
     const std::vector<HierarchyNode> &nodes_;
     std::uint32_t period_;
     std::size_t max_bounds_;
-    double threshold_, max_test_area_;
-    bool shared_passes_;
+    double max_test_area_;
+    std::size_t tiles_per_pass_;
     // Where previously invisible leaves are drawn under conditional
     // rendering instead of once their results are read: nowhere, in place
     // of a wait (when nothing is left but results, none of them an inner
     // node's), or always, right after their pass ends.
     enum class Conditional { off, waits, always } conditional_;
-    std::size_t tiles_per_pass_ = 64;
     std::vector<std::uint32_t> parent_, offset_;
     std::vector<std::int64_t> visible_frame_;   // the last frame a node was visible in
     std::int64_t frame_number_ = 0;
     std::optional<Frame> frame_;
-    GLint origin_x_ = 0, origin_y_ = 0;
-    CullerStats stats_;
     std::uint64_t waits_ = 0;   // times the traversal had nothing to do but wait for a pass
 
     // One frame's traversal state (traverse()).
@@ -485,7 +413,6 @@ private:
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> distance_;
     std::deque<Query> iqueue_, vqueue_;
     std::deque<InFlight> flight_;   // in flight; at a frame's end, those carried over
-    std::vector<std::unique_ptr<gl::AsyncOcclusionPass>> free_;   // pass objects to reuse
 };
 
 }  // namespace

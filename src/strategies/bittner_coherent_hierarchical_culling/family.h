@@ -40,6 +40,11 @@
 // conditional draws) are not waited for at the frame's end: they are read
 // at the next frame's start, which is where they are used.
 //
+// The strategy is that traversal (coherent_hierarchical_culler.cpp, an
+// OwnTraversal of traversal/traversal.h) over an asynchronous culler
+// (culling/async_culler.h): the Occlusion Unit's passes
+// (occlusion_unit_async_culler.h).
+//
 // The Occlusion Unit changes two things. A batch is one pass with one tile
 // per node (the node's footprint), so every node gets its own count from
 // the one pass and nothing is re-tested after a failed multiquery. Tiles

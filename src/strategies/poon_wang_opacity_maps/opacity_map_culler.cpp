@@ -50,17 +50,15 @@ public:
         }
     }
 
-    void begin_frame(const Frame &frame) override { prepare(frame, selection_); }
-
-    // A switch-off probe picks its occluders by projected size, whatever the
-    // selection: first hit renders an ID buffer of every leaf in the frustum
-    // (section 6.1), a second frame's worth of drawing, 35-55 ms a probe on
-    // the city's open route where a probe by projected size costs 2 ms; the
-    // probe only asks whether occlusion pays here at all, and the maps of
-    // any occluders answer conservatively.
-    void begin_probe(const Frame &frame) override
+    // A switch-off probe (Frame::probe) picks its occluders by projected
+    // size, whatever the selection: first hit renders an ID buffer of every
+    // leaf in the frustum (section 6.1), a second frame's worth of drawing,
+    // 35-55 ms a probe on the city's open route where a probe by projected
+    // size costs 2 ms; the probe only asks whether occlusion pays here at
+    // all, and the maps of any occluders answer conservatively.
+    void begin_frame(const Frame &frame) override
     {
-        prepare(frame, selection_ == Selection::first_hit ? Selection::projected_size : selection_);
+        prepare(frame, frame.probe && selection_ == Selection::first_hit ? Selection::projected_size : selection_);
     }
 
     void prepare(const Frame &frame, Selection selection)

@@ -86,7 +86,7 @@ TEST(Traversal, SwitchedOffProbesBackOff)
     const Strategy none = make_strategy("none", {row.scene, *row.h, *row.renderer});   // never finds anything occluded
     SwitchOff switch_off;
     TraversalOptions options;
-    options.switch_off = &switch_off;
+    options.policies = {&switch_off};
     const Frame frame(row.camera, 32, 32);
     std::vector<std::uint32_t> tested;
     for (std::uint32_t f = 0; f < 200; ++f)
@@ -100,11 +100,10 @@ TEST(Traversal, SwitchedOffProbesBackOff)
 class CountingCuller final : public Culler {
 public:
     explicit CountingCuller(const Hierarchy &h) : h_(h) {}
-    void begin_frame(const Frame &frame) override { frustum_.emplace(frame.frustum); }
-    void begin_probe(const Frame &frame) override
+    void begin_frame(const Frame &frame) override
     {
-        ++probes;
-        begin_frame(frame);
+        probes += frame.probe;
+        frustum_.emplace(frame.frustum);
     }
     void test(std::vector<NodeTest> &tests) override
     {
@@ -121,14 +120,14 @@ private:
     std::optional<Frustum> frustum_;
 };
 
-// A probe (traversal/policies.h) is begun with begin_probe, tests inner
+// A probe (traversal/policies.h) is begun as a Frame::probe, tests inner
 // nodes only and draws what a frame draws; a frame tests leaves too.
 TEST(Traversal, ProbesTestInnerNodesOnlyAndDrawWhatAFrameDraws)
 {
     const BoxRow row(40);
     SwitchOff switch_off;   // culls nothing: off after frame 0, probe at frame 8
     TraversalOptions options;
-    options.switch_off = &switch_off;
+    options.policies = {&switch_off};
     CountingCuller counting(*row.h);
     const Frame frame(row.camera, 32, 32);
     std::vector<FrameStats> stats;
@@ -146,7 +145,7 @@ TEST(Traversal, ProbesTestInnerNodesOnlyAndDrawWhatAFrameDraws)
     // The leaves were tested in frame 0 only.
     CountingCuller probe_only(*row.h);
     SwitchOff fresh;
-    options.switch_off = &fresh;
+    options.policies = {&fresh};
     for (int f = 0; f <= 8; ++f) {
         if (f == 8)
             probe_only.leaves = probe_only.inner = 0;
@@ -164,10 +163,55 @@ TEST(Traversal, VisibleNodeListSkipsTestsOfLastFramesVisibleNodes)
     const Strategy vfc = make_strategy("vfc", {row.scene, *row.h, *row.renderer});
     VisibleNodeList coherence(1000);
     TraversalOptions options;
-    options.coherence = &coherence;
+    options.policies = {&coherence};
     const Frame frame(row.camera, 32, 32);
     const FrameStats first = render_hierarchy(*row.renderer, *row.h, *vfc.culler, frame, options);
     const FrameStats second = render_hierarchy(*row.renderer, *row.h, *vfc.culler, frame, options);
     EXPECT_EQ(first.leaves_drawn, second.leaves_drawn);
     EXPECT_LT(second.nodes_tested, first.nodes_tested);
+}
+
+// The visible node list takes last frame's visible nodes as visible in
+// frames that test in full only: a probe judges what tests find.
+TEST(TraversalPolicies, VisibleNodeListAppliesToFullFramesOnly)
+{
+    VisibleNodeList coherence(1000);
+    coherence.begin_frame(4);
+    coherence.visible(2);
+    coherence.end_frame({});
+    EXPECT_EQ(coherence.begin_frame(4), FrameTesting::full);
+    EXPECT_EQ(coherence.node_testing(2, true, FrameTesting::full), NodeTesting::assumed_visible);
+    EXPECT_EQ(coherence.node_testing(1, true, FrameTesting::full), NodeTesting::test);
+    EXPECT_EQ(coherence.node_testing(2, true, FrameTesting::probe), NodeTesting::test);
+}
+
+// A probe skips leaves, stops once its node tests reach the budget, and is
+// judged by what it had seen at that point, not by the frame's end.
+TEST(TraversalPolicies, ProbeStopsAtItsBudgetAndIsJudgedThere)
+{
+    SwitchOff::Settings settings;
+    settings.min_gain = 0.5;
+    settings.probe_period = 1;
+    settings.probe_nodes = 10;
+    SwitchOff switch_off(settings);
+    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+    FrameStats nothing_hidden;
+    nothing_hidden.triangles = 100;
+    switch_off.end_frame(nothing_hidden);
+    ASSERT_TRUE(switch_off.off());
+    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::probe);
+    EXPECT_EQ(switch_off.node_testing(3, true, FrameTesting::probe), NodeTesting::skipped);
+    EXPECT_EQ(switch_off.node_testing(0, false, FrameTesting::probe), NodeTesting::test);
+    FrameStats so_far;
+    so_far.nodes_tested = 9;
+    EXPECT_FALSE(switch_off.stop_testing(so_far));
+    so_far.nodes_tested = 10;
+    so_far.triangles = 100;
+    so_far.triangles_occluded = 80;   // worth it, as far as it tested
+    EXPECT_TRUE(switch_off.stop_testing(so_far));
+    FrameStats whole = so_far;
+    whole.triangles = 1000;            // drawn untested after the cut
+    switch_off.end_frame(whole);
+    EXPECT_FALSE(switch_off.off());
+    EXPECT_EQ(switch_off.begin_frame(4), FrameTesting::full);
 }
