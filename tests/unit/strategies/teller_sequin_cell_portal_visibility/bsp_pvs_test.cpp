@@ -111,10 +111,10 @@ Camera eye_at(float x)
 // bsp-pvs's answer for every hierarchy leaf seen from `camera`, as the set
 // of faces in leaves answered visible; every leaf that is not visible must
 // be occluded (in the frustum) or view-culled (outside it).
-std::set<int> drawn_faces(const TestLevel &t, const Camera &camera)
+std::set<int> drawn_faces(const TestLevel &t, const Camera &camera, const std::string &strategy = "bsp-pvs")
 {
     const StrategyContext context{t.scene, *t.hierarchy, *t.renderer};
-    const Strategy s = make_strategy("bsp-pvs", context);
+    const Strategy s = make_strategy(strategy, context);
     const Frame frame(camera, 8, 8);
     s.culler->begin_frame(frame);
     std::vector<NodeTest> tests;
@@ -237,3 +237,13 @@ TEST(BspPvs, SceneThatIsNoLevelIsRefusedWithTheReason)
     }
 }
 
+
+// In a chain, the next stage tests only what bsp-pvs leaves: vfc then adds
+// nothing, and bsp-pvs after vfc answers as alone.
+TEST(BspPvs, ChainedWithOtherStrategies)
+{
+    const TestLevel t;
+    for (float x : {1.0f, 11.0f, 21.0f, -5.0f})
+        for (const char *chain : {"bsp-pvs+vfc", "vfc+bsp-pvs"})
+            EXPECT_EQ(drawn_faces(t, eye_at(x), chain), drawn_faces(t, eye_at(x))) << chain << " at x = " << x;
+}
