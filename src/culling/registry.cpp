@@ -54,18 +54,14 @@ const StrategyFamily *chain_family(const std::vector<const StrategyFamily *> &st
     c.summary = summary;
     c.stages = stages;
     c.conservative = true;
-    bool share_set = false;
+    // Never switched off: a switched-off frame is view-frustum culled
+    // without calling the culler (traversal/policies.h), which would drop
+    // the first stage's answers with the later stages' tests.
+    c.traversal.switch_off = false;
     for (const StrategyFamily *f : stages) {
         c.conservative = c.conservative && f->conservative;
         c.needs_truth = c.needs_truth || f->needs_truth;
         c.traversal.coherence = c.traversal.coherence || f->traversal.coherence;
-        if (f->traversal.switch_off) {
-            c.traversal.switch_off = true;
-            c.traversal.switch_off_share =
-                share_set ? std::min(c.traversal.switch_off_share, f->traversal.switch_off_share)
-                          : f->traversal.switch_off_share;
-            share_set = true;
-        }
         c.scene_requirements.insert(c.scene_requirements.end(), f->scene_requirements.begin(),
                                     f->scene_requirements.end());
         for (const DatabaseNeed &d : f->databases)

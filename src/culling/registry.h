@@ -10,10 +10,12 @@
 // preset): each stage tests only the nodes the stages before it left
 // visible (culling/chained_culler.h), e.g. "bsp-pvs+ou-shared" (a level's
 // PVS, then the unit's tests on what it leaves). A chain is a family made
-// of its stages': conservative when all are, the scene requirements,
-// databases and traversal policies of all, and their settings together (a
-// key two stages know takes one value for both); the settings after NAME
-// and each stage's preset apply.
+// of its stages': conservative when all are, the scene requirements and
+// databases of all, temporal coherence where a stage wants it, and their
+// settings together (a key two stages know takes one value for both); the
+// settings after NAME and each stage's preset apply. A chain is never
+// switched off (a switched-off frame would drop every stage, the first
+// one's set too): its later stages test in every frame.
 #pragma once
 
 #include <memory>

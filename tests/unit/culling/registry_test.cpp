@@ -293,13 +293,12 @@ TEST(Registry, ChainsAreFamiliesMadeOfTheirStages)
     EXPECT_EQ(c.family->stages[0]->name, "bsp-pvs");
     EXPECT_FALSE(c.conservative()) << "bsp-pvs is not declared conservative";
     EXPECT_TRUE(c.family->traversal.coherence) << "ou's policies";
-    EXPECT_TRUE(c.family->traversal.switch_off);
+    EXPECT_FALSE(c.family->traversal.switch_off) << "switched off, a frame would lose the PVS too";
     EXPECT_EQ(c.settings.text("passes"), "shared") << "the preset's settings";
     EXPECT_EQ(c.settings.text("max-test-area"), "0.5");
     EXPECT_EQ(choose_strategy("bsp-pvs+ou").family, c.family) << "one family per sequence";
     const StrategyChoice v = choose_strategy("vfc+om-ps");
     EXPECT_TRUE(v.conservative());
-    EXPECT_TRUE(v.family->traversal.switch_off);
     EXPECT_FALSE(v.family->traversal.coherence);
     EXPECT_FALSE(choose_strategy("vfc+ou:tolerance=0.1").conservative());
     EXPECT_TRUE(choose_strategy("ideal+ou").family->needs_truth);
