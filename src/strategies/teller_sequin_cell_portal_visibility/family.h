@@ -21,14 +21,16 @@
 //             culling). Faces of brush entities (doors, platforms: models
 //             other than 0) lie in no leaf and are always drawn; a world face
 //             in no leaf of any cluster is never drawn (Quake III never draws
-//             it either). The compiler's set is its own, and not
-//             conservative for every eye the level's leaves allow: from
-//             random eyes in open leaves (cluster >= 0) of OpenArena's
-//             oa_minia and czest2ctf it culls leaves the oracle sees and the
-//             frames lose pixels (docs/real-scenes.md), though none from the
-//             spawn points, where players stand. So the family is not
-//             declared conservative, and runs compare its frames with the
-//             unculled ones. The run's summary counts the frames of each kind.
+//             it either). The compiler's set says what the level's solids
+//             hide, but a solid's faces on a side no player should see are
+//             often not drawn (caulk: nodraw), and an eye on that side sees
+//             through the solid in occu's frames: from random eyes in open
+//             leaves (cluster >= 0) of OpenArena's oa_minia and czest2ctf the
+//             set culls leaves the oracle sees and the frames lose pixels
+//             (docs/real-scenes.md), though none from the spawn points, where
+//             players stand. So the family is not declared conservative, and
+//             runs compare its frames with the unculled ones. The run's
+//             summary counts the frames of each kind.
 // Needs a Quake III level (scene.quake3); refuses other scenes.
 #pragma once
 
