@@ -1,6 +1,11 @@
 #include "culling/registry.h"
 
+#include <algorithm>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+
+#include "culling/chained_culler.h"
 
 namespace occu {
 
@@ -24,6 +29,51 @@ Found find(const std::string &name)
     for (const std::string &n : strategy_names())
         known += (known.empty() ? "" : ", ") + n;
     throw std::invalid_argument("unknown culling strategy '" + name + "' (known: " + known + ")");
+}
+
+// The family of a chain of `stages` (registry.h), made once per sequence
+// of families and kept for the program's life (choices point to it).
+const StrategyFamily *chain_family(const std::vector<const StrategyFamily *> &stages)
+{
+    static std::mutex mutex;
+    static std::map<std::string, std::unique_ptr<StrategyFamily>> chains;
+    std::string name, paper, summary;
+    for (const StrategyFamily *f : stages) {
+        name += (name.empty() ? "" : "+") + f->name;
+        paper += (paper.empty() ? "" : "; then ") + f->paper;
+        summary += (summary.empty() ? "" : ", then on what it leaves visible: ") + f->summary;
+    }
+    const std::lock_guard<std::mutex> lock(mutex);
+    std::unique_ptr<StrategyFamily> &chain = chains[name];
+    if (chain)
+        return chain.get();
+    chain = std::make_unique<StrategyFamily>();
+    StrategyFamily &c = *chain;
+    c.name = name;
+    c.paper = paper;
+    c.summary = summary;
+    c.stages = stages;
+    c.conservative = true;
+    // Never switched off: a switched-off frame is view-frustum culled
+    // without calling the culler (traversal/policies.h), which would drop
+    // the first stage's answers with the later stages' tests.
+    c.traversal.switch_off = false;
+    for (const StrategyFamily *f : stages) {
+        c.conservative = c.conservative && f->conservative;
+        c.needs_truth = c.needs_truth || f->needs_truth;
+        c.traversal.coherence = c.traversal.coherence || f->traversal.coherence;
+        c.scene_requirements.insert(c.scene_requirements.end(), f->scene_requirements.begin(),
+                                    f->scene_requirements.end());
+        for (const DatabaseNeed &d : f->databases)
+            if (std::none_of(c.databases.begin(), c.databases.end(),
+                             [&d](const DatabaseNeed &e) { return e.setting == d.setting; }))
+                c.databases.push_back(d);
+        for (const SettingSpec &s : f->settings)
+            if (std::none_of(c.settings.begin(), c.settings.end(),
+                             [&s](const SettingSpec &e) { return e.name == s.name; }))
+                c.settings.push_back(s);
+    }
+    return chain.get();
 }
 
 // A family's flags in words, as help and the markdown table list them.
@@ -64,10 +114,27 @@ StrategyChoice choose_strategy(const std::string &spec, const std::vector<std::s
     const std::string name = spec.substr(0, colon);
     if (name.empty())
         throw std::invalid_argument("empty strategy name in '" + spec + "'");
-    const Found found = find(name);
-    StrategyChoice choice{name, spec, found.family, Settings(name, &found.family->settings)};
-    if (found.preset)
-        choice.settings.set_all(found.preset->settings);
+    std::vector<Found> stages;
+    for (std::size_t at = 0, plus;; at = plus + 1) {
+        plus = name.find('+', at);
+        const std::string stage = name.substr(at, plus == std::string::npos ? plus : plus - at);
+        if (stage.empty())
+            throw std::invalid_argument("empty strategy name in the chain '" + name + "'");
+        stages.push_back(find(stage));
+        if (plus == std::string::npos)
+            break;
+    }
+    const StrategyFamily *family = stages.front().family;
+    if (stages.size() > 1) {
+        std::vector<const StrategyFamily *> families;
+        for (const Found &f : stages)
+            families.push_back(f.family);
+        family = chain_family(families);
+    }
+    StrategyChoice choice{name, spec, family, Settings(name, &family->settings)};
+    for (const Found &f : stages)
+        if (f.preset)
+            choice.settings.set_all(f.preset->settings);
     for (const std::string &c : common) {
         const auto [key, value] = split_assignment(c);
         if (choice.settings.knows(key))
@@ -106,7 +173,15 @@ Strategy make_strategy(const std::string &spec, const StrategyContext &context, 
     StrategyChoice choice = choose_strategy(spec, common);
     if (const std::string why = choice.family->refusal(context.scene); !why.empty())
         throw std::invalid_argument(why);
-    std::unique_ptr<Culler> culler = choice.family->make(context, choice.settings);
+    std::unique_ptr<Culler> culler;
+    if (choice.family->stages.empty()) {
+        culler = choice.family->make(context, choice.settings);
+    } else {
+        std::vector<std::pair<std::string, std::unique_ptr<Culler>>> stages;
+        for (const StrategyFamily *f : choice.family->stages)
+            stages.emplace_back(f->name, f->make(context, choice.settings));
+        culler = std::make_unique<ChainedCuller>(std::move(stages));
+    }
     return {std::move(choice), std::move(culler)};
 }
 

@@ -6,6 +6,16 @@
 // A strategy is named on the command line as NAME[:key=value...], NAME a
 // family or one of its presets (a preset is the family with some settings),
 // e.g. "om-ps", "om:selection=fh:occluders=32", "ou:tolerance=0.05".
+// NAME may also chain strategies, STAGE+STAGE[+...] (each a family or
+// preset): each stage tests only the nodes the stages before it left
+// visible (culling/chained_culler.h), e.g. "bsp-pvs+ou-shared" (a level's
+// PVS, then the unit's tests on what it leaves). A chain is a family made
+// of its stages': conservative when all are, the scene requirements and
+// databases of all, temporal coherence where a stage wants it, and their
+// settings together (a key two stages know takes one value for both); the
+// settings after NAME and each stage's preset apply. A chain is never
+// switched off (a switched-off frame would drop every stage, the first
+// one's set too): its later stages test in every frame.
 #pragma once
 
 #include <memory>
@@ -103,6 +113,8 @@ struct StrategyFamily {
     std::vector<SettingSpec> settings;
     std::vector<StrategyPreset> presets;
     std::unique_ptr<Culler> (*make)(const StrategyContext &context, const Settings &settings) = nullptr;
+    // A chain's stages, first to last (above); empty for a registered family.
+    std::vector<const StrategyFamily *> stages;
 
     // Why the family cannot run on `scene` ("pvs needs 2.5D occluders
     // (...); this scene has none"); empty when it can.

@@ -12,6 +12,7 @@
 #include "strategies/leone_occluder_skins/family.h"
 #include "strategies/poon_wang_opacity_maps/family.h"
 #include "strategies/scott_hp_occlusion_test/family.h"
+#include "strategies/teller_sequin_cell_portal_visibility/family.h"
 #include "strategies/wonka_view_cells/family.h"
 #include "strategies/zhang_hierarchical_occlusion_maps/family.h"
 
@@ -33,6 +34,7 @@ const std::vector<StrategyFamily> &strategy_families()
         strategies::opacity_map_family(),       // om: Poon and Wang
         strategies::occluder_skins_family(),    // skins: Leone et al.
         strategies::view_cell_family(),         // pvs: Wonka, Wimmer and Schmalstieg 2000
+        strategies::bsp_pvs_family(),           // bsp-pvs: Quake III's PVS, Teller and Sequin 1991
     };
     return families;
 }

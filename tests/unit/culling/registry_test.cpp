@@ -99,13 +99,15 @@ TEST(Registry, MarkdownTableHasARowPerFamily)
     EXPECT_NE(table.find("box\\|triangles"), std::string::npos) << "a choice's '|' escaped";
 }
 
+// At their defaults, every approximation knob is exact: a strategy is
+// conservative unless its family is not (bsp-pvs: a compiler's PVS).
 TEST(Registry, EveryNameBuildsAConservativeStrategyAtDefaults)
 {
     const OneBox box;
     const StrategyContext context{box.scene, *box.h, *box.renderer};
     for (const std::string &n : strategy_names()) {
         const StrategyChoice c = choose_strategy(n);
-        EXPECT_TRUE(c.conservative()) << n;
+        EXPECT_EQ(c.conservative(), c.family->conservative) << n;
         const auto read = databases_read(c);
         if (std::any_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->required; })) {
             // Not given a database it requires (tests/integration have one made).
@@ -280,4 +282,45 @@ TEST(Registry, FamiliesDeclareTheirDatabasesAndScenes)
     Scene plain;
     EXPECT_NE(choose_strategy("pvs").family->refusal(plain).find("2.5D occluders"), std::string::npos);
     EXPECT_EQ(choose_strategy("ou").family->refusal(plain), "");
+}
+
+// A chain of strategies (NAME+NAME): a family made of its stages'.
+TEST(Registry, ChainsAreFamiliesMadeOfTheirStages)
+{
+    const StrategyChoice c = choose_strategy("bsp-pvs+ou-shared:max-test-area=0.5");
+    EXPECT_EQ(c.family->name, "bsp-pvs+ou");
+    ASSERT_EQ(c.family->stages.size(), 2u);
+    EXPECT_EQ(c.family->stages[0]->name, "bsp-pvs");
+    EXPECT_FALSE(c.conservative()) << "bsp-pvs is not declared conservative";
+    EXPECT_TRUE(c.family->traversal.coherence) << "ou's policies";
+    EXPECT_FALSE(c.family->traversal.switch_off) << "switched off, a frame would lose the PVS too";
+    EXPECT_EQ(c.settings.text("passes"), "shared") << "the preset's settings";
+    EXPECT_EQ(c.settings.text("max-test-area"), "0.5");
+    EXPECT_EQ(choose_strategy("bsp-pvs+ou").family, c.family) << "one family per sequence";
+    const StrategyChoice v = choose_strategy("vfc+om-ps");
+    EXPECT_TRUE(v.conservative());
+    EXPECT_FALSE(v.family->traversal.coherence);
+    EXPECT_FALSE(choose_strategy("vfc+ou:tolerance=0.1").conservative());
+    EXPECT_TRUE(choose_strategy("ideal+ou").family->needs_truth);
+    Scene plain;
+    EXPECT_NE(choose_strategy("vfc+pvs").family->refusal(plain).find("2.5D occluders"), std::string::npos);
+    EXPECT_NE(choose_strategy("bsp-pvs+ou").family->refusal(plain).find("Quake III level"), std::string::npos);
+    EXPECT_EQ(databases_read(choose_strategy("vfc+om-mos")).size(), 1u) << "a stage's database";
+    EXPECT_NE(error_of("vfc+nonesuch").find("unknown culling strategy 'nonesuch'"), std::string::npos);
+    EXPECT_NE(error_of("vfc+").find("empty strategy name"), std::string::npos);
+    EXPECT_NE(error_of("vfc+ou:nonesuch=1").find("nonesuch"), std::string::npos);
+}
+
+TEST(Registry, ChainOfAStrategyThatOrdersItsFrameIsRefused)
+{
+    const OneBox box;
+    const StrategyContext context{box.scene, *box.h, *box.renderer};
+    try {
+        make_strategy("vfc+chc", context);
+        ADD_FAILURE() << "chc made as a stage";
+    } catch (const std::invalid_argument &e) {
+        EXPECT_NE(std::string(e.what()).find("chc orders the frame itself"), std::string::npos) << e.what();
+    }
+    const Strategy s = make_strategy("vfc+ou", context);
+    EXPECT_EQ(s.choice.label(), "vfc+ou");
 }
