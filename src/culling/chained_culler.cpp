@@ -2,15 +2,17 @@
 
 #include <stdexcept>
 
+#include "traversal/traversal.h"
+
 namespace occu {
 
 ChainedCuller::ChainedCuller(std::vector<std::pair<std::string, std::unique_ptr<Culler>>> stages)
     : stages_(std::move(stages))
 {
     for (const auto &[name, culler] : stages_)
-        // Such a strategy walks the hierarchy itself (Culler::traverse):
-        // it cannot be handed only what another stage left.
-        if (culler->orders_frame())
+        // Such a strategy walks the hierarchy itself (traversal/traversal.h,
+        // OwnTraversal): it cannot be handed only what another stage left.
+        if (orders_frame(*culler))
             throw std::invalid_argument(name + " orders the frame itself (its own traversal) and cannot be a stage "
                                                "of a chain of strategies");
 }
@@ -19,12 +21,6 @@ void ChainedCuller::begin_frame(const Frame &frame)
 {
     for (auto &stage : stages_)
         stage.second->begin_frame(frame);
-}
-
-void ChainedCuller::begin_probe(const Frame &frame)
-{
-    for (auto &stage : stages_)
-        stage.second->begin_probe(frame);
 }
 
 void ChainedCuller::test(std::vector<NodeTest> &tests)

@@ -26,7 +26,6 @@ public:
     explicit ChainedCuller(std::vector<std::pair<std::string, std::unique_ptr<Culler>>> stages);
 
     void begin_frame(const Frame &frame) override;
-    void begin_probe(const Frame &frame) override;
     void test(std::vector<NodeTest> &tests) override;
     void rendered(std::uint32_t node) override;
     CullerStats stats() const override;
