@@ -74,18 +74,29 @@ StrategyChoice choice_of(const StrategyFamily &f, const std::string &settings)
     return c;
 }
 
+// A scene of one box, its hierarchy and renderer in a context of their own.
+struct OneBox {
+    static Scene make_scene()
+    {
+        Scene scene;
+        scene.meshes.emplace_back();
+        append_box(scene.meshes[0], Aabb::of({0, 0, 0}, {1, 1, 1}));
+        scene.update_bounds();
+        return scene;
+    }
+    gl::OffscreenContext ctx{8, 8};
+    const Scene scene = make_scene();
+    const Hierarchy h = Hierarchy::build(scene);
+    const SceneRenderer renderer{scene, h};
+    const StrategyContext context{scene, h, renderer};
+};
+
 }  // namespace
 
 TEST(DatabaseProvider, MakesOnceFindsAfterAndKeysByProvenance)
 {
-    gl::OffscreenContext ctx(8, 8);
-    Scene scene;
-    scene.meshes.emplace_back();
-    append_box(scene.meshes[0], Aabb::of({0, 0, 0}, {1, 1, 1}));
-    scene.update_bounds();
-    const Hierarchy h = Hierarchy::build(scene);
-    const SceneRenderer renderer(scene, h);
-    const StrategyContext context{scene, h, renderer};
+    const OneBox box;
+    const StrategyContext &context = box.context;
     const StrategyFamily family = counting_family();
     const std::string dir = ::testing::TempDir() + "occu-databases-test-" + std::to_string(getpid());
     made = 0;
@@ -134,14 +145,8 @@ TEST(DatabaseProvider, MakesOnceFindsAfterAndKeysByProvenance)
 
 TEST(DatabaseProvider, MakesAgainWhatIsFoundDamagedOrOfAnotherProvenance)
 {
-    gl::OffscreenContext ctx(8, 8);
-    Scene scene;
-    scene.meshes.emplace_back();
-    append_box(scene.meshes[0], Aabb::of({0, 0, 0}, {1, 1, 1}));
-    scene.update_bounds();
-    const Hierarchy h = Hierarchy::build(scene);
-    const SceneRenderer renderer(scene, h);
-    const StrategyContext context{scene, h, renderer};
+    const OneBox box;
+    const StrategyContext &context = box.context;
     const StrategyFamily family = counting_family();
     const std::string dir = ::testing::TempDir() + "occu-databases-again-" + std::to_string(getpid());
     made = 0;
