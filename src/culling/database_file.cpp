@@ -111,21 +111,28 @@ DatabaseWriter::DatabaseWriter(const std::string &path, const std::string &kind,
                                const DatabaseProvenance &p)
     : path_(path)
 {
-    const std::pair<const char *, const std::string *> records[] = {
-        {"algorithm", &p.algorithm}, {"settings", &p.settings}, {"scene", &p.scene}, {"code", &p.code},
-        {"mesa", &p.mesa}};
-    for (const auto &[name, text] : records) {
-        const bool word = name != std::string("settings") && name != std::string("scene");
-        if (!reads_back(*text, word) || (text->empty() && name != std::string("settings")))
-            throw std::invalid_argument(path + ": the provenance's " + name + " '" + *text +
+    // As the reader takes them: one word, or (settings, scene) the rest of
+    // the line; only the settings may be empty.
+    struct Record {
+        const char *name;
+        const std::string &text;
+        bool word, may_be_empty;
+    };
+    const Record records[] = {{"algorithm", p.algorithm, true, false},
+                              {"settings", p.settings, false, true},
+                              {"scene", p.scene, false, false},
+                              {"code", p.code, true, false},
+                              {"mesa", p.mesa, true, false}};
+    for (const Record &r : records)
+        if (!reads_back(r.text, r.word) || (r.text.empty() && !r.may_be_empty))
+            throw std::invalid_argument(path + ": the provenance's " + r.name + " '" + r.text +
                                         "' would not read back (empty, a line break, '#' or white space)");
-    }
     out_.open(path);
     if (!out_)
         throw std::runtime_error(path + ": cannot write");
     out_ << "occu-database " << kind << ' ' << version << '\n';
-    for (const auto &[name, text] : records)
-        out_ << name << (text->empty() ? "" : " ") << *text << '\n';
+    for (const Record &r : records)
+        out_ << r.name << (r.text.empty() ? "" : " ") << r.text << '\n';
 }
 
 void DatabaseWriter::finish()
