@@ -1,17 +1,11 @@
 // Occluder skins: Leone et al., section 4 (the steps are in the header).
 #include "strategies/leone_occluder_skins/occluder_skins.h"
 
-
-#include "cli/number_fields.h"
-
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include <glm/glm.hpp>

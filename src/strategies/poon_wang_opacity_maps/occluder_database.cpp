@@ -2,11 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <map>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 namespace occu {

@@ -1,9 +1,6 @@
 #include "strategies/wonka_view_cells/pvs_database.h"
 
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace occu {
