@@ -17,7 +17,7 @@
 //                   [--route R [--frames N]] [--shard I/N] [--driver llvmpipe|softpipe]
 //
 // --cache DIR names the database by its key (DatabaseProvenance::key: the
-// preprocessing code, options, scene, hierarchy, Mesa build and grid),
+// library's code, the options with the grid and lens, scene, hierarchy and Mesa build),
 // makes it only if DIR holds no database of that key, and prints its path
 // on stdout (the rest goes to stderr). --resolution R and --map-divisor K:
 // the run-time maps the database serves (R x R maps of a frame of R * K
@@ -47,7 +47,7 @@
 // skins (not watertight, no interior at that voxel size) are listed on
 // stderr and recorded in the file; they do not make the command fail.
 // --shard I/N takes the meshes m with m % N == I - 1. `merge` joins skin
-// shards as well: it tells the two kinds of file by their first line, and
+// shards as well: it tells the kinds of file by their first line, and
 // all its shards must be of the kind of the first.
 //
 // `view-cells` precomputes the potentially visible set of every view cell
@@ -72,7 +72,6 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -132,23 +131,10 @@ struct Options {
     int route_frames = 60;
 };
 
-// The first word of `path` (comments skipped): what kind of database it is.
-std::string first_word(const std::string &path)
+// What kind of database `path` is (culling/database_file.h).
+std::string kind_of(const std::string &path)
 {
-    std::ifstream in(path);
-    std::string line, word;
-    while (std::getline(in, line)) {
-        if (const auto hash = line.find('#'); hash != std::string::npos)
-            line.erase(hash);
-        if (std::istringstream(line) >> word)
-            return word;
-    }
-    return "";
-}
-
-bool is_skin_database(const std::string &path)
-{
-    return first_word(path) == "occu-occluder-skins";
+    return occu::DatabaseReader(path, "", 0, "database").kind();
 }
 
 int merge_skins(const Options &o)
@@ -159,8 +145,8 @@ int merge_skins(const Options &o)
     const auto db = occu::OccluderSkinDatabase::merge(shards, o.inputs);
     db.save(o.out);
     std::printf("%s: skins of %zu of %u meshes from %zu shards\n", o.out.c_str(), db.mesh_count(),
-                db.provenance.meshes, shards.size());
-    return db.mesh_count() == db.provenance.meshes ? 0
+                db.meshes, shards.size());
+    return db.mesh_count() == db.meshes ? 0
                                                    : (std::fprintf(stderr, "occu-preprocess: meshes missing\n"), 1);
 }
 
@@ -178,9 +164,10 @@ int merge_pvs(const Options &o)
 
 int merge(const Options &o)
 {
-    if (first_word(o.inputs.front()) == "occu-pvs-database")
+    const std::string kind = kind_of(o.inputs.front());
+    if (kind == "pvs")
         return merge_pvs(o);
-    if (is_skin_database(o.inputs.front()))
+    if (kind == "occluder-skins")
         return merge_skins(o);
     std::vector<occu::OccluderDatabase> shards;
     for (const auto &path : o.inputs)
@@ -224,11 +211,10 @@ int build(const Options &o)
     const SceneSetup setup({o.scene, o.city_copies, std::uint32_t(o.leaf_triangles)});
     const Scene &scene = setup.scene();
     const Hierarchy &hierarchy = setup.hierarchy();
-    OccluderDatabase db;
-    db.provenance = DatabaseProvenance::current(hierarchy, o.pre.describe(), o.pre.stacks.resolution);
-    db.grid = OccluderGrid::over_scene(scene.bounds, o.grid, o.directions, o.eye_height);
-    const OccluderGrid &g = db.grid;
     const Camera lens = street_level_lens(scene.bounds, 1.0f);
+    OccluderDatabase db = occluder_database_for(
+        hierarchy, OccluderGrid::over_scene(scene.bounds, o.grid, o.directions, o.eye_height), lens, o.pre);
+    const OccluderGrid &g = db.grid;
 
     // With --cache the database is named by what it depends on, and made
     // only once.
@@ -236,12 +222,12 @@ int build(const Options &o)
     std::FILE *report = stdout;
     if (!o.cache.empty()) {
         std::filesystem::create_directories(o.cache);
-        path = o.cache + "/occluders-" + db.provenance.key(g) + (o.shards > 1 ? "-shard" + std::to_string(o.shard) + "of" + std::to_string(o.shards) : "") + ".db";
+        path = o.cache + "/occluders-" + db.provenance.key() + (o.shards > 1 ? "-shard" + std::to_string(o.shard) + "of" + std::to_string(o.shards) : "") + ".db";
         report = stderr;
         if (std::filesystem::exists(path)) {
             try {
                 const OccluderDatabase cached = OccluderDatabase::load(path);
-                if (cached.provenance == db.provenance && cached.grid == g) {
+                if (cached.provenance == db.provenance) {
                     std::fprintf(stderr, "occu-preprocess: %s is up to date\n", path.c_str());
                     std::printf("%s\n", path.c_str());
                     return 0;
@@ -342,8 +328,7 @@ int view_cells(const Options &o)
     const CullMapTest test = o.test == "readback" ? CullMapTest::readback : CullMapTest::occlusion_unit;
     ViewCellVisibility visibility(scene, hierarchy, cells, o.visibility);
 
-    PvsDatabase db;
-    db.provenance = PvsProvenance::current(hierarchy, o.cells, o.visibility);
+    PvsDatabase db = PvsDatabase::start(hierarchy, o.cells, o.visibility);
     for (std::size_t c = 0; c < cells.size(); ++c)
         db.cells.push_back(cells.triangle(c));
 

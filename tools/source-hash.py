@@ -1,29 +1,37 @@
 #!/usr/bin/python3
-"""Writes a C header defining NAME as a short hash of the given source files.
+"""Writes a C header defining NAME as a short hash of the sources below DIRs.
 
-Usage: source-hash.py OUTPUT NAME FILE...
-       source-hash.py --list DIR     prints the C and C++ sources and headers below DIR
-The build uses it to stamp what a precomputed database depends on, so that
-a change to those sources gives cached databases a new name; --list gives
-the build every source of the library without a hand-written list.
+Usage: source-hash.py OUTPUT NAME DIR...
+
+Every C and C++ source and header (.c, .cpp, .h) and meson.build below each
+DIR counts, found when the build runs (src/meson.build runs this at every
+build), so a file added to the library changes the hash without a list
+anyone keeps. Each file counts by its path below DIR's parent and its
+contents: the hash does not depend on where the checkout is. The header is
+rewritten only when the hash changes, so that what includes it is rebuilt
+only then. The build stamps the databases it makes with this hash
+(culling/database_file.h): a change to the library's code gives them a new
+provenance.
 """
 import hashlib
 import os
 import sys
 
-if sys.argv[1:2] == ['--list']:
-    for root, dirs, names in sorted(os.walk(sys.argv[2])):
-        dirs.sort()
-        for n in sorted(names):
-            if n.endswith(('.c', '.cpp', '.h')):
-                print(os.path.join(root, n))
-    sys.exit(0)
-
-output, name, *files = sys.argv[1:]
+output, name, *dirs = sys.argv[1:]
+if not dirs:
+    sys.exit('usage: source-hash.py OUTPUT NAME DIR...')
 digest = hashlib.sha256()
-for path in sorted(files):
-    with open(path, 'rb') as f:
-        digest.update(path.rsplit('/src/', 1)[-1].encode() + b'\0' + f.read())
+for top in dirs:
+    top = os.path.normpath(top)
+    base = os.path.dirname(top)
+    found = []
+    for root, subdirs, names in os.walk(top):
+        found += [os.path.join(root, n) for n in names if n.endswith(('.c', '.cpp', '.h')) or n == 'meson.build']
+    if not found:
+        sys.exit(f'source-hash.py: no sources below {top}')
+    for path in sorted(found):
+        with open(path, 'rb') as f:
+            digest.update(os.path.relpath(path, base).encode() + b'\0' + f.read() + b'\0')
 text = f'#pragma once\n#define {name} "{digest.hexdigest()[:12]}"\n'
 try:
     with open(output) as f:

@@ -9,35 +9,28 @@
 #include <stdexcept>
 
 #include "gl/gl_headers.h"
-#include "library_code_hash.h"
-
-#ifndef OCCU_MESA_BUILD
-#define OCCU_MESA_BUILD "unknown"
-#endif
 
 namespace occu {
 
 namespace {
 
-// 64-bit FNV-1a, as 16 hex digits: a name, not a defence against collisions made on purpose.
-std::string hash_name(const std::string &text)
+// Why the file at `path` is not a whole database of `provenance`; empty
+// when it is one.
+std::string not_the_database(const std::string &path, const DatabaseProvenance &provenance)
 {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 0x100000001b3ULL;
+    try {
+        DatabaseReader reader(path, "", 0, "database");
+        if (const std::string d = reader.provenance().difference(provenance); !d.empty())
+            return "its provenance differs: " + d;
+        while (reader.next()) {
+        }
+    } catch (const std::runtime_error &e) {
+        return e.what();
     }
-    char s[17];
-    std::snprintf(s, sizeof(s), "%016llx", (unsigned long long)h);
-    return s;
+    return {};
 }
 
 }  // namespace
-
-const char *library_code_hash()
-{
-    return OCCU_LIBRARY_CODE_HASH;
-}
 
 std::vector<const DatabaseNeed *> databases_read(const StrategyChoice &choice)
 {
@@ -61,11 +54,12 @@ std::vector<std::string> DatabaseProvider::settings_for(const StrategyChoice &ch
         if (!choice.settings.text(need->setting).empty() || (!need->required && makes_ == Makes::required))
             continue;
         const DatabaseRequest request{context, choice.settings, width, height};
-        const std::string provenance = need->provenance(request) + "\nlibrary " + library_code_hash() + "\nmesa " +
-                                       OCCU_MESA_BUILD;
-        const std::string path = directory_ + "/" + need->setting + "-" + hash_name(provenance) + ".db";
-        if (!std::filesystem::exists(path)) {
-            std::error_code error;
+        const DatabaseProvenance provenance = need->provenance(request);
+        const std::string path = directory_ + "/" + need->setting + "-" + provenance.key() + ".db";
+        std::error_code error;
+        const bool found = std::filesystem::exists(path, error);
+        const std::string unfit = found ? not_the_database(path, provenance) : "";
+        if (!found || !unfit.empty()) {
             std::filesystem::create_directories(directory_, error);
             if (error)
                 throw std::runtime_error("cannot make the database directory '" + directory_ + "': " + error.message());
@@ -76,6 +70,11 @@ std::vector<std::string> DatabaseProvider::settings_for(const StrategyChoice &ch
             glPushAttrib(GL_ALL_ATTRIB_BITS);
             try {
                 need->make(request, part);
+                // What was made must be what was asked for, or every run
+                // would make it again.
+                if (const std::string why = not_the_database(part, provenance); !why.empty())
+                    throw std::logic_error(need->name + " made for " + choice.label() + " is not the one asked for: " +
+                                           why);
             } catch (...) {
                 glPopAttrib();
                 std::filesystem::remove(part, error);
@@ -86,6 +85,8 @@ std::vector<std::string> DatabaseProvider::settings_for(const StrategyChoice &ch
             if (error)
                 throw std::runtime_error("cannot name the database '" + path + "': " + error.message());
             made_.push_back(path);
+            if (report_ && !unfit.empty())
+                std::fprintf(report_, "%s made again: %s\n", path.c_str(), unfit.c_str());
             if (report_)
                 std::fprintf(report_, "%s made (for %s) in %.1f s: %s\n", need->name.c_str(), choice.label().c_str(),
                              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),

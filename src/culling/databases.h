@@ -1,14 +1,18 @@
 // The one resource provider: the databases a strategy reads
 // (StrategyFamily::databases) that its settings do not name are made here
 // on demand, or found where an earlier run made them, by their full
-// provenance: what the family says its contents depend on (algorithm,
-// settings, scene and hierarchy), this library's code (a hash the build
-// computes over every source of src/) and the Mesa build. A database is
-// kept in the provider's directory under a name of that provenance's hash,
-// written whole before it is named, so that processes sharing the
-// directory never read half a database; the strategy's own reader then
-// checks what it can (the scene it was made for), naming the file and line
-// of what is wrong.
+// provenance (culling/database_file.h): what the family says its contents
+// depend on (algorithm, settings, scene and hierarchy), this library's code
+// (a hash the build computes over every source of src/) and the Mesa build.
+// A database is kept in the provider's directory under a name of that
+// provenance's key, written whole before it is named, so that processes
+// sharing the directory never read half a database. One found there is
+// read through: when its provenance is not the one asked for (a key shared
+// by chance) or it does not read as a database (cut short, its provenance
+// damaged, or of a format this program does not read), it is made again,
+// and the report says why.
+// The strategy's own reader then checks what it can (the scene it was made
+// for), naming the file and line of what is wrong.
 #pragma once
 
 #include <cstdio>
@@ -19,10 +23,6 @@
 #include "culling/registry.h"
 
 namespace occu {
-
-// The hash of the library's sources and the Mesa build this program was
-// built with (set by the build, src/meson.build).
-const char *library_code_hash();
 
 // The databases `choice` reads (of its family's, those its settings read),
 // given or not.
@@ -49,7 +49,8 @@ public:
                                           int height);
 
     const std::string &directory() const { return directory_; }
-    // The databases made by this provider (not found): their paths.
+    // The databases made by this provider (not found, or found and made
+    // again): their paths.
     const std::vector<std::string> &made() const { return made_; }
 
 private:

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "culling/culler.h"
+#include "culling/database_file.h"
 #include "culling/settings.h"
 
 namespace occu {
@@ -90,12 +91,13 @@ struct DatabaseNeed {
     bool required = false;
     // Whether a strategy of these settings reads it (null: every one).
     bool (*read_by)(const Settings &settings) = nullptr;
-    // Everything the database's contents depend on besides the library's
-    // code and the Mesa build (the provider adds those): its algorithm, the
-    // settings it is made with and the scene and hierarchy it serves. Two
-    // databases of one provenance are the same database.
-    std::string (*provenance)(const DatabaseRequest &request) = nullptr;
-    // Makes it and writes it to `path`; may draw with the context's GL.
+    // Everything the database's contents depend on (culling/database_file.h):
+    // its algorithm, the settings it is made with, the scene and hierarchy
+    // it serves, the library's code and the Mesa build when GL makes it.
+    // Two databases of one provenance are the same database.
+    DatabaseProvenance (*provenance)(const DatabaseRequest &request) = nullptr;
+    // Makes it and writes it to `path` with that provenance; may draw with
+    // the context's GL.
     void (*make)(const DatabaseRequest &request, const std::string &path) = nullptr;
 
     bool read_by_settings(const Settings &settings) const { return !read_by || read_by(settings); }

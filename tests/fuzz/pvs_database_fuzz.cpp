@@ -25,7 +25,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
                     std::abort();
         }
         // The run time builds its locator from them: it must take them.
-        const occu::ViewCells cells(db.cells, db.cell_options());
+        const occu::ViewCells cells(db.cells, db.cell_options);
         (void)cells.locate(glm::vec3(0.0f));
     } catch (const std::runtime_error &e) {
         occu::fuzz::require_named(e, file.path());

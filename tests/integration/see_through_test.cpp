@@ -212,16 +212,16 @@ TEST(SeeThrough, EveryConservativeStrategyDrawsWhatShowsThroughASeeThroughMesh)
     // A minimum-occluder-set database made here, from the eye (heading 3 looks down -z).
     std::string database;
     {
-        OccluderDatabase db;
-        db.grid.points = {1, 1, 1};
-        db.grid.directions = 4;
-        db.grid.origin = camera.position;
-        db.grid.spacing = glm::vec3(1.0f);
+        OccluderGrid grid;
+        grid.points = {1, 1, 1};
+        grid.directions = 4;
+        grid.origin = camera.position;
+        grid.spacing = glm::vec3(1.0f);
         PreprocessOptions pre;
         pre.stacks.resolution = size / pre.stacks.map_divisor;
         pre.stacks.min_occludee_triangles = 4;
         pre.stacks.min_occluder_pixels = 1;
-        db.provenance = DatabaseProvenance::current(h, pre.describe(), pre.stacks.resolution);
+        OccluderDatabase db = occluder_database_for(h, grid, camera, pre);
         for (std::uint32_t v = 0; v < db.grid.view_count(); ++v)
             db.views[v] = select_occluders_for_view(renderer, h, db.grid.view_camera(v, camera), pre);
         database = ::testing::TempDir() + "occu-see-through-" + std::to_string(getpid()) + ".db";

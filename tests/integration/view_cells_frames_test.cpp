@@ -94,17 +94,7 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
     }
 
     // Their cells' sets, both ways: the same leaves.
-    PvsDatabase db;
-    db.provenance.hierarchy = city.h.fingerprint();
-    db.provenance.leaves = city.h.leaf_count();
-    const ViewCellVisibilityOptions vo;
-    db.provenance.epsilon = vo.epsilon;
-    db.provenance.pixel = vo.pixel;
-    db.provenance.initial_extent = vo.initial_extent;
-    db.provenance.max_edge = ViewCellOptions{}.max_edge;
-    db.provenance.clearance = ViewCellOptions{}.clearance;
-    db.provenance.bottom = ViewCellOptions{}.bottom;
-    db.provenance.top = ViewCellOptions{}.top;
+    PvsDatabase db = PvsDatabase::start(city.h, ViewCellOptions{}, ViewCellVisibilityOptions{});
     for (std::size_t c = 0; c < city.cells->size(); ++c)
         db.cells.push_back(city.cells->triangle(c));
     for (std::uint32_t c : needed) {
@@ -178,13 +168,8 @@ TEST(ViewCellFrames, RefusesADatabaseOfAnotherHierarchyAndScenesWithout25DOcclud
 {
     City city;
     const StrategyContext context{city.scene, city.h, city.renderer};
-    PvsDatabase db;
-    db.provenance.hierarchy = "0123456789abcdef";
-    db.provenance.leaves = 1;
-    db.provenance.epsilon = db.provenance.pixel = 1.0;
-    db.provenance.max_edge = 24.0;
-    db.provenance.top = 2.0;
-    db.provenance.initial_extent = 64.0;
+    PvsDatabase db = PvsDatabase::start(city.h, ViewCellOptions{}, ViewCellVisibilityOptions{});
+    db.provenance.scene = "0123456789abcdef leaves=1 triangles=12";
     db.cells = {{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1)}};
     const std::string path = testing::TempDir() + "/occu-other.pvs";
     db.save(path);
@@ -192,7 +177,10 @@ TEST(ViewCellFrames, RefusesADatabaseOfAnotherHierarchyAndScenesWithout25DOcclud
         make_strategy("pvs:pvs-database=" + path, context);
         ADD_FAILURE() << "a database of another hierarchy was taken";
     } catch (const std::runtime_error &e) {
-        EXPECT_NE(std::string(e.what()).find("another scene or hierarchy"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(path + ": made for another scene (0123456789abcdef leaves=1 triangles=12; "
+                                             "this one is " + scene_provenance(city.h) + ")"),
+                  std::string::npos)
+            << e.what();
     }
     std::filesystem::remove(path);
 

@@ -1,18 +1,11 @@
 // Occluder skins: Leone et al., section 4 (the steps are in the header).
 #include "strategies/leone_occluder_skins/occluder_skins.h"
 
-#include "occluder_skins_code_hash.h"
-
-#include "cli/number_fields.h"
-
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include <glm/glm.hpp>
@@ -614,54 +607,24 @@ std::string scene_geometry_fingerprint(const Scene &scene)
     return hex16(f.h);
 }
 
-const char *skins_code_hash()
+std::string skin_scene_provenance(const Scene &scene)
 {
-    return OCCU_SKINS_CODE_HASH;
+    return scene_geometry_fingerprint(scene) + " meshes=" + std::to_string(scene.meshes.size()) +
+           " triangles=" + std::to_string(scene.triangle_count());
 }
 
-SkinProvenance SkinProvenance::current(const Scene &scene, const SkinOptions &options)
+DatabaseProvenance OccluderSkinDatabase::provenance_for(const Scene &scene, const SkinOptions &options)
 {
-    SkinProvenance p;
-    p.code = skins_code_hash();
-    p.options = options.describe();
-    p.scene = scene_geometry_fingerprint(scene);
-    p.meshes = std::uint32_t(scene.meshes.size());
-    p.triangles = scene.triangle_count();
-    return p;
-}
-
-std::string SkinProvenance::mismatch_for(const Scene &s) const
-{
-    const std::string fingerprint = scene_geometry_fingerprint(s);
-    if (scene == fingerprint && meshes == s.meshes.size() && triangles == s.triangle_count())
-        return {};
-    return "made for another scene (" + std::to_string(meshes) + " meshes, " + std::to_string(triangles) +
-           " triangles, fingerprint " + scene + "; this one has " + std::to_string(s.meshes.size()) + ", " +
-           std::to_string(s.triangle_count()) + ", fingerprint " + fingerprint + ")";
-}
-
-std::string SkinProvenance::difference(const SkinProvenance &o) const
-{
-    auto differ = [](const char *what, const std::string &a, const std::string &b) {
-        return std::string(what) + " '" + a + "' against '" + b + "'";
-    };
-    if (algorithm != o.algorithm)
-        return differ("algorithm", algorithm, o.algorithm);
-    if (code != o.code)
-        return differ("code", code, o.code);
-    if (options != o.options)
-        return differ("options", options, o.options);
-    if (scene != o.scene || meshes != o.meshes || triangles != o.triangles)
-        return differ("scene", scene + " " + std::to_string(meshes) + " " + std::to_string(triangles),
-                      o.scene + " " + std::to_string(o.meshes) + " " + std::to_string(o.triangles));
-    return {};
+    // Pure geometry: no Mesa takes part.
+    return DatabaseProvenance::current("occluder-skins", options.describe(), skin_scene_provenance(scene), false);
 }
 
 OccluderSkinDatabase OccluderSkinDatabase::make(const Scene &scene, const SkinOptions &options, int shard, int shards,
                                                 const std::function<void(std::size_t, std::size_t)> &progress)
 {
     OccluderSkinDatabase db;
-    db.provenance = SkinProvenance::current(scene, options);
+    db.provenance = provenance_for(scene, options);
+    db.meshes = std::uint32_t(scene.meshes.size());
     SceneSkins s = scene_skins(scene, options, shard, shards, progress);
     for (MeshSkins &m : s.skins)
         db.skins[m.mesh] = std::move(m.boxes);
@@ -687,7 +650,7 @@ std::size_t OccluderSkinDatabase::box_count() const
 
 bool OccluderSkinDatabase::operator==(const OccluderSkinDatabase &o) const
 {
-    if (!(provenance == o.provenance) || skipped != o.skipped || skins.size() != o.skins.size())
+    if (!(provenance == o.provenance) || meshes != o.meshes || skipped != o.skipped || skins.size() != o.skins.size())
         return false;
     for (const auto &[mesh, list] : skins) {
         const auto it = o.skins.find(mesh);
@@ -702,15 +665,8 @@ bool OccluderSkinDatabase::operator==(const OccluderSkinDatabase &o) const
 
 void OccluderSkinDatabase::save(const std::string &path) const
 {
-    std::ofstream out(path);
-    if (!out)
-        throw std::runtime_error(path + ": cannot write");
-    const SkinProvenance &p = provenance;
-    out << "occu-occluder-skins 1\n";
-    out << "algorithm " << p.algorithm << ' ' << p.code << '\n';
-    out << "options " << p.options << '\n';
-    out << "scene " << p.scene << ' ' << p.meshes << ' ' << p.triangles << '\n';
-    out.precision(9);   // a float's shortest exact decimal has at most 9 digits
+    DatabaseWriter writer(path, "occluder-skins", 1, provenance);
+    std::ostream &out = writer.out();
     auto skins_it = skins.begin();
     auto skipped_it = skipped.begin();
     // By mesh index, skins and skipped lines interleaved.
@@ -718,8 +674,9 @@ void OccluderSkinDatabase::save(const std::string &path) const
         if (skipped_it == skipped.end() || (skins_it != skins.end() && skins_it->first < skipped_it->first)) {
             out << "skins " << skins_it->first << ' ' << skins_it->second.size();
             for (const Aabb &b : skins_it->second)
-                out << ' ' << b.min.x << ' ' << b.min.y << ' ' << b.min.z << ' ' << b.max.x << ' ' << b.max.y << ' '
-                    << b.max.z;
+                for (const glm::vec3 &corner : {b.min, b.max})
+                    out << ' ' << exact_number(corner.x) << ' ' << exact_number(corner.y) << ' '
+                        << exact_number(corner.z);
             out << '\n';
             ++skins_it;
         } else {
@@ -731,115 +688,50 @@ void OccluderSkinDatabase::save(const std::string &path) const
             ++skipped_it;
         }
     }
-    if (!out.flush())
-        throw std::runtime_error(path + ": write failed");
+    writer.finish();
 }
 
 OccluderSkinDatabase OccluderSkinDatabase::load(const std::string &path)
 {
-    std::ifstream in(path);
-    if (!in)
-        throw std::runtime_error(path + ": cannot open occluder skin database");
+    DatabaseReader in(path, "occluder-skins", 1, "occluder skin database");
+    in.require_algorithm("occluder-skins");
     OccluderSkinDatabase db;
-    std::string line;
-    int number = 0;
-    bool header = false;
-    std::map<std::string, bool> seen;   // provenance records
-    auto fail = [&](const std::string &what) {
-        throw std::runtime_error(path + ":" + std::to_string(number) + ": " + what);
-    };
-    // A mesh index in range and not yet given a line.
-    auto read_mesh = [&](std::istringstream &fields, const std::string &key) {
-        if (!seen["scene"])
-            fail(key + " before the scene record");
-        long long mesh = -1;
-        if (!(fields >> mesh) || mesh < 0 || mesh >= (long long)db.provenance.meshes)
-            fail(key + " wants a mesh index below the scene's " + std::to_string(db.provenance.meshes) + " meshes");
-        const auto m = std::uint32_t(mesh);
-        if (db.skins.count(m) || db.skipped.count(m))
-            fail("mesh " + std::to_string(m) + " repeats");
-        return m;
-    };
-    while (std::getline(in, line)) {
-        ++number;
-        if (const auto hash = line.find('#'); hash != std::string::npos)
-            line.erase(hash);
-        std::istringstream fields(line);
-        std::string key;
-        if (!(fields >> key))
-            continue;
-        if (!header) {
-            int version = 0;
-            if (key != "occu-occluder-skins" || !(fields >> version))
-                fail("not an occu occluder skin database (expected 'occu-occluder-skins 1')");
-            if (version != 1)
-                fail("occluder skin database version " + std::to_string(version) + ", this program reads version 1");
-            header = true;
-        } else if (key == "algorithm" || key == "options" || key == "scene") {
-            if (seen[key])
-                fail(key + " repeats");
-            seen[key] = true;
-            SkinProvenance &p = db.provenance;
-            std::string rest;
-            std::getline(fields >> std::ws, rest);
-            std::istringstream values(rest);
-            std::string extra;
-            if (key == "algorithm") {
-                if (!(values >> p.algorithm >> p.code) || p.algorithm != "occluder-skins" || values >> extra)
-                    fail("algorithm wants 'occluder-skins CODE'");
-            } else if (key == "options") {
-                while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.back())))
-                    rest.pop_back();
-                p.options = rest;
-            } else if (!(values >> p.scene >> p.meshes >> p.triangles) || values >> extra) {
-                fail("scene wants FINGERPRINT MESHES TRIANGLES");
-            }
-        } else if (key == "skins") {
-            const std::uint32_t mesh = read_mesh(fields, key);
-            long long count = -1;
-            if (!(fields >> count) || count < 0 || count > (1 << 20))
-                fail("skins wants MESH N and then N boxes (N at most 1048576)");
-            std::vector<Aabb> &boxes = db.skins[mesh];
-            static const char *const names[6] = {"X0", "Y0", "Z0", "X1", "Y1", "Z1"};
-            for (long long b = 0; b < count; ++b) {
-                float v[6];
-                for (int i = 0; i < 6; ++i) {
-                    std::string text;
-                    if (!(fields >> text))
-                        fail("mesh " + std::to_string(mesh) + ": " + std::to_string(count) + " boxes want " +
-                             std::to_string(6 * count) + " numbers, the line has fewer");
-                    if (const std::string why = read_finite_float(text, v[i]); !why.empty())
-                        fail("box " + std::to_string(b) + " of mesh " + std::to_string(mesh) + ": " + names[i] +
-                             " is '" + text + "', " + why);
-                }
-                const Aabb box{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
-                for (int a = 0; a < 3; ++a)
-                    if (box.min[a] > box.max[a])
-                        fail("box " + std::to_string(b) + " of mesh " + std::to_string(mesh) + " is empty (min > max along " +
-                             "xyz"[a] + ")");
-                boxes.push_back(box);
-            }
-            std::string extra;
-            if (fields >> extra)
-                fail("mesh " + std::to_string(mesh) + ": more numbers than " + std::to_string(count) + " boxes take");
-        } else if (key == "skipped") {
-            const std::uint32_t mesh = read_mesh(fields, key);
-            std::string reason;
-            std::getline(fields >> std::ws, reason);
-            while (!reason.empty() && std::isspace(static_cast<unsigned char>(reason.back())))
-                reason.pop_back();
+    db.provenance = in.provenance();
+    db.meshes = std::uint32_t(in.scene_number("meshes", 0, 0xFFFFFFFFu));
+    while (in.next()) {
+        const bool skinned = in.record() == "skins";
+        if (!skinned && in.record() != "skipped")
+            in.fail("unknown record '" + in.record() + "' (a skin database has skins and skipped records)");
+        if (db.meshes == 0)
+            in.fail("a mesh's record, and the scene has no meshes");
+        // A mesh index in range and not yet given a line.
+        const auto mesh = std::uint32_t(in.count("the mesh", db.meshes - 1));
+        if (db.skins.count(mesh) || db.skipped.count(mesh))
+            in.fail("mesh " + std::to_string(mesh) + " repeats");
+        if (!skinned) {
+            const std::string reason = in.rest();
             if (reason.empty())
-                fail("skipped wants MESH REASON");
+                in.fail("skipped wants MESH REASON");
             db.skipped[mesh] = reason;
-        } else {
-            fail("unknown record '" + key + "'");
+            continue;
         }
+        const std::uint64_t count = in.count("the number of boxes", 1 << 20);
+        std::vector<Aabb> &boxes = db.skins[mesh];
+        static const char *const names[6] = {"X0", "Y0", "Z0", "X1", "Y1", "Z1"};
+        for (std::uint64_t b = 0; b < count; ++b) {
+            float v[6];
+            for (int i = 0; i < 6; ++i)
+                v[i] = in.float_number("box " + std::to_string(b) + " of mesh " + std::to_string(mesh) + ": " +
+                                       names[i]);
+            const Aabb box{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+            for (int a = 0; a < 3; ++a)
+                if (box.min[a] > box.max[a])
+                    in.fail("box " + std::to_string(b) + " of mesh " + std::to_string(mesh) +
+                            " is empty (min > max along " + "xyz"[a] + ")");
+            boxes.push_back(box);
+        }
+        in.done();
     }
-    if (!header)
-        throw std::runtime_error(path + ": empty file, not an occluder skin database");
-    for (const char *record : {"algorithm", "options", "scene"})
-        if (!seen[record])
-            throw std::runtime_error(path + ": no " + std::string(record) + " record (its provenance is unknown)");
     return db;
 }
 

@@ -45,15 +45,15 @@
 // so every box lies inside the mesh. A hole narrower than a voxel is caught
 // by step 3, not by the flood.
 //
-// The skin database (OccluderSkinDatabase) is a text file, in the manner of
-// occluder_database.h:
-//   occu-occluder-skins 1
-//   algorithm occluder-skins CODE         CODE: a hash of this code (skins_code_hash)
-//   options voxel=V max-boxes=N min-volume=M start=densest|first
-//   scene FINGERPRINT MESHES TRIANGLES    scene_geometry_fingerprint, the scene's counts
+// The skin database (OccluderSkinDatabase) is in occu's database format
+// (culling/database_file.h), kind occluder-skins version 1, algorithm
+// occluder-skins, made without GL (mesa none); its settings are
+// SkinOptions::describe() ("voxel=V max-boxes=N min-volume=M
+// start=densest|first"), its scene "FINGERPRINT meshes=M triangles=T"
+// (skin_scene_provenance). The payload, by mesh index:
 //   skins MESH N X0 Y0 Z0 X1 Y1 Z1 ...    N boxes (min corner, max corner) of mesh MESH
 //   skipped MESH REASON                   a mesh without skins, and why
-// '#' starts a comment. A shard holds the meshes whose index % N == I - 1
+// A shard holds the meshes whose index % N == I - 1
 // (occu-preprocess skins --shard I/N); merge() joins shards of one provenance.
 #pragma once
 
@@ -65,6 +65,7 @@
 #include <string>
 #include <vector>
 
+#include "culling/database_file.h"
 #include "geometry/aabb.h"
 #include "scene/scene.h"
 
@@ -152,34 +153,19 @@ SceneSkins scene_skins(const Scene &scene, const SkinOptions &options, int shard
 // order): what a skin database was made for. 16 hex digits.
 std::string scene_geometry_fingerprint(const Scene &scene);
 
-// A hash of the skins' sources, set by the build (src/meson.build).
-const char *skins_code_hash();
-
-// What a skin database was made from and by.
-struct SkinProvenance {
-    std::string algorithm = "occluder-skins";
-    std::string code;      // skins_code_hash()
-    std::string options;   // SkinOptions::describe()
-    std::string scene;     // scene_geometry_fingerprint()
-    std::uint32_t meshes = 0;
-    std::uint64_t triangles = 0;
-
-    // For a database about to be made here: this build's code.
-    static SkinProvenance current(const Scene &scene, const SkinOptions &options);
-    // Why the database cannot serve `scene`; empty when it can.
-    std::string mismatch_for(const Scene &scene) const;
-    // The first field that differs from `other`, named with both values
-    // ("options 'voxel=1 ...' against 'voxel=0.5 ...'"); empty when none does.
-    std::string difference(const SkinProvenance &other) const;
-    bool operator==(const SkinProvenance &o) const { return difference(o).empty(); }
-};
+// What a skin database was made for: "FINGERPRINT meshes=M triangles=T",
+// the scene's geometry fingerprint and counts.
+std::string skin_scene_provenance(const Scene &scene);
 
 class OccluderSkinDatabase {
 public:
-    SkinProvenance provenance;
+    DatabaseProvenance provenance;
+    std::uint32_t meshes = 0;                           // the scene's (its provenance's meshes=)
     std::map<std::uint32_t, std::vector<Aabb>> skins;   // mesh -> its boxes
     std::map<std::uint32_t, std::string> skipped;       // mesh -> why it has none
 
+    // The provenance of a database of `scene`'s skins made here with `options`.
+    static DatabaseProvenance provenance_for(const Scene &scene, const SkinOptions &options);
     // Skins of the meshes of shard I of N (see scene_skins) of `scene`.
     static OccluderSkinDatabase make(const Scene &scene, const SkinOptions &options, int shard = 1, int shards = 1,
                                      const std::function<void(std::size_t, std::size_t)> &progress = {});
@@ -192,7 +178,8 @@ public:
 
     void save(const std::string &path) const;
     // Throws std::runtime_error naming the file and the line of what is
-    // wrong (a coordinate that is not a finite float among it).
+    // wrong (a coordinate that is not a finite float among it), or another
+    // algorithm's database.
     static OccluderSkinDatabase load(const std::string &path);
     // Joins shards. Throws std::runtime_error when their provenance differs
     // (naming the difference) or a mesh is in more than one; `names`, when

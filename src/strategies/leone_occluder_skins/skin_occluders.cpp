@@ -55,7 +55,7 @@ SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, in
         return;
     }
     const OccluderSkinDatabase db = OccluderSkinDatabase::load(database);
-    const std::string mismatch = db.provenance.mismatch_for(scene);
+    const std::string mismatch = db.provenance.mismatch(skin_scene_provenance(scene));
     if (!mismatch.empty())
         throw std::runtime_error(database + ": " + mismatch);
     for (const auto &[mesh, boxes] : db.skins)
@@ -104,9 +104,7 @@ DatabaseNeed skin_database_need()
     need.setting = "skin-database";
     need.name = "skin database";
     need.provenance = [](const DatabaseRequest &r) {
-        const SkinProvenance p = SkinProvenance::current(r.context.scene, skin_options(r.settings));
-        return p.algorithm + " code " + p.code + " options " + p.options + " scene " + p.scene + " " +
-               std::to_string(p.meshes) + " " + std::to_string(p.triangles);
+        return OccluderSkinDatabase::provenance_for(r.context.scene, skin_options(r.settings));
     };
     need.make = [](const DatabaseRequest &r, const std::string &path) {
         OccluderSkinDatabase::make(r.context.scene, skin_options(r.settings)).save(path);

@@ -1,16 +1,9 @@
 #include "strategies/poon_wang_opacity_maps/occluder_database.h"
 
-#include "preprocessing_code_hash.h"
-
-#include "cli/number_fields.h"
-
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <map>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 namespace occu {
@@ -34,72 +27,14 @@ float heading_angle(const Camera &camera)
     return angle < 0.0f ? angle + two_pi : angle;
 }
 
-// FNV-1a: stable across runs and machines.
-std::string short_hash(const std::string &text)
-{
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    char hex[17];
-    std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));
-    return std::string(hex, 12);
-}
-
 }  // namespace
 
-const char *preprocessing_code_hash()
+std::string grid_settings(const OccluderGrid &g)
 {
-    return OCCU_PREPROCESSING_CODE_HASH;
-}
-
-const char *mesa_build()
-{
-    return OCCU_MESA_BUILD;
-}
-
-DatabaseProvenance DatabaseProvenance::current(const Hierarchy &hierarchy, const std::string &options, int resolution)
-{
-    DatabaseProvenance p;
-    p.code = preprocessing_code_hash();
-    p.options = options;
-    p.resolution = resolution;
-    p.scene = hierarchy.fingerprint();
-    p.leaves = std::uint32_t(hierarchy.leaf_count());
-    p.triangles = hierarchy.root().subtree_triangles;
-    p.mesa = mesa_build();
-    return p;
-}
-
-std::string DatabaseProvenance::mismatch_for(const Hierarchy &hierarchy) const
-{
-    if (scene != hierarchy.fingerprint() || leaves != hierarchy.leaf_count() ||
-        triangles != hierarchy.root().subtree_triangles)
-        return "made for another scene or hierarchy (" + std::to_string(triangles) + " triangles in " +
-               std::to_string(leaves) + " leaves, fingerprint " + scene + "; this one has " +
-               std::to_string(hierarchy.root().subtree_triangles) + " in " + std::to_string(hierarchy.leaf_count()) +
-               ", fingerprint " + hierarchy.fingerprint() + ")";
-    if (mesa != mesa_build())
-        return "made with another Mesa (" + mesa + "; this program runs on " + mesa_build() + ")";
-    return {};
-}
-
-std::string DatabaseProvenance::key(const OccluderGrid &g) const
-{
-    std::ostringstream s;
-    s.precision(9);
-    s << algorithm << ' ' << code << ' ' << options << ' ' << resolution << ' ' << scene << ' ' << leaves << ' '
-      << triangles << ' ' << mesa << ' ' << g.origin.x << ' ' << g.origin.y << ' ' << g.origin.z << ' '
-      << g.spacing.x << ' ' << g.spacing.y << ' ' << g.spacing.z << ' ' << g.points.x << ' ' << g.points.y << ' '
-      << g.points.z << ' ' << g.directions;
-    return short_hash(s.str());
-}
-
-bool DatabaseProvenance::operator==(const DatabaseProvenance &o) const
-{
-    return algorithm == o.algorithm && code == o.code && options == o.options && resolution == o.resolution &&
-           scene == o.scene && leaves == o.leaves && triangles == o.triangles && mesa == o.mesa;
+    auto triple = [](const auto &v) { return exact_number(v.x) + "," + exact_number(v.y) + "," + exact_number(v.z); };
+    return "grid-origin=" + triple(g.origin) + " grid-spacing=" + triple(g.spacing) + " grid-points=" +
+           std::to_string(g.points.x) + "," + std::to_string(g.points.y) + "," + std::to_string(g.points.z) +
+           " headings=" + std::to_string(g.directions);
 }
 
 OccluderGrid OccluderGrid::over_scene(const Aabb &bounds, const glm::ivec3 &points, int directions, float eye_height)
@@ -196,130 +131,55 @@ std::vector<std::uint32_t> OccluderDatabase::occluders_for(const Camera &camera)
 
 void OccluderDatabase::save(const std::string &path) const
 {
-    std::ofstream out(path);
-    if (!out)
-        throw std::runtime_error(path + ": cannot write");
-    const DatabaseProvenance &p = provenance;
-    out << "occu-occluder-database 2\n";
-    out << "algorithm " << p.algorithm << ' ' << p.code << '\n';
-    out << "options " << p.options << '\n';
-    out << "resolution " << p.resolution << '\n';
-    out << "scene " << p.scene << ' ' << p.leaves << ' ' << p.triangles << '\n';
-    out << "mesa " << p.mesa << '\n';
-    out.precision(9);
-    out << "grid " << grid.origin.x << ' ' << grid.origin.y << ' ' << grid.origin.z << ' ' << grid.spacing.x << ' '
-        << grid.spacing.y << ' ' << grid.spacing.z << ' ' << grid.points.x << ' ' << grid.points.y << ' '
-        << grid.points.z << ' ' << grid.directions << '\n';
+    DatabaseWriter out(path, "occluder-sets", 1, provenance);
     for (const auto &[view, list] : views) {
-        out << "view " << view;
+        out.out() << "view " << view;
         for (std::uint32_t id : list)
-            out << ' ' << id;
-        out << '\n';
+            out.out() << ' ' << id;
+        out.out() << '\n';
     }
-    if (!out.flush())
-        throw std::runtime_error(path + ": write failed");
+    out.finish();
 }
 
 OccluderDatabase OccluderDatabase::load(const std::string &path)
 {
-    std::ifstream in(path);
-    if (!in)
-        throw std::runtime_error(path + ": cannot open occluder database");
+    DatabaseReader in(path, "occluder-sets", 1, "occluder database");
+    in.require_algorithm("minimum-occluder-set");
     OccluderDatabase db;
-    std::string line;
-    int number = 0;
-    bool header = false, have_grid = false;
-    std::map<std::string, bool> seen;   // provenance records
-    auto fail = [&](const std::string &what) {
-        throw std::runtime_error(path + ":" + std::to_string(number) + ": " + what);
-    };
-    while (std::getline(in, line)) {
-        ++number;
-        if (const auto hash = line.find('#'); hash != std::string::npos)
-            line.erase(hash);
-        std::istringstream fields(line);
-        std::string key;
-        if (!(fields >> key))
-            continue;
-        if (!header) {
-            int version = 0;
-            if (key != "occu-occluder-database" || !(fields >> version))
-                fail("not an occu occluder database (expected 'occu-occluder-database 2')");
-            if (version == 1)
-                fail("made by an older occu-preprocess that recorded no provenance; make it again");
-            if (version != 2)
-                fail("occluder database version " + std::to_string(version) + ", this program reads version 2");
-            header = true;
-        } else if (key == "algorithm" || key == "options" || key == "resolution" || key == "scene" || key == "mesa") {
-            if (seen[key])
-                fail(key + " repeats");
-            seen[key] = true;
-            DatabaseProvenance &p = db.provenance;
-            std::string rest;
-            std::getline(fields >> std::ws, rest);
-            std::istringstream values(rest);
-            if (key == "algorithm") {
-                if (!(values >> p.algorithm >> p.code) || p.algorithm != "minimum-occluder-set")
-                    fail("algorithm wants 'minimum-occluder-set CODE'");
-            } else if (key == "options") {
-                p.options = rest;
-            } else if (key == "resolution") {
-                if (!(values >> p.resolution) || p.resolution < 1 || p.resolution > 65535)
-                    fail("resolution wants a positive integer");
-            } else if (key == "scene") {
-                if (!(values >> p.scene >> p.leaves >> p.triangles))
-                    fail("scene wants FINGERPRINT LEAVES TRIANGLES");
-            } else if (!(values >> p.mesa)) {
-                fail("mesa wants the Mesa build that made the database");
-            }
-        } else if (key == "grid") {
-            OccluderGrid &g = db.grid;
-            static const char *const coordinate_names[6] = {"OX", "OY", "OZ", "SX", "SY", "SZ"};
-            std::string text;
-            for (int i = 0; i < 6 && fields >> text; ++i) {
-                float value = 0.0f;
-                if (const std::string why = read_finite_float(text, value); !why.empty())
-                    fail(std::string(coordinate_names[i]) + " is '" + text + "', " + why);
-                (i < 3 ? g.origin : g.spacing)[i % 3] = value;
-            }
-            if (!fields || !(fields >> g.points.x >> g.points.y >> g.points.z >> g.directions) || g.points.x < 1 ||
-                g.points.y < 1 || g.points.z < 1 || g.directions < 1 ||
-                double(g.points.x) * g.points.y * g.points.z * g.directions > 1e8)
-                fail("grid wants OX OY OZ SX SY SZ NX NY NZ DIRECTIONS with positive counts");
-            // The last point's views stand at origin + (points - 1) * spacing.
-            for (int a = 0; a < 3; ++a)
-                if (std::fabs(double(g.origin[a]) + double(g.points[a] - 1) * double(g.spacing[a])) >
-                    double(std::numeric_limits<float>::max()))
-                    fail("grid points reach beyond float range along " + std::string(1, "xyz"[a]));
-            have_grid = true;
-        } else if (key == "view") {
-            if (!have_grid)
-                fail("view before grid");
-            std::uint32_t view = 0;
-            if (!(fields >> view) || view >= db.grid.view_count())
-                fail("view index missing or outside the grid");
-            if (db.views.count(view))
-                fail("view " + std::to_string(view) + " repeats");
-            std::vector<std::uint32_t> &list = db.views[view];
-            long long id = 0;
-            while (fields >> id) {
-                if (id < 0 || id > std::numeric_limits<std::uint32_t>::max())
-                    fail("occluder id out of range");
-                list.push_back(std::uint32_t(id));
-            }
-            if (!fields.eof())
-                fail("occluder ids must be integers");
-        } else {
-            fail("unknown record '" + key + "'");
-        }
+    db.provenance = in.provenance();
+    db.resolution = int(in.setting("resolution", 1, 65535));
+    OccluderGrid &g = db.grid;
+    const float max = std::numeric_limits<float>::max();
+    const std::vector<double> origin = in.setting("grid-origin", 3, -max, max);
+    const std::vector<double> spacing = in.setting("grid-spacing", 3, -max, max);
+    const std::vector<double> points = in.setting("grid-points", 3, 1, 1e8);
+    const double headings = in.setting("headings", 1, 1e8);
+    g.directions = int(headings);
+    if (double(g.directions) != headings)
+        in.fail_at(in.settings_line(), "settings: headings wants a whole number");
+    for (int a = 0; a < 3; ++a) {
+        g.origin[a] = float(origin[std::size_t(a)]);
+        g.spacing[a] = float(spacing[std::size_t(a)]);
+        g.points[a] = int(points[std::size_t(a)]);
+        if (double(g.points[a]) != points[std::size_t(a)])
+            in.fail_at(in.settings_line(), "settings: grid-points wants whole numbers");
+        // The last point's views stand at origin + (points - 1) * spacing.
+        if (std::fabs(double(g.origin[a]) + double(g.points[a] - 1) * double(g.spacing[a])) > double(max))
+            in.fail_at(in.settings_line(), "settings: the grid's points reach beyond float range along " +
+                                               std::string(1, "xyz"[a]));
     }
-    if (!header)
-        throw std::runtime_error(path + ": empty file, not an occluder database");
-    for (const char *record : {"algorithm", "options", "resolution", "scene", "mesa"})
-        if (!seen[record])
-            throw std::runtime_error(path + ": no " + std::string(record) + " record (its provenance is unknown)");
-    if (!have_grid)
-        throw std::runtime_error(path + ": no grid record");
+    if (double(g.points.x) * g.points.y * g.points.z * g.directions > 1e8)
+        in.fail_at(in.settings_line(), "settings: the grid has more than 1e8 views");
+    while (in.next()) {
+        if (in.record() != "view")
+            in.fail("unknown record '" + in.record() + "' (an occluder database has view records)");
+        const std::uint32_t view = std::uint32_t(in.count("the view", db.grid.view_count() - 1));
+        if (db.views.count(view))
+            in.fail("view " + std::to_string(view) + " repeats");
+        std::vector<std::uint32_t> &list = db.views[view];
+        while (in.more())
+            list.push_back(std::uint32_t(in.count("an occluder", std::numeric_limits<std::uint32_t>::max())));
+    }
     return db;
 }
 
@@ -330,9 +190,9 @@ OccluderDatabase OccluderDatabase::merge(const std::vector<OccluderDatabase> &sh
     OccluderDatabase out = shards.front();
     for (std::size_t s = 1; s < shards.size(); ++s) {
         const OccluderDatabase &d = shards[s];
-        if (!(d.grid == out.grid) || !(d.provenance == out.provenance))
-            throw std::runtime_error("merge: shard " + std::to_string(s + 1) +
-                                     " was made for another grid, scene, options, code or Mesa than the first");
+        if (const std::string diff = d.provenance.difference(out.provenance); !diff.empty())
+            throw std::runtime_error("merge: shard " + std::to_string(s + 1) + " was made otherwise than the first: " +
+                                     diff);
         for (const auto &[view, list] : d.views)
             if (!out.views.emplace(view, list).second)
                 throw std::runtime_error("merge: view " + std::to_string(view) + " is in more than one shard");

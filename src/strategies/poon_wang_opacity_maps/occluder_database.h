@@ -9,16 +9,14 @@
 // directions: `directions` horizontal headings, heading d at angle
 // 2 pi d / directions from +x towards +z. View v = point * directions + d.
 //
-// File format (text, one record per line, '#' comments):
-//   occu-occluder-database 2
-//   algorithm minimum-occluder-set CODE   the preprocessing and a hash of its code
-//   options KEY=VALUE ...                 how it was made (PreprocessOptions)
-//   resolution R                          the run-time maps it serves (R x R)
-//   scene FINGERPRINT LEAVES TRIANGLES    the scene and hierarchy it was made for
-//   mesa BUILD                            the Mesa (version, patch series) that made it
-//   grid OX OY OZ SX SY SZ NX NY NZ DIRECTIONS
+// File format: occu's database format (culling/database_file.h), kind
+// occluder-sets version 1, algorithm minimum-occluder-set; its settings
+// are those of the preprocessing (PreprocessOptions::describe(), among
+// them resolution=R, the run-time maps it serves, R x R), the grid
+//   grid-origin=OX,OY,OZ grid-spacing=SX,SY,SZ grid-points=NX,NY,NZ headings=D
+// and the lens of its views; its scene, scene_provenance(hierarchy). The payload:
 //   view V ID ID ...                      one line per view that was processed
-// A shard holds some views; merge() joins shards of one provenance and grid.
+// A shard holds some views; merge() joins shards of one provenance.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +27,7 @@
 #include <glm/glm.hpp>
 
 #include "camera/camera.h"
+#include "culling/database_file.h"
 #include "spatial/hierarchy.h"
 
 namespace occu {
@@ -54,36 +53,16 @@ struct OccluderGrid {
     bool operator==(const OccluderGrid &o) const;
 };
 
-// What a database was made from, by and for. The run time refuses a
-// database made for another scene, hierarchy, resolution or Mesa, naming
-// the difference; occu-preprocess names cached databases by key().
-struct DatabaseProvenance {
-    std::string algorithm = "minimum-occluder-set";
-    std::string code;      // a hash of the preprocessing sources (preprocessing_code_hash)
-    std::string options;   // PreprocessOptions::describe()
-    int resolution = 0;
-    std::string scene;     // Hierarchy::fingerprint()
-    std::uint32_t leaves = 0, triangles = 0;
-    std::string mesa;      // mesa_build()
-
-    // For a database about to be made here: this build's code and Mesa.
-    static DatabaseProvenance current(const Hierarchy &hierarchy, const std::string &options, int resolution);
-    // Why the database cannot serve `hierarchy` on this build's Mesa; empty when it can.
-    std::string mismatch_for(const Hierarchy &hierarchy) const;
-    // A short hash of everything above with the grid: a cache name.
-    std::string key(const OccluderGrid &grid) const;
-    bool operator==(const DatabaseProvenance &o) const;
-};
-
-// The hash of the preprocessing sources and the Mesa build this program
-// was built with (set by the build, src/meson.build).
-const char *preprocessing_code_hash();
-const char *mesa_build();
+// The grid as a database's settings record it
+// ("grid-origin=... grid-spacing=... grid-points=... headings=D").
+std::string grid_settings(const OccluderGrid &grid);
 
 class OccluderDatabase {
 public:
     DatabaseProvenance provenance;
+    // Of its settings: the grid, and the run-time maps' resolution (R x R).
     OccluderGrid grid;
+    int resolution = 0;
     std::map<std::uint32_t, std::vector<std::uint32_t>> views;   // view -> occluders, best first
 
     // The occluders for `camera`: the nearest view's list (or, if that view
@@ -97,9 +76,11 @@ public:
 
     void save(const std::string &path) const;
     // Throws std::runtime_error naming the file and line of what is wrong
-    // (a grid number that is not a finite float among it).
+    // (a grid number that is not a finite float among it), or another
+    // algorithm's database.
     static OccluderDatabase load(const std::string &path);
-    // Joins shards; throws if their provenance or grids differ or a view repeats.
+    // Joins shards; throws if their provenance differs (naming the
+    // difference) or a view repeats.
     static OccluderDatabase merge(const std::vector<OccluderDatabase> &shards);
 };
 

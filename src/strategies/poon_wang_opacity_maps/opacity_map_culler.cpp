@@ -44,7 +44,7 @@ public:
                 throw std::invalid_argument("selection=mos needs database=FILE (made by occu-preprocess, or on demand "
                                             "by a program's database provider)");
             database_.emplace(OccluderDatabase::load(path));
-            const std::string mismatch = database_->provenance.mismatch_for(hierarchy_);
+            const std::string mismatch = database_->provenance.mismatch(scene_provenance(hierarchy_));
             if (!mismatch.empty())
                 throw std::runtime_error(path + ": " + mismatch);
         }
@@ -67,9 +67,9 @@ public:
         const int w = frame.width, h = frame.height, k = divisor_;
         map_width_ = (w + k - 1) / k;
         map_height_ = (h + k - 1) / k;
-        if (database_ && database_->provenance.resolution != map_width_)
+        if (database_ && database_->resolution != map_width_)
             throw std::runtime_error("the occluder database was made for maps of " +
-                                     std::to_string(database_->provenance.resolution) + " pixels, this frame's are " +
+                                     std::to_string(database_->resolution) + " pixels, this frame's are " +
                                      std::to_string(map_width_) + " (frame " + std::to_string(w) +
                                      " / map-divisor " + std::to_string(k) + ")");
         const std::vector<std::uint32_t> occluders = choose_occluders(frame, selection);
@@ -246,10 +246,7 @@ DatabaseNeed mos_database_need()
     need.read_by = [](const Settings &s) { return s.text("selection") == "mos"; };
     need.provenance = [](const DatabaseRequest &r) {
         const MosDatabase m(r);
-        return DatabaseProvenance::current(r.context.hierarchy, m.options.describe(), m.options.stacks.resolution)
-                   .key(m.grid) +
-               " lens " + std::to_string(m.lens.near_plane) + " " + std::to_string(m.lens.far_plane) + " " +
-               std::to_string(m.lens.fovy_degrees);
+        return occluder_database_for(r.context.hierarchy, m.grid, m.lens, m.options).provenance;
     };
     need.make = [](const DatabaseRequest &r, const std::string &path) {
         const MosDatabase m(r);

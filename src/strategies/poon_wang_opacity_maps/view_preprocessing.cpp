@@ -67,12 +67,24 @@ std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &render
     return select_without_redundancy(ids, camera, ordered, nodes, options.stacks.resolution, options.max_occluders);
 }
 
+OccluderDatabase occluder_database_for(const Hierarchy &hierarchy, const OccluderGrid &grid, const Camera &lens,
+                                       const PreprocessOptions &options)
+{
+    OccluderDatabase db;
+    db.provenance = DatabaseProvenance::current(
+        "minimum-occluder-set",
+        options.describe() + " " + grid_settings(grid) + " lens=" + exact_number(lens.fovy_degrees) + "," +
+            exact_number(lens.aspect) + "," + exact_number(lens.near_plane) + "," + exact_number(lens.far_plane),
+        scene_provenance(hierarchy), true);
+    db.grid = grid;
+    db.resolution = options.stacks.resolution;
+    return db;
+}
+
 OccluderDatabase preprocess_database(const SceneRenderer &renderer, const Hierarchy &hierarchy, const OccluderGrid &grid,
                                      const Camera &lens, const PreprocessOptions &options)
 {
-    OccluderDatabase db;
-    db.provenance = DatabaseProvenance::current(hierarchy, options.describe(), options.stacks.resolution);
-    db.grid = grid;
+    OccluderDatabase db = occluder_database_for(hierarchy, grid, lens, options);
     const OccluderGrid &g = db.grid;
     for (std::uint32_t v = 0; v < g.view_count(); ++v)
         db.views[v] = select_occluders_for_view(renderer, hierarchy, g.view_camera(v, lens), options);

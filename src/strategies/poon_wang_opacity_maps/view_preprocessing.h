@@ -51,6 +51,12 @@ std::vector<std::uint32_t> select_occluders_for_view(const SceneRenderer &render
                                                      const Camera &camera, const PreprocessOptions &options,
                                                      PreprocessStats *stats = nullptr);
 
+// A database to be made here, its views still to select: its provenance
+// (this program's code and Mesa; its settings `options`' with the grid and
+// the lens of the views), its grid and its maps' resolution.
+OccluderDatabase occluder_database_for(const Hierarchy &hierarchy, const OccluderGrid &grid, const Camera &lens,
+                                       const PreprocessOptions &options);
+
 // A whole database made here, for the grid's every view with the lens
 // `lens`, selected by select_occluders_for_view with `options`
 // (options.stacks.resolution: the run-time maps' resolution). Needs what

@@ -51,16 +51,17 @@ public:
         const std::string &path = settings.text("pvs-database");
         if (!path.empty()) {
             database_.emplace(PvsDatabase::load(path));
-            if (database_->provenance.hierarchy != context.hierarchy.fingerprint())
-                throw std::runtime_error(path + " was made for another scene or hierarchy (hierarchy " +
-                                         database_->provenance.hierarchy + ", this one " +
-                                         context.hierarchy.fingerprint() + ")");
+            if (const std::string mismatch = database_->provenance.mismatch(scene_provenance(context.hierarchy));
+                !mismatch.empty())
+                throw std::runtime_error(path + ": " + mismatch);
             // The database was made with its own settings (its provenance):
             // one given beside it that differs would be silently ignored.
-            const PvsProvenance &made = database_->provenance;
+            const ViewCellOptions &cells = database_->cell_options;
+            const ViewCellVisibilityOptions &visibility = database_->visibility_options;
             const std::pair<const char *, double> made_with[] = {
-                {"epsilon", made.epsilon},   {"pixel", made.pixel},         {"max-edge", made.max_edge},
-                {"cell-top", made.top},      {"clearance", made.clearance}, {"initial-extent", made.initial_extent}};
+                {"epsilon", visibility.epsilon}, {"pixel", visibility.pixel}, {"max-edge", cells.max_edge},
+                {"cell-top", cells.top},         {"clearance", cells.clearance},
+                {"initial-extent", visibility.initial_extent}};
             for (const auto &[key, value] : made_with)
                 if ((":" + settings.changed()).find(":" + std::string(key) + "=") != std::string::npos &&
                     settings.number(key) != value)
@@ -68,7 +69,7 @@ public:
                                                 " is not what " + path + " was made with (" + std::to_string(value) +
                                                 "): it is the database's to say; give it to occu-preprocess "
                                                 "view-cells, not beside pvs-database");
-            cells_.emplace(database_->cells, database_->cell_options());
+            cells_.emplace(database_->cells, database_->cell_options);
         } else {
             const Scene &scene = context.scene;
             cells_.emplace(glm::dvec2(scene.bounds.min.x, scene.bounds.min.z),
@@ -196,9 +197,8 @@ StrategyFamily view_cell_family()
     sets.setting = "pvs-database";
     sets.name = "PVS database";
     sets.provenance = [](const DatabaseRequest &r) {
-        const PvsProvenance p =
-            PvsProvenance::current(r.context.hierarchy, cell_options(r.settings), visibility_options(r.settings));
-        return "view-cells hierarchy " + p.hierarchy + " " + std::to_string(p.leaves) + " " + p.describe_options();
+        return PvsDatabase::start(r.context.hierarchy, cell_options(r.settings), visibility_options(r.settings))
+            .provenance;
     };
     sets.make = [](const DatabaseRequest &r, const std::string &path) {
         PvsDatabase::make(r.context.scene, r.context.hierarchy, cell_options(r.settings), visibility_options(r.settings),

@@ -15,7 +15,7 @@ printf 'hello\n' > "$dir/bad.db"
 printf 'o wall\nv 0 0 0\nv 1 0 0\nv 1 nan 0\nf 1 2 3\n' > "$dir/nan.obj"
 printf '0 1.7 0 10 1.7 0\n0 1.7 0 nan 1.7 0\n' > "$dir/nan.route"
 printf '0 0 5 0 0 0\n' > "$dir/box.route"
-printf 'occu-occluder-database 2\nalgorithm minimum-occluder-set c\noptions x\nresolution 32\nscene f 1 2\nmesa m\ngrid 0 0 0 1 inf 1 2 1 2 4\n' > "$dir/inf.db"
+printf 'occu-database occluder-sets 1\nalgorithm minimum-occluder-set\nsettings resolution=32 grid-origin=0,0,0 grid-spacing=1,inf,1 grid-points=2,1,2 headings=4\nscene f leaves=1 triangles=2\ncode c\nmesa m\nend\n' > "$dir/inf.db"
 # Debian's assimp-testmodels (tools/deps.sh test installs it): a box whose
 # vertices include infinities.
 infinite_box=$(dpkg -L assimp-testmodels 2>/dev/null | grep '/BoxWithInfinites\.glb$' | head -n 1)
@@ -45,7 +45,7 @@ expect_error "cannot make the database directory '/proc/occu-databases'" "$walkt
     --strategies om-mos:database-grid=1:database-headings=1 --databases /proc/occu-databases --out "$dir/walk"
 expect_error "needs the oracle" "$walkthrough" --strategies vfc,ideal --oracle off
 expect_error "bad.db" "$walkthrough" --frames 1 --strategies om-mos --occluder-db "$dir/bad.db"
-expect_error "another scene or hierarchy" "$walkthrough" --frames 1 --strategies om-mos --leaf-triangles 512 \
+expect_error "small.db: made for another scene" "$walkthrough" --frames 1 --strategies om-mos --leaf-triangles 512 \
     --occluder-db "$dir/small.db"
 expect_error "random:N:SEED" "$walkthrough" --frames 1 --route random:0:1
 expect_error "broken.obj" "$walkthrough" --frames 1 --scene "$dir/broken.obj"
@@ -62,8 +62,8 @@ expect_error "cannot open the archive '$dir/no-such.pk3'" "$walkthrough" --frame
 expect_error "holds no member 'maps/no-such-level.bsp'" "$walkthrough" --frames 1 --scene "$pak:maps/no-such-level.bsp"
 expect_error "route 'spawn': the scene is not a Quake III level" "$walkthrough" --frames 1 --route spawn
 expect_error "nan.route:2: tx is 'nan'" "$walkthrough" --frames 1 --route "$dir/nan.route"
-expect_error "inf.db:7: SY is 'inf'" "$walkthrough" --frames 1 --strategies om-mos --occluder-db "$dir/inf.db"
-expect_error "inf.db:7: SY is 'inf'" "$preprocess" views --out "$dir/x.route" "$dir/inf.db"
+expect_error "inf.db:3: settings: grid-spacing is '1,inf,1'" "$walkthrough" --frames 1 --strategies om-mos --occluder-db "$dir/inf.db"
+expect_error "inf.db:3: settings: grid-spacing is '1,inf,1'" "$preprocess" views --out "$dir/x.route" "$dir/inf.db"
 expect_error "short.route" "$walkthrough" --frames 1 --route "$dir/short.route"
 expect_error "map-divisor" "$walkthrough" --strategies om-ps:map-divisor=0
 expect_error "--nonsense" "$walkthrough" --nonsense 1

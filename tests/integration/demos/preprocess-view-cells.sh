@@ -38,7 +38,7 @@ expect_error "--clearance" "$bin" view-cells --clearance -1 --out "$dir/x.pvs"
 expect_error "--cells" "$bin" view-cells --cells 5 --out "$dir/x.pvs"
 expect_error "--test" "$bin" view-cells --test sometimes --out "$dir/x.pvs"
 sed 's/^cell 3 .*/cell 3 1 2 3 4 5 nan/' "$dir/whole.pvs" > "$dir/bad.pvs"
-expect_error "bad.pvs:8" "$bin" merge --out "$dir/x.pvs" "$dir/bad.pvs"
+expect_error "bad.pvs:11: cell: z is 'nan', not a finite number" "$bin" merge --out "$dir/x.pvs" "$dir/bad.pvs"
 [ "$failures" -eq 0 ] || fail "$failures bad inputs not refused as they should be"
 
 # The walkthrough culls with it (a camera in one of the cells made: the

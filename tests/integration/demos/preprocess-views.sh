@@ -10,18 +10,18 @@ trap 'rm -rf "$dir"' EXIT
 # 3 x 1 x 3 points 10 apart from (0, 2, 0), 4 headings. The inner point
 # (1, 0, 1) is point 4: views 16..19. View 0 is outer, view 17 empty.
 cat > "$dir/db.txt" <<'DB'
-occu-occluder-database 2
-algorithm minimum-occluder-set 0123456789ab
-options resolution=128
-resolution 128
-scene 0000000000000001 1 1
+occu-database occluder-sets 1
+algorithm minimum-occluder-set
+settings resolution=128 grid-origin=0,2,0 grid-spacing=10,0,10 grid-points=3,1,3 headings=4
+scene 0000000000000001 leaves=1 triangles=1
+code 0123456789ab
 mesa 22.3.6/test
-grid 0 2 0 10 0 10 3 1 3 4
 view 0 5
 view 16 1 2
 view 17
 view 18 3
 view 19 4
+end
 DB
 expect() {
     if [ "$1" != "$2" ]; then

@@ -553,10 +553,12 @@ Scene sample_scene()
     return scene;
 }
 
-const char *const sample_header = "occu-occluder-skins 1\n"
-                                  "algorithm occluder-skins 0123456789ab\n"
-                                  "options voxel=0.5 max-boxes=8 min-volume=1 start=densest\n"
-                                  "scene 00000000deadbeef 10 1200\n";
+const char *const sample_header = "occu-database occluder-skins 1\n"
+                                  "algorithm occluder-skins\n"
+                                  "settings voxel=0.5 max-boxes=8 min-volume=1 start=densest\n"
+                                  "scene 00000000deadbeef meshes=10 triangles=1200\n"
+                                  "code 0123456789ab\n"
+                                  "mesa none\n";
 
 }  // namespace
 
@@ -568,11 +570,15 @@ TEST(OccluderSkinsDatabase, RoundTripsThroughItsFile)
     EXPECT_EQ(db.skipped.size(), 2u);   // leaky, thin
     EXPECT_GT(db.boxes(2).size(), 1u);
     EXPECT_TRUE(db.boxes(1).empty());
-    EXPECT_EQ(db.provenance.code, std::string(skins_code_hash()));
-    EXPECT_EQ(db.provenance.options, SkinOptions{}.describe());
-    EXPECT_EQ(db.provenance.meshes, scene.meshes.size());
-    EXPECT_EQ(db.provenance.triangles, scene.triangle_count());
-    EXPECT_TRUE(db.provenance.mismatch_for(scene).empty());
+    EXPECT_EQ(db.provenance.algorithm, "occluder-skins");
+    EXPECT_EQ(db.provenance.code, std::string(library_code_hash()));
+    EXPECT_EQ(db.provenance.mesa, "none") << "skins are pure geometry";
+    EXPECT_EQ(db.provenance.settings, SkinOptions{}.describe());
+    EXPECT_EQ(db.provenance.scene, scene_geometry_fingerprint(scene) + " meshes=" +
+                                       std::to_string(scene.meshes.size()) + " triangles=" +
+                                       std::to_string(scene.triangle_count()));
+    EXPECT_EQ(db.meshes, scene.meshes.size());
+    EXPECT_TRUE(db.provenance.mismatch(skin_scene_provenance(scene)).empty());
 
     const std::string path = ::testing::TempDir() + "skins_roundtrip.txt";
     db.save(path);
@@ -583,7 +589,7 @@ TEST(OccluderSkinsDatabase, RoundTripsThroughItsFile)
     // Another scene is named as such.
     Scene other = scene;
     other.meshes[0].positions[0].x += 0.5f;
-    EXPECT_NE(back.provenance.mismatch_for(other).find("made for another scene"), std::string::npos);
+    EXPECT_NE(back.provenance.mismatch(skin_scene_provenance(other)).find("made for another scene"), std::string::npos);
 }
 
 TEST(OccluderSkinsDatabase, BadLinesAreRefusedNamingFileAndLine)
@@ -592,15 +598,17 @@ TEST(OccluderSkinsDatabase, BadLinesAreRefusedNamingFileAndLine)
     struct Case {
         std::string body, expect;
     } cases[] = {
-        {"skins 3 1 0 0 0 1 1\n", ":5: mesh 3: 1 boxes want 6 numbers"},
-        {"skins 3 1 0 0 0 1 1 1 9\n", ":5: mesh 3: more numbers"},
-        {"skins 3 1 0 0 0 1 x 1\n", ":5: box 0 of mesh 3: Y1 is 'x', not a number"},
-        {"skins 3 1 0 2 0 1 1 1\n", ":5: box 0 of mesh 3 is empty"},
-        {"skins 10 0\n", ":5: skins wants a mesh index below the scene's 10 meshes"},
-        {"skins 3 0\nskipped 3 why\n", ":6: mesh 3 repeats"},
-        {"skipped 4\n", ":5: skipped wants MESH REASON"},
-        {"boxes 3 0\n", ":5: unknown record 'boxes'"},
-        {"scene 00000000deadbeef 10 1200\n", ":5: scene repeats"},
+        {"skins 3 1 0 0 0 1 1\nend\n", ":7: skins: box 0 of mesh 3: Z1 missing"},
+        {"skins 3 1 0 0 0 1 1 1 9\nend\n", ":7: skins: more fields than it takes ('9')"},
+        {"skins 3 1 0 0 0 1 x 1\nend\n", ":7: skins: box 0 of mesh 3: Y1 is 'x', not a number"},
+        {"skins 3 1 0 2 0 1 1 1\nend\n", ":7: box 0 of mesh 3 is empty"},
+        {"skins 10 0\nend\n", ":7: skins: the mesh is 10, more than 9"},
+        {"skins -1 0\nend\n", ":7: skins: the mesh is '-1', not a whole number"},
+        {"skins 3 0\nskipped 3 why\nend\n", ":8: mesh 3 repeats"},
+        {"skipped 4\nend\n", ":7: skipped wants MESH REASON"},
+        {"boxes 3 0\nend\n", ":7: unknown record 'boxes'"},
+        {"scene 00000000deadbeef meshes=10 triangles=1200\nend\n", ":7: unknown record 'scene'"},
+        {"skins 3 0\n", ":8: ends before its end record"},
     };
     int k = 0;
     for (const Case &c : cases) {
@@ -608,18 +616,27 @@ TEST(OccluderSkinsDatabase, BadLinesAreRefusedNamingFileAndLine)
         const std::string error = load_error(temp_file(name, header + c.body));
         EXPECT_NE(error.find(name + c.expect), std::string::npos) << error;
     }
-    EXPECT_NE(load_error(temp_file("skins_notdb.txt", "occu-occluder-database 2\n")).find("skins_notdb.txt:1: not an occu occluder skin database"),
+    EXPECT_NE(load_error(temp_file("skins_notdb.txt", "occu-database occluder-sets 1\n"))
+                  .find("skins_notdb.txt:1: a database of occluder-sets, not an occu occluder skin database"),
               std::string::npos);
-    EXPECT_NE(load_error(temp_file("skins_v2.txt", "occu-occluder-skins 2\n")).find("skins_v2.txt:1: occluder skin database version 2"),
+    EXPECT_NE(load_error(temp_file("skins_v2.txt", "occu-database occluder-skins 2\n"))
+                  .find("skins_v2.txt:1: occluder skin database version 2"),
               std::string::npos);
-    EXPECT_NE(load_error(temp_file("skins_early.txt", "occu-occluder-skins 1\nskins 0 0\n")).find("skins_early.txt:2: skins before the scene record"),
+    EXPECT_NE(load_error(temp_file("skins_old.txt", "occu-occluder-skins 1\n"))
+                  .find("skins_old.txt:1: 'occu-occluder-skins' is the format before occu-database"),
               std::string::npos);
-    EXPECT_NE(load_error(temp_file("skins_noopts.txt", "occu-occluder-skins 1\nalgorithm occluder-skins x\nscene f 1 1\n")).find("skins_noopts.txt: no options record"),
+    EXPECT_NE(load_error(temp_file("skins_algorithm.txt", "occu-database occluder-skins 1\nalgorithm boxes\nsettings\n"
+                                                          "scene f meshes=1\ncode c\nmesa none\nend\n"))
+                  .find("skins_algorithm.txt:2: algorithm 'boxes'"),
+              std::string::npos);
+    EXPECT_NE(load_error(temp_file("skins_nomeshes.txt", "occu-database occluder-skins 1\nalgorithm occluder-skins\n"
+                                                         "settings\nscene f\ncode c\nmesa none\nend\n"))
+                  .find("skins_nomeshes.txt:4: scene: meshes=VALUE missing"),
               std::string::npos);
     EXPECT_NE(load_error(::testing::TempDir() + "skins_missing.txt").find("skins_missing.txt: cannot open"), std::string::npos);
     // A good one loads.
     const std::string good = temp_file("skins_good.txt", header + "skins 3 2 0 0 0 1 1 1  -2 -2 -2 -1 0.5 -1  # two\n"
-                                                                  "skipped 4 not watertight: a hole\n");
+                                                                  "skipped 4 not watertight: a hole\nend\n");
     const OccluderSkinDatabase db = OccluderSkinDatabase::load(good);
     ASSERT_EQ(db.boxes(3).size(), 2u);
     EXPECT_EQ(db.boxes(3)[1].max.y, 0.5f);
@@ -631,8 +648,9 @@ TEST(OccluderSkinsDatabase, NonFiniteCoordinatesAreRefused)
     for (const char *bad : {"nan", "inf", "-inf", "1e39"}) {
         const std::string name = std::string("skins_nonfinite_") + (bad[0] == '-' ? "minf" : bad) + ".txt";
         const std::string error =
-            load_error(temp_file(name, std::string(sample_header) + "skins 2 1 0 0 0 1 " + bad + " 1\n"));
-        EXPECT_NE(error.find(name + ":5: box 0 of mesh 2: Y1 is '" + bad + "', not a finite number"), std::string::npos)
+            load_error(temp_file(name, std::string(sample_header) + "skins 2 1 0 0 0 1 " + bad + " 1\nend\n"));
+        EXPECT_NE(error.find(name + ":7: skins: box 0 of mesh 2: Y1 is '" + bad + "', not a finite number"),
+                  std::string::npos)
             << error;
     }
 }
@@ -661,7 +679,7 @@ TEST(OccluderSkinsDatabase, ShardsMergeToTheUnshardedResult)
         OccluderSkinDatabase::merge({one, other}, {"one.txt", "other.txt"});
         ADD_FAILURE() << "merged shards of different options";
     } catch (const std::runtime_error &e) {
-        EXPECT_NE(std::string(e.what()).find("other.txt was made otherwise than one.txt: options 'voxel=1 "),
+        EXPECT_NE(std::string(e.what()).find("other.txt was made otherwise than one.txt: settings 'voxel=1 "),
                   std::string::npos)
             << e.what();
     }

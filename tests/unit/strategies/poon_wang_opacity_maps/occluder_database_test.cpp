@@ -1,8 +1,9 @@
 // The occluder database file: what save writes, load reads back, with its
-// provenance; shards merge; malformed files and files without provenance
-// are refused with the file and line named; a database made for another
-// scene or hierarchy is refused naming the difference; views are found by
-// nearest point and heading.
+// provenance and the grid and resolution of its settings; shards merge;
+// malformed payload lines and grid settings are refused with the file and
+// line named (the shared header's own cases: database_file_test.cpp); a
+// database made for another scene or hierarchy is refused naming the
+// difference; views are found by nearest point and heading.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -14,6 +15,7 @@
 
 #include "scene/scene.h"
 #include "strategies/poon_wang_opacity_maps/occluder_database.h"
+#include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
 
 using namespace occu;
 
@@ -33,13 +35,9 @@ OccluderDatabase sample()
     db.grid.spacing = {10.0f, 0.0f, 10.0f};
     db.grid.points = {3, 1, 3};
     db.grid.directions = 4;
-    db.provenance.code = "0123456789ab";
-    db.provenance.options = "resolution=128 map-divisor=4";
-    db.provenance.resolution = 128;
-    db.provenance.scene = "00000000deadbeef";
-    db.provenance.leaves = 100;
-    db.provenance.triangles = 12345;
-    db.provenance.mesa = "22.3.6/install-a-b";
+    db.resolution = 128;
+    db.provenance = {"minimum-occluder-set", "resolution=128 map-divisor=4 " + grid_settings(db.grid),
+                     "00000000deadbeef leaves=100 triangles=12345", "0123456789ab", "22.3.6/install-a-b"};
     db.views[0] = {5, 3, 9};
     db.views[7] = {};
     db.views[35] = {1};
@@ -60,15 +58,17 @@ std::string error_of(const std::string &path)
 
 TEST(OccluderDatabase, SaveThenLoadGivesTheSameDatabase)
 {
-    const auto db = sample();
+    auto db = sample();
+    // Coordinates that a decimal with few digits does not hold exactly.
+    db.grid.origin = {-10.1f, 1.0f / 3.0f, 1e-7f};
+    db.grid.spacing = {9.99f, 0.0f, 3e30f};
+    db.provenance.settings = "resolution=128 map-divisor=4 " + grid_settings(db.grid);
     const std::string path = ::testing::TempDir() + "occu-db-roundtrip.txt";
     db.save(path);
     const auto back = OccluderDatabase::load(path);
     EXPECT_TRUE(back.grid == db.grid);
-    EXPECT_TRUE(back.provenance == db.provenance);
-    EXPECT_EQ(back.provenance.options, "resolution=128 map-divisor=4");
-    EXPECT_EQ(back.provenance.leaves, 100u);
-    EXPECT_EQ(back.provenance.triangles, 12345u);
+    EXPECT_TRUE(back.provenance == db.provenance) << back.provenance.difference(db.provenance);
+    EXPECT_EQ(back.resolution, 128);
     EXPECT_EQ(back.views, db.views);
 }
 
@@ -81,100 +81,128 @@ TEST(OccluderDatabase, ShardsMergeAndConflictsAreRefused)
     const auto merged = OccluderDatabase::merge({a, b});
     EXPECT_EQ(merged.views, sample().views);
     EXPECT_THROW(OccluderDatabase::merge({a, a}), std::runtime_error);   // view 0 twice
-    b.provenance.triangles = 1;
+    b.provenance.scene = "00000000deadbeef leaves=100 triangles=1";
     EXPECT_THROW(OccluderDatabase::merge({a, b}), std::runtime_error);   // another scene
     b = sample();
     b.views.erase(0);
-    b.provenance.options = "resolution=64 map-divisor=4";
-    EXPECT_THROW(OccluderDatabase::merge({a, b}), std::runtime_error);   // other options
+    b.provenance.settings = "resolution=64 map-divisor=4";
+    try {
+        OccluderDatabase::merge({a, b});
+        ADD_FAILURE() << "merged shards of other settings";
+    } catch (const std::runtime_error &e) {
+        EXPECT_NE(std::string(e.what()).find("shard 2 was made otherwise than the first: settings 'resolution=64"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
-TEST(OccluderDatabase, KeyChangesWithEveryInput)
-{
-    const auto db = sample();
-    const std::string key = db.provenance.key(db.grid);
-    EXPECT_EQ(key.size(), 12u);
-    EXPECT_EQ(key, sample().provenance.key(sample().grid));
-    auto other = sample();
-    other.provenance.options += " max-occluders=8";
-    EXPECT_NE(other.provenance.key(other.grid), key);
-    other = sample();
-    other.provenance.code = "ffffffffffff";
-    EXPECT_NE(other.provenance.key(other.grid), key);
-    other = sample();
-    other.provenance.mesa = "22.3.6/install-a-c";
-    EXPECT_NE(other.provenance.key(other.grid), key);
-    other = sample();
-    other.grid.directions = 8;
-    EXPECT_NE(other.provenance.key(other.grid), key);
-}
-
-TEST(OccluderDatabase, RefusesAnotherSceneOrMesaNamingIt)
+TEST(OccluderDatabase, ProvenanceOfAMakingHoldsItsGridLensAndOptions)
 {
     Scene scene;
     scene.meshes.emplace_back();
     append_box(scene.meshes[0], Aabb::of({0, 0, 0}, {1, 1, 1}));
     scene.update_bounds();
     const Hierarchy h = Hierarchy::build(scene);
-    DatabaseProvenance p = DatabaseProvenance::current(h, "resolution=128", 128);
-    EXPECT_EQ(p.mismatch_for(h), "");
-    EXPECT_EQ(p.mesa, mesa_build());
-    EXPECT_EQ(p.code, preprocessing_code_hash());
+    const OccluderGrid grid = OccluderGrid::over_scene(scene.bounds, {2, 1, 2}, 4, 1.7f);
+    const Camera lens;
+    PreprocessOptions options;
+    const OccluderDatabase db = occluder_database_for(h, grid, lens, options);
+    EXPECT_EQ(db.provenance.algorithm, "minimum-occluder-set");
+    EXPECT_EQ(db.provenance.code, library_code_hash());
+    EXPECT_EQ(db.provenance.mesa, mesa_build());
+    EXPECT_EQ(db.provenance.scene, scene_provenance(h));
+    EXPECT_EQ(db.resolution, options.stacks.resolution);
+    EXPECT_NE(db.provenance.settings.find(options.describe()), std::string::npos);
+    EXPECT_NE(db.provenance.settings.find(grid_settings(grid)), std::string::npos);
+    // Each input names another database.
+    const std::string key = db.provenance.key();
+    EXPECT_EQ(occluder_database_for(h, grid, lens, options).provenance.key(), key);
+    OccluderGrid higher = grid;
+    higher.origin.y += 0.5f;
+    EXPECT_NE(occluder_database_for(h, higher, lens, options).provenance.key(), key);
+    Camera wider = lens;
+    wider.fovy_degrees = 90.0f;
+    EXPECT_NE(occluder_database_for(h, grid, wider, options).provenance.key(), key);
+    PreprocessOptions fewer = options;
+    fewer.max_occluders = 8;
+    EXPECT_NE(occluder_database_for(h, grid, lens, fewer).provenance.key(), key);
 
+    // It serves its own scene on this Mesa, and no other.
+    EXPECT_EQ(db.provenance.mismatch(scene_provenance(h)), "");
     append_box(scene.meshes[0], Aabb::of({2, 0, 0}, {3, 1, 1}));
     scene.update_bounds();
     const Hierarchy other = Hierarchy::build(scene);
-    EXPECT_NE(other.fingerprint(), h.fingerprint());
-    EXPECT_NE(p.mismatch_for(other).find("another scene or hierarchy"), std::string::npos) << p.mismatch_for(other);
-    p.mesa = "21.0.0/install-x-y";
-    EXPECT_NE(p.mismatch_for(h).find("another Mesa"), std::string::npos) << p.mismatch_for(h);
-}
-
-TEST(OccluderDatabase, MalformedFilesNameFileAndLine)
-{
-    const std::string provenance = "algorithm minimum-occluder-set 0123456789ab\noptions resolution=32\n"
-                                   "resolution 32\nscene 00000000deadbeef 10 100\nmesa 22.3.6/x\n";
-    const std::string header = "occu-occluder-database 2\n" + provenance + "grid 0 0 0 1 1 1 2 1 2 4\n";
-    EXPECT_NE(error_of(temp_file("db-empty.txt", "")).find("empty"), std::string::npos);
-    EXPECT_NE(error_of(temp_file("db-magic.txt", "hello\n")).find("db-magic.txt:1"), std::string::npos);
-    EXPECT_NE(error_of(temp_file("db-range.txt", header + "view 99 1 2\n")).find("db-range.txt:8"), std::string::npos);
-    EXPECT_NE(error_of(temp_file("db-id.txt", header + "view 1 1 x\n")).find("db-id.txt:8"), std::string::npos);
-    EXPECT_NE(error_of(temp_file("db-twice.txt", header + "view 1 1\nview 1 2\n")).find("repeats"), std::string::npos);
-    EXPECT_NE(error_of(temp_file("db-grid.txt", "occu-occluder-database 2\n" + provenance + "grid 0 0 0 1 1 1 0 1 1 4\n"))
-                  .find(":7"),
-              std::string::npos);
-    // A database without provenance: version 1, or a record missing.
-    EXPECT_NE(error_of(temp_file("db-v1.txt", "occu-occluder-database 1\ngrid 0 0 0 1 1 1 2 1 2 4\nscene 10 100\n"))
-                  .find("db-v1.txt:1: made by an older occu-preprocess"),
-              std::string::npos);
-    EXPECT_NE(error_of(temp_file("db-no-mesa.txt", "occu-occluder-database 2\nalgorithm minimum-occluder-set c\n"
-                                                   "options x\nresolution 32\nscene f 1 2\ngrid 0 0 0 1 1 1 2 1 2 4\n"))
-                  .find("no mesa record"),
-              std::string::npos);
-    EXPECT_NE(error_of(temp_file("db-res.txt", "occu-occluder-database 2\nresolution -3\n")).find("db-res.txt:2"),
-              std::string::npos);
-    EXPECT_NE(error_of(::testing::TempDir() + "no-such-db.txt").find("cannot open"), std::string::npos);
-    EXPECT_EQ(error_of(temp_file("db-ok.txt", header + "# a comment\nview 3 1 2 3\n")), "");
+    const std::string why = db.provenance.mismatch(scene_provenance(other));
+    EXPECT_NE(why.find("made for another scene"), std::string::npos) << why;
+    DatabaseProvenance elsewhere = db.provenance;
+    elsewhere.mesa = "21.0.0/install-x-y";
+    EXPECT_NE(elsewhere.mismatch(scene_provenance(h)).find("another Mesa"), std::string::npos);
 }
 
 namespace {
-const std::string provenance_records = "occu-occluder-database 2\n"
-                                       "algorithm minimum-occluder-set 0123456789ab\noptions resolution=32\n"
-                                       "resolution 32\nscene 00000000deadbeef 10 100\nmesa 22.3.6/x\n";
+
+// The header of a database of a 2 x 1 x 2 grid of 4 headings (16 views); its payload starts at line 7.
+std::string header_with(const std::string &grid)
+{
+    return "occu-database occluder-sets 1\nalgorithm minimum-occluder-set\nsettings resolution=32 " + grid +
+           "\nscene 00000000deadbeef leaves=10 triangles=100\ncode 0123456789ab\nmesa 22.3.6/x\n";
+}
+
+const std::string good_grid = "grid-origin=0,0,0 grid-spacing=1,1,1 grid-points=2,1,2 headings=4";
+
 }  // namespace
+
+TEST(OccluderDatabase, MalformedFilesNameFileAndLine)
+{
+    const std::string header = header_with(good_grid);
+    struct Case {
+        std::string file, expect;
+    } cases[] = {
+        {header + "view 16 1 2\nend\n", ":7: view: the view is 16, more than 15"},
+        {header + "view 1 1 x\nend\n", ":7: view: an occluder is 'x', not a whole number"},
+        {header + "view 1 1 -2\nend\n", ":7: view: an occluder is '-2', not a whole number"},
+        {header + "view 1 1 4294967296\nend\n", ":7: view: an occluder is 4294967296, more than 4294967295"},
+        {header + "view 1 1\nview 1 2\nend\n", ":8: view 1 repeats"},
+        {header + "grid 0 0 0 1 1 1 2 1 2 4\nend\n", ":7: unknown record 'grid'"},
+        {header + "view 1 1\n", ":8: ends before its end record"},
+        {header_with("grid-origin=0,0,0 grid-spacing=1,1,1 grid-points=0,1,2 headings=4") + "end\n",
+         ":3: settings: grid-points is '0,1,2', its numbers from 1 to"},
+        {header_with("grid-origin=0,0,0 grid-spacing=1,1,1 grid-points=2,1.5,2 headings=4") + "end\n",
+         ":3: settings: grid-points wants whole numbers"},
+        {header_with("grid-origin=0,0 grid-spacing=1,1,1 grid-points=2,1,2 headings=4") + "end\n",
+         ":3: settings: grid-origin is '0,0', not 3 numbers"},
+        {header_with("grid-spacing=1,1,1 grid-points=2,1,2 headings=4") + "end\n",
+         ":3: settings: grid-origin=VALUE missing"},
+        {"occu-database occluder-sets 1\nalgorithm minimum-occluder-set\nsettings " + good_grid +
+             "\nscene f\ncode c\nmesa m\nend\n",
+         ":3: settings: resolution=VALUE missing"},
+        {"occu-database occluder-sets 1\nalgorithm occluder-skins\nsettings\nscene f\ncode c\nmesa m\nend\n",
+         ":2: algorithm 'occluder-skins'"},
+        {"occu-occluder-database 2\n", ":1: 'occu-occluder-database' is the format before occu-database"},
+    };
+    int k = 0;
+    for (const Case &c : cases) {
+        const std::string name = "db-bad-" + std::to_string(::getpid()) + "-" + std::to_string(k++) + ".txt";
+        const std::string error = error_of(temp_file(name, c.file));
+        EXPECT_NE(error.find(name + c.expect), std::string::npos) << error;
+    }
+    EXPECT_NE(error_of(::testing::TempDir() + "no-such-db.txt").find("cannot open"), std::string::npos);
+    EXPECT_EQ(error_of(temp_file("db-ok.txt", header + "# a comment\nview 3 1 2 3\nend\n")), "");
+}
 
 TEST(OccluderDatabase, GridNumbersThatAreNotFiniteAreRefusedNamingFileLineAndNumber)
 {
     // nan and inf are what strtod reads; 1e39 is beyond float range, so
     // the grid's float coordinate would be infinite.
     const std::string path_prefix = "db-not-finite-" + std::to_string(::getpid()) + "-";
-    for (const std::string bad : {"nan", "-inf", "1e39"}) {
+    for (const std::string bad : {"nan", "-inf", "inf", "1e39", "1e400"}) {
         SCOPED_TRACE(bad);
-        const std::string path = temp_file(path_prefix + bad, provenance_records + "grid 0 0 0 1 " + bad + " 1 2 1 2 4\n");
+        const std::string path = temp_file(
+            path_prefix + bad,
+            header_with("grid-origin=0,0,0 grid-spacing=1," + bad + ",1 grid-points=2,1,2 headings=4") + "end\n");
         const std::string message = error_of(path);
-        EXPECT_NE(message.find(path + ":7"), std::string::npos) << message;
-        EXPECT_NE(message.find("SY is '" + bad + "'"), std::string::npos) << message;
-        EXPECT_NE(message.find("not a finite number"), std::string::npos) << message;
+        EXPECT_NE(message.find(path + ":3: settings: grid-spacing is '1," + bad + ",1'"), std::string::npos)
+            << message;
     }
 }
 
@@ -182,11 +210,13 @@ TEST(OccluderDatabase, GridWhosePointsOverflowIsRefused)
 {
     // Every number is a finite float, but the fourth point along x lies at
     // 3 * 3e38: its cameras would stand at infinity.
-    const std::string path = temp_file("db-overflow-" + std::to_string(::getpid()),
-                                       provenance_records + "grid 0 0 0 3e38 1 1 4 1 1 4\n");
+    const std::string path =
+        temp_file("db-overflow-" + std::to_string(::getpid()),
+                  header_with("grid-origin=0,0,0 grid-spacing=3e38,1,1 grid-points=4,1,1 headings=4") + "end\n");
     const std::string message = error_of(path);
-    EXPECT_NE(message.find(path + ":7"), std::string::npos) << message;
-    EXPECT_NE(message.find("beyond float range"), std::string::npos) << message;
+    EXPECT_NE(message.find(path + ":3: settings: the grid's points reach beyond float range along x"),
+              std::string::npos)
+        << message;
 }
 
 TEST(OccluderDatabase, NearestViewByPointAndHeading)
