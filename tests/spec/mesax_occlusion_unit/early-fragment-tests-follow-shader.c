@@ -1,0 +1,124 @@
+/*
+ * GL_MESAX_occlusion_unit with layout(early_fragment_tests): the stencil
+ * and depth buffer tests and both counts precede the shader, so what
+ * follows the shader changes neither count (spec section 4.1, issue 21):
+ * a discard, the alpha test, and in a multisampled framebuffer the sample
+ * mask output. This holds with no depth or stencil test enabled too.
+ * (early-fragment-tests checks a discard with the depth test on.)
+ *
+ * A 32 x 32 window (or a 4x framebuffer object of that size), depth
+ * cleared to 1; the pass draws a window-sized rectangle at z 0.5.
+ *
+ * Subtests:
+ *   discard-without-tests-removes-nothing   no depth or stencil test; the shader
+ *                                           discards every other column:
+ *                                           NOHC = PHC = 1024
+ *   alpha-test-after-counts                 depth test LESS, the shader's alpha 0,
+ *                                           the alpha test GREATER 0.5:
+ *                                           NOHC = PHC = 1024
+ *   multisample-discard-removes-nothing     4x, an occluder at z 0.25 over the
+ *                                           left half, the discarding shader:
+ *                                           PHC and NOHC are those of the rectangle
+ *                                           without a shader
+ *   multisample-sample-mask-output-after-counts  4x, the shader writes
+ *                                           gl_SampleMask 0: the same
+ * The multisample subtests skip where there is no 4x multisampling
+ * (softpipe).
+ */
+#include "ou_util.h"
+
+enum { S = 32 };
+
+static PFNGLUSEPROGRAMPROC UseProgram;
+
+static void
+counts(GLuint *nohc, GLuint *phc)
+{
+    GLuint rec[1][OU_BRIEF_SIZE];
+    GLuint *buffers[1] = {rec[0]};
+    GLsizei sizes[1] = {OU_BRIEF_SIZE};
+    ou_fill(rec[0], OU_BRIEF_SIZE);
+    OcclusionBuffersMESAX(1, sizes, buffers);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    ou_rect(0, 0, S, S, 0.5f);
+    glRenderMode(GL_RENDER);
+    *nohc = rec[0][OU_NOHC];
+    *phc = rec[0][OU_PHC];
+}
+
+static void
+expect(const char *name, GLuint program, GLuint nohc, GLuint phc)
+{
+    GLuint got_nohc, got_phc;
+    if (!program) {
+        printf("%s: the shader did not build\n", name);
+        subtest(false, name);
+        return;
+    }
+    UseProgram(program);
+    counts(&got_nohc, &got_phc);
+    UseProgram(0);
+    if (got_nohc != nohc || got_phc != phc)
+        printf("%s: NOHC %u PHC %u, expected %u %u\n", name, got_nohc, got_phc, nohc, phc);
+    subtest(got_nohc == nohc && got_phc == phc && piglit_check_gl_error(GL_NO_ERROR), name);
+}
+
+static GLuint
+early_program(const char *body)
+{
+    char source[512];
+    snprintf(source, sizeof(source),
+             "#version 150 compatibility\n"
+             "#extension GL_ARB_shader_image_load_store : require\n"
+             "#extension GL_ARB_sample_shading : enable\n"
+             "layout(early_fragment_tests) in;\n"
+             "void main() { %s }\n",
+             body);
+    return piglit_build_fragment_program(source);
+}
+
+int main(int argc, char **argv)
+{
+    ou_init(argc, argv, S, S);
+    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    const GLuint discards =
+        early_program("if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard; gl_FragColor = vec4(1.0);");
+    const GLuint transparent = early_program("gl_FragColor = vec4(1.0, 1.0, 1.0, 0.0);");
+
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    expect("discard-without-tests-removes-nothing", discards, S * S, S * S);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_ALPHA_TEST);
+    glAlphaFunc(GL_GREATER, 0.5f);
+    expect("alpha-test-after-counts", transparent, S * S, S * S);
+    glDisable(GL_ALPHA_TEST);
+
+    GLint max_samples = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (max_samples < 4) {
+        printf("%s has no 4x multisampling (GL_MAX_SAMPLES %d)\n", (const char *)glGetString(GL_RENDERER), max_samples);
+        piglit_report_subtest_result(PIGLIT_SKIP, "multisample-discard-removes-nothing");
+        piglit_report_subtest_result(PIGLIT_SKIP, "multisample-sample-mask-output-after-counts");
+        piglit_report_result(result);
+    }
+    const struct ou_fbo_functions f = ou_fbo_functions();
+    GLuint rb[2];
+    ou_make_fbo(&f, S, S, 4, true, rb);
+    glEnable(GL_MULTISAMPLE);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    ou_rect(0, 0, S / 2, S, 0.25f);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    GLuint right, all;
+    counts(&right, &all);
+    printf("references without a shader: NOHC %u, PHC %u\n", right, all);
+    expect("multisample-discard-removes-nothing", discards, right, all);
+    const GLuint masked = early_program("gl_SampleMask[0] = 0; gl_FragColor = vec4(1.0);");
+    expect("multisample-sample-mask-output-after-counts", masked, right, all);
+    piglit_report_result(result);
+}
