@@ -4,9 +4,6 @@
  * mode, and then only the words of the record (8 header words, the pairs
  * and, on overflow, the terminator); until then the application may read
  * and write the buffers, and what it wrote past the record survives.
- * If the GL cannot allocate what a verbose pass needs, it generates
- * OUT_OF_MEMORY and the records stay well formed: counts and extents as
- * ever, no pairs, each tile with a non-occluded fragment overflowed.
  *
  * Subtests:
  *   nothing-written-during-pass
@@ -20,14 +17,10 @@
  *       a list that overflows a 110-word buffer ends with the terminator
  *       at word 108; word 109, which the application wrote during the
  *       pass, keeps its value (nothing stale is restored over it).
- *   out-of-memory-records-well-formed
- *       64 tiles each declaring 2^31 - 1 words (reserved address space, not
- *       memory): OUT_OF_MEMORY from RenderMode, NOHC exact, word 8 the
- *       terminator, the overflow count 1 for the one tile drawn into.
+ *
+ * Huge declarations (2^31 - 1 words a tile) are verbose-memory-bounded's,
+ * and OUT_OF_MEMORY's records out-of-memory-fault-injection's.
  */
-#define _DEFAULT_SOURCE /* MAP_ANONYMOUS, MAP_NORESERVE */
-#include <sys/mman.h>
-
 #include "ou_util.h"
 
 #define W 32
@@ -81,45 +74,5 @@ int main(int argc, char **argv)
                small[terminator_at], small[sizes[0] - 1]);
     subtest(ok, "overflow-keeps-words-past-terminator");
 
-    /* 64 tiles of 2^31 - 1 words each: 512 GiB of address space, reserved
-     * without memory; the GL's own copies of such lists cannot be had. */
-    const size_t words = 0x7fffffffu;
-    GLuint *huge = mmap(NULL, 64 * words * sizeof(GLuint), PROT_READ | PROT_WRITE,
-                        MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-    if (huge == MAP_FAILED) {
-        printf("could not reserve 512 GiB of address space\n");
-        subtest(false, "out-of-memory-records-well-formed");
-        piglit_report_result(result);
-    }
-    GLuint *many[64];
-    GLsizei many_sizes[64];
-    GLint tiles[64 * 4];
-    for (int k = 0; k < 64; ++k) {
-        many[k] = huge + (size_t)k * words;
-        many_sizes[k] = (GLsizei)words;
-        ou_fill(many[k], 16);
-        tiles[4 * k] = k % 8 * 4;
-        tiles[4 * k + 1] = k / 8 * 4;
-        tiles[4 * k + 2] = 4;
-        tiles[4 * k + 3] = 4;
-    }
-    OcclusionBuffersMESAX(64, many_sizes, many);
-    ScissorsMESAX(64, tiles);
-    while (glGetError() != GL_NO_ERROR)
-        ;
-    glRenderMode(GL_VERBOSE_OCCLUSION_MESAX);
-    GLenum error = glGetError();
-    ou_rect(0, 0, 2, 2, 0.5f);   /* 4 fragments, all in tile 0 */
-    const GLint n = glRenderMode(GL_RENDER);
-    if (error == GL_NO_ERROR)
-        error = glGetError();
-    ScissorsMESAX(0, NULL);
-    const bool oom = error == GL_OUT_OF_MEMORY && n == 1 && many[0][OU_NOHC] == 4 && many[0][OU_PHC] == 4 &&
-                     many[0][8] == 0xffffffffu && many[1][OU_NOHC] == 0;
-    if (!oom)
-        printf("out of memory: error 0x%x, returned %d, NOHC %u, word 8 0x%08x\n", error, n, many[0][OU_NOHC],
-               many[0][8]);
-    subtest(oom, "out-of-memory-records-well-formed");
-    munmap(huge, 64 * words * sizeof(GLuint));
     piglit_report_result(result);
 }
