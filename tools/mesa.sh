@@ -56,6 +56,14 @@ if [ $variant != unpatched ] && [ -f "$series_file" ]; then
 fi
 
 options_hash=$(printf '%s\n' "${options[@]}" | sha256sum | cut -c1-12)
+# The series as it is now, copied: another build of the cache may hold the lock
+# below for minutes, and the patches applied after it must be the ones hashed.
+snapshot=$(mktemp -d)
+trap 'rm -rf "$snapshot"' EXIT
+if [ ${#patches[@]} -gt 0 ]; then
+    cp "${patches[@]}" "$snapshot/"
+    patches=("${patches[@]/#$OCCU_ROOT\/patches\/mesa/$snapshot}")
+fi
 patches_hash=$( { printf '%s\n' "${patches[@]##*/}"; for p in "${patches[@]}"; do cat "$p"; done; } | sha256sum | cut -c1-12)
 
 top=$OCCU_CACHE/mesa/$MESA_DEBIAN_VERSION
