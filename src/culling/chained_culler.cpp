@@ -1,20 +1,11 @@
 #include "culling/chained_culler.h"
 
-#include <stdexcept>
-
-#include "traversal/traversal.h"
 
 namespace occu {
 
 ChainedCuller::ChainedCuller(std::vector<std::pair<std::string, std::unique_ptr<Culler>>> stages)
     : stages_(std::move(stages))
 {
-    for (const auto &[name, culler] : stages_)
-        // Such a strategy walks the hierarchy itself (traversal/traversal.h,
-        // OwnTraversal): it cannot be handed only what another stage left.
-        if (orders_frame(*culler))
-            throw std::invalid_argument(name + " orders the frame itself (its own traversal) and cannot be a stage "
-                                               "of a chain of strategies");
 }
 
 void ChainedCuller::begin_frame(const Frame &frame)

@@ -39,6 +39,9 @@ const StrategyFamily *chain_family(const std::vector<const StrategyFamily *> &st
     static std::map<std::string, std::unique_ptr<StrategyFamily>> chains;
     std::string name, paper, summary;
     for (const StrategyFamily *f : stages) {
+        if (f->traversal.own_traversal)
+            throw std::invalid_argument(f->name + " walks the hierarchy itself (its own traversal) and cannot be a "
+                                                  "stage of a chain of strategies");
         name += (name.empty() ? "" : "+") + f->name;
         paper += (paper.empty() ? "" : "; then ") + f->paper;
         summary += (summary.empty() ? "" : ", then on what it leaves visible: ") + f->summary;

@@ -64,6 +64,10 @@ struct TraversalWants {
     // drawing while they wait for their answers; less for tests whose
     // answers come while drawing goes on (chc), which pay at a smaller gain.
     double switch_off_share = 1.0;
+    // The family walks the hierarchy itself in the frames it tests in full
+    // (an OwnTraversal, traversal/traversal.h): it cannot be a later stage
+    // of a chain, which hands a stage only what the stages before it left.
+    bool own_traversal = false;
 };
 
 // A property a scene must have for a family to run on it.

@@ -438,6 +438,7 @@ StrategyFamily coherent_hierarchical_culling_family()
     // faster than vfc (docs/coherent-hierarchical-culling.md), and stays on.
     f.traversal.switch_off = true;
     f.traversal.switch_off_share = 0.1;
+    f.traversal.own_traversal = true;
     f.settings = {
         integer_setting("batch", 64, 1, 64, Role::cost,
                         "previously invisible nodes tested together in one pass (one tile each; at most the unit's tiles)"),

@@ -311,15 +311,17 @@ TEST(Registry, ChainsAreFamiliesMadeOfTheirStages)
     EXPECT_NE(error_of("vfc+ou:nonesuch=1").find("nonesuch"), std::string::npos);
 }
 
-TEST(Registry, ChainOfAStrategyThatOrdersItsFrameIsRefused)
+TEST(Registry, ChainOfAStrategyWithItsOwnTraversalIsRefused)
 {
     const OneBox box;
     const StrategyContext context{box.scene, *box.h, *box.renderer};
-    try {
-        make_strategy("vfc+chc", context);
-        ADD_FAILURE() << "chc made as a stage";
-    } catch (const std::invalid_argument &e) {
-        EXPECT_NE(std::string(e.what()).find("chc orders the frame itself"), std::string::npos) << e.what();
+    for (const char *name : {"vfc+chc", "chc+vfc"}) {
+        try {
+            make_strategy(name, context);
+            ADD_FAILURE() << "chc made as a stage of " << name;
+        } catch (const std::invalid_argument &e) {
+            EXPECT_NE(std::string(e.what()).find("chc walks the hierarchy itself"), std::string::npos) << e.what();
+        }
     }
     const Strategy s = make_strategy("vfc+ou", context);
     EXPECT_EQ(s.choice.label(), "vfc+ou");
