@@ -2,7 +2,7 @@
 # The API walk (tests/spec/mesax_occlusion_unit/api-random-calls.c) at
 # 1,000,000 calls per driver, from its fixed seed, on the patched Mesa built
 # with AddressSanitizer and UndefinedBehaviorSanitizer (tools/mesa.sh
-# --sanitize, as tools/fuzz-api runs it at 50,000) or, with --plain, on the
+# --sanitize, as tools/fuzz-api runs it at 30,000) or, with --plain, on the
 # patched Mesa without them. A run passes when the walk reports pass and
 # AddressSanitizer reports nothing (UBSan reports are counted: upstream
 # Mesa 22.3.6 has its own, see tools/fuzz-api).

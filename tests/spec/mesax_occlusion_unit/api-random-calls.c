@@ -1,6 +1,6 @@
 /*
  * GL_MESAX_occlusion_unit and GL_MESAX_occlusion_unit_async under random
- * use: OU_RANDOM_CALLS calls (default 50,000) from a fixed seed, each checked
+ * use: OU_RANDOM_CALLS calls (default 30,000) from a fixed seed, each checked
  * against a model of the GL's state built from the specs (a failure prints
  * the call's number, so it repeats).
  *
@@ -69,7 +69,7 @@
 #define H 32
 #define WORDS 64
 #define MAX_TILES 64
-#define DEFAULT_CALLS 50000ul
+#define DEFAULT_CALLS 30000ul
 
 static unsigned long long rng = 0x2026112912345ull;
 
