@@ -47,13 +47,14 @@ import re, sys
 driver, result, calls, wall, user, sys_s, log = sys.argv[1:]
 calls, wall, cpu = int(calls), float(wall), float(user) + float(sys_s)
 text = open(log, errors='replace').read()
-def count(pattern):
-    m = re.search(pattern, text)
+def count(what):
+    m = re.search(r'(\d+) ' + what, text)
     return m.group(1) if m else '-'
-print(f"| {driver} | {result} | {wall:.0f} | {calls / wall:,.0f} | {cpu:.1f} | {calls / cpu:,.0f} "
-      f"| {count(r'(\d+) passes ended')} | {count(r'(\d+) records checked')} "
-      f"| {count(r'(\d+) queries compared')} | {count(r'(\d+) empty passes')} "
-      f"| {count(r'(\d+) refused in a pass')} | {text.count('runtime error:')} |")
+counters = [count(w) for w in ('passes ended', 'records checked', 'queries compared', 'empty passes',
+                               'refused in a pass')]
+cells = [driver, result, f"{wall:.0f}", f"{calls / wall:,.0f}", f"{cpu:.1f}", f"{calls / cpu:,.0f}"] + counters
+cells.append(str(text.count('runtime error:')))
+print('| ' + ' | '.join(cells) + ' |')
 PY
     [ "$result" = pass ] || grep -E 'ERROR:|^call|"fail"' "$log" | head -n 5 >&2
 done

@@ -615,9 +615,9 @@ call_render_mode(unsigned i)
     expect(GL_NO_ERROR, "SelectBuffer/FeedbackBuffer", i);
     const GLenum m = modes[next(10)];
     const int in_effect = tiles > 0 ? tiles : 1;
-    if (compiling >= 0 && compile_mode == GL_COMPILE_AND_EXECUTE && !in_occlusion() &&
+    if (compiling >= 0 && compile_mode == GL_COMPILE_AND_EXECUTE &&
         (m == GL_BRIEF_OCCLUSION_MESAX || m == GL_VERBOSE_OCCLUSION_MESAX))
-        return;   /* see call_begin_pass */
+        return;   /* entering, or entering again: see call_begin_pass */
     if (in_occlusion() && current < 0 && compiling < 0 && query_active >= 0 && next(2)) {
         call_end_query(i);
         check_state(i);
