@@ -12,6 +12,9 @@
  * Subtests:
  *   render-mode-pass-counts-nothing   NOHC 0, PHC 0
  *   pass-object-counts-nothing        NOHC 0, PHC 0
+ *   render-mode-again-counts-in-first RenderMode(BRIEF_OCCLUSION_MESAX) again
+ *                                     in a pass, right after the rectangle:
+ *                                     the first pass NOHC 64, the second 0
  */
 #include "ou_util.h"
 
@@ -59,5 +62,21 @@ int main(int argc, char **argv)
     GLint overflowed = -1;
     a.GetOcclusionPassiv(pass, GL_OCCLUSION_PASS_RESULT_MESAX, &overflowed);
     expect_empty("pass-object-counts-nothing");
+
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    glNewList(list, GL_COMPILE_AND_EXECUTE);
+    ou_rect(0, 0, 8, 8, 0.5f);
+    ou_fill(record, OU_BRIEF_SIZE);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);   /* ends the first pass, begins the second */
+    const GLuint first_nohc = record[OU_NOHC];
+    ou_fill(record, OU_BRIEF_SIZE);
+    glDepthMask(GL_FALSE);
+    glRenderMode(GL_RENDER);
+    glEndList();
+    const bool again_ok = first_nohc == 64 && record[OU_NOHC] == 0 && record[OU_PHC] == 0;
+    if (!again_ok)
+        printf("render-mode-again-counts-in-first: first pass NOHC %u, second NOHC %u PHC %u; expected 64, 0, 0\n",
+               first_nohc, record[OU_NOHC], record[OU_PHC]);
+    subtest(again_ok && piglit_check_gl_error(GL_NO_ERROR), "render-mode-again-counts-in-first");
     piglit_report_result(result);
 }
