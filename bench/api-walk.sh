@@ -37,7 +37,7 @@ for driver in softpipe llvmpipe; do
     status=0
     /usr/bin/time -o "$times" -f '%e %U %S' env "${run_env[@]}" GALLIUM_DRIVER=$driver OU_RANDOM_CALLS=$calls \
         "$walk" -auto -fbo >"$log" 2>&1 || status=$?
-    read -r wall user sys <"$times"
+    read -r wall user sys < <(tail -n 1 "$times")   # after "Command exited with non-zero status N"
     result=pass
     if [ $status -ne 0 ] || ! grep -q '"result": "pass"' "$log" || grep -qE 'ERROR: (Address|Leak)Sanitizer' "$log"; then
         result="FAIL (exit $status, $log)"
