@@ -52,7 +52,9 @@ def count(what):
     return m.group(1) if m else '-'
 counters = [count(w) for w in ('passes ended', 'records checked', 'queries compared', 'empty passes',
                                'refused in a pass')]
-cells = [driver, result, f"{wall:.0f}", f"{calls / wall:,.0f}", f"{cpu:.1f}", f"{calls / cpu:,.0f}"] + counters
+# A failed run stops somewhere short of CALLS, which the walk does not print: no rates.
+rates = [f"{calls / wall:,.0f}", f"{calls / cpu:,.0f}"] if result == 'pass' else ['-', '-']
+cells = [driver, result, f"{wall:.0f}", rates[0], f"{cpu:.1f}", rates[1]] + counters
 cells.append(str(text.count('runtime error:')))
 print('| ' + ' | '.join(cells) + ' |')
 PY
