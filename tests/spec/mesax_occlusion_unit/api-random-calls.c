@@ -615,9 +615,6 @@ call_render_mode(unsigned i)
     expect(GL_NO_ERROR, "SelectBuffer/FeedbackBuffer", i);
     const GLenum m = modes[next(10)];
     const int in_effect = tiles > 0 ? tiles : 1;
-    if (compiling >= 0 && compile_mode == GL_COMPILE_AND_EXECUTE &&
-        (m == GL_BRIEF_OCCLUSION_MESAX || m == GL_VERBOSE_OCCLUSION_MESAX))
-        return;   /* entering, or entering again: see call_begin_pass */
     if (in_occlusion() && current < 0 && compiling < 0 && query_active >= 0 && next(2)) {
         call_end_query(i);
         check_state(i);
@@ -691,12 +688,6 @@ call_begin_pass(unsigned i)
     int k;
     const GLuint name = pick_name(&k);
     const int in_effect = tiles > 0 ? tiles : 1;
-    /* A draw compiled with COMPILE_AND_EXECUTE just before a pass begins is
-     * counted in the pass once a later compiled command flushes it (the
-     * test display-list-execute-before-pass shows it, both drivers): no
-     * pass begins while such a list is compiled. */
-    if (compiling >= 0 && compile_mode == GL_COMPILE_AND_EXECUTE)
-        return;
     a.BeginOcclusionPass(m, name);
     GLenum e = GL_NO_ERROR;
     if (m == GL_RENDER)
