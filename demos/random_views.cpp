@@ -7,8 +7,10 @@
 // Cameras: the random route's (camera/route.h, random:N:SEED): eyes
 // uniformly inside the scene's bounds (in the city: streets, courtyards,
 // roofs and the insides of buildings alike, from the ground up to the
-// tallest roof), random headings, pitch within 60 degrees of the horizon,
-// and a field of view drawn from --fov.
+// tallest roof; in a Quake III level only its open leaves; in a model read
+// from a file only points inside it, where rays in 14 directions all hit
+// it: spatial/inside_points.h), random headings, pitch within 60 degrees
+// of the horizon, and a field of view drawn from --fov.
 //
 // Writes DIR/views.csv (one row per scene, view and strategy, with the
 // camera) and DIR/summary.csv (one row per scene and strategy), prints a
@@ -78,6 +80,8 @@ struct Options {
                  "                         [--databases DIR] [--make-databases required|all] [--out DIR]\n"
                  "Renders --views random cameras (300; shared evenly among the scenes) with every strategy and\n"
                  "counts the visible pixels each frame lost against the unculled frame of the same camera.\n"
+                 "Eyes: anywhere in the city's bounds; in a level's open leaves; inside a model read from a file\n"
+                 "(rays in 14 directions from the eye all hit it).\n"
                  "Scenes (default: city,%s,%s):\n"
                  "'city' is the procedural city; a FILE is read through assimp. Strategies (default: every\n"
                  "conservative strategy of the registry, presets included; one whose family refuses a scene\n"

@@ -15,6 +15,11 @@ namespace {
 
 // Random eyes drawn for one camera before a level is taken to have no open space.
 constexpr int max_eye_tries = 100000;
+// Random eyes drawn for one camera before a model is taken to have no
+// inside: each costs up to 14 rays through the hierarchy, so fewer than a
+// level's leaf descents; a model whose inside fills less than 1/20000 of
+// its bounds has no room a camera could stand in anyway.
+constexpr int max_inside_eye_tries = 20000;
 
 bool in_open_leaf(const Quake3Level &level, const glm::vec3 &p)
 {
@@ -119,8 +124,10 @@ std::vector<Camera> overhead_route(const Aabb &bounds, int frames, float aspect)
 // In a Quake III level an eye is drawn again until it lies in an open leaf
 // (a cluster >= 0): the level's solid space and the void around it are
 // leaves of cluster -1, where no player can stand and a camera sees the
-// backs of walls.
-std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, float aspect, const Quake3Level *level)
+// backs of walls. In a model with an inside test (a building read from a
+// file), an eye is drawn again until the test keeps it: eyes in rooms.
+std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, float aspect, const Quake3Level *level,
+                                 const EyeTest &eye_inside)
 {
     std::istringstream in(name.substr(std::string("random:").size()));
     long count = 0;
@@ -140,6 +147,15 @@ std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, fl
             if (tries == max_eye_tries)
                 throw std::invalid_argument("route '" + name + "': no eye in the level's open space after " +
                                             std::to_string(max_eye_tries) + " random points of its bounds");
+            c.position = bounds.min + glm::vec3(unit(random), unit(random), unit(random)) * bounds.extent();
+        }
+        for (int tries = 1; eye_inside && !eye_inside(c.position); ++tries) {
+            if (tries == max_inside_eye_tries)
+                throw std::invalid_argument("route '" + name + "': no eye inside the model after " +
+                                            std::to_string(max_inside_eye_tries) +
+                                            " random points of its bounds (a point is inside when rays in 14 "
+                                            "directions from it all hit the model's triangles); the model has "
+                                            "no rooms: try the orbit route");
             c.position = bounds.min + glm::vec3(unit(random), unit(random), unit(random)) * bounds.extent();
         }
         const float heading = 6.28318530718f * unit(random);
@@ -205,7 +221,7 @@ Camera street_level_lens(const Aabb &bounds, float aspect)
 }
 
 std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, const CityOptions &city, int frames,
-                               float aspect, const Quake3Level *level)
+                               float aspect, const Quake3Level *level, const EyeTest &eye_inside)
 {
     const bool built_in = name == "dense" || name == "street" || name == "medium" || name == "open" ||
                           name == "orbit" || name == "overhead" || name.rfind("random:", 0) == 0 ||
@@ -218,7 +234,7 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
         !std::isfinite(bounds.max.z))
         throw std::invalid_argument("route '" + name + "': the scene's bounds are empty or not finite");
     if (name.rfind("random:", 0) == 0)
-        return random_route(name, bounds, aspect, level);
+        return random_route(name, bounds, aspect, level, eye_inside);
     if (name == "spawn" || name.rfind("spawn:", 0) == 0)
         return spawn_route(name, bounds, aspect, level);
     if (frames < 1)
@@ -268,12 +284,12 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
 }
 
 std::vector<Camera> random_views(const Aabb &bounds, long count, unsigned long seed, float aspect, float fov_min,
-                                 float fov_max, const Quake3Level *level)
+                                 float fov_max, const Quake3Level *level, const EyeTest &eye_inside)
 {
     if (!(fov_min >= 1.0f && fov_max <= 170.0f && fov_min <= fov_max))
         throw std::invalid_argument("fields of view must lie in 1..170 degrees, the least first");
     std::vector<Camera> views = make_route("random:" + std::to_string(count) + ":" + std::to_string(seed), bounds,
-                                           CityOptions{}, 1, aspect, level);
+                                           CityOptions{}, 1, aspect, level, eye_inside);
     std::mt19937 random(std::uint32_t(seed & 0xffffffffu) ^ 0x9e3779b9u);
     std::uniform_real_distribution<float> fov(fov_min, fov_max);
     for (Camera &c : views)

@@ -19,7 +19,11 @@
 //   random:N:SEED  N cameras at random points inside the scene's bounds,
 //                  looking in random directions (N frames, whatever `frames` is);
 //                  in a Quake III level, only points in its open space: a
-//                  BSP leaf of a cluster (>= 0), not one inside a solid.
+//                  BSP leaf of a cluster (>= 0), not one inside a solid;
+//                  in a model read from a file (a building), only points
+//                  inside it: rays in 14 directions from the eye all hit
+//                  the model (spatial/inside_points.h), so eyes lie in its
+//                  rooms, never outside it.
 // Routes for Quake III levels (scene/quake3_bsp.h):
 //   spawn, spawn:K  every player spawn point of the level in turn, from the
 //                  eye of a player standing there, looking along its angle
@@ -31,6 +35,7 @@
 // target); '#' starts a comment.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,6 +46,10 @@ namespace occu {
 
 struct Quake3Level;
 
+// Whether a random eye may stand at a point (route random:N:SEED in a
+// model: inside_model of spatial/inside_points.h); empty: anywhere.
+using EyeTest = std::function<bool(const glm::vec3 &)>;
+
 // The lens of the street-level routes (dense, street, medium), which
 // occluder preprocessing places its views with: 60 degrees, near plane
 // 0.5 m, far plane twice the scene's diagonal.
@@ -48,13 +57,16 @@ Camera street_level_lens(const Aabb &bounds, float aspect);
 
 // `name`: dense, street, medium, open, orbit, overhead, random:N:SEED,
 // spawn[:K], or a route file's path. `level`: the scene's Quake III level
-// (Scene::quake3), or null. Throws std::invalid_argument (unknown name;
-// spawn without a level or a level without spawn points; random eyes that
-// find no open leaf) or std::runtime_error (a file it cannot read or
+// (Scene::quake3), or null. `eye_inside`: where random eyes may stand
+// besides a level's open leaves (a model's inside), or empty. Throws
+// std::invalid_argument (unknown name; spawn without a level or a level
+// without spawn points; random eyes that find no open leaf, or no point
+// `eye_inside` keeps, after a bounded number of candidates) or std::runtime_error (a file it cannot read or
 // parse, naming the file and line; a number that is not a finite float,
 // or a camera whose view direction is not, is refused).
 std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds, const CityOptions &city,
-                               int frames, float aspect, const Quake3Level *level = nullptr);
+                               int frames, float aspect, const Quake3Level *level = nullptr,
+                               const EyeTest &eye_inside = {});
 
 // The cameras of the route random:COUNT:SEED (eyes uniformly inside the
 // bounds, buildings and streets alike; random headings; pitch within 60
@@ -63,6 +75,6 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds
 // that eyes and directions are the route's. Throws as make_route does, and
 // std::invalid_argument for a field of view outside [1, 170] or fov_min > fov_max.
 std::vector<Camera> random_views(const Aabb &scene_bounds, long count, unsigned long seed, float aspect, float fov_min,
-                                 float fov_max, const Quake3Level *level = nullptr);
+                                 float fov_max, const Quake3Level *level = nullptr, const EyeTest &eye_inside = {});
 
 }  // namespace occu

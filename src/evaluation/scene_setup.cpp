@@ -7,6 +7,7 @@
 #include "camera/route.h"
 #include "scene/pk3_archive.h"
 #include "scene/scene_file.h"
+#include "spatial/inside_points.h"
 
 namespace occu {
 
@@ -44,15 +45,28 @@ SceneSetup SceneSetup::with_hierarchy(const HierarchyOptions &options) const
     return SceneSetup(name_, city_, scene_, options);
 }
 
+EyeTest SceneSetup::eye_inside() const
+{
+    // A level has its open leaves; the city and the field are generated
+    // with streets and gaps to stand in. A model read from a file is a
+    // building or an object: random eyes go inside it.
+    if (scene_->quake3 || generated_scene_name(name_))
+        return {};
+    const std::shared_ptr<const Scene> scene = scene_;
+    const std::shared_ptr<const Hierarchy> hierarchy = hierarchy_;
+    return [scene, hierarchy](const glm::vec3 &p) { return inside_model(*scene, *hierarchy, p); };
+}
+
 std::vector<Camera> SceneSetup::route(const std::string &route, int frames, float aspect) const
 {
-    return make_route(route, scene_->bounds, city_, frames, aspect, scene_->quake3.get());
+    return make_route(route, scene_->bounds, city_, frames, aspect, scene_->quake3.get(), eye_inside());
 }
 
 std::vector<Camera> SceneSetup::random_views(long count, unsigned long seed, float fov_min, float fov_max,
                                              float aspect) const
 {
-    return occu::random_views(scene_->bounds, count, seed, aspect, fov_min, fov_max, scene_->quake3.get());
+    return occu::random_views(scene_->bounds, count, seed, aspect, fov_min, fov_max, scene_->quake3.get(),
+                              eye_inside());
 }
 
 }  // namespace occu

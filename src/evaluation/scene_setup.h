@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "camera/camera.h"
+#include "camera/route.h"
 #include "scene/city.h"
 #include "scene/quake3_bsp.h"
 #include "scene/scene.h"
@@ -55,8 +56,9 @@ public:
 
     // The route `route` (camera/route.h: dense, street, medium, open, orbit,
     // overhead, spawn on a level, random:N:SEED or a route file) of `frames`
-    // cameras; on a level, random eyes lie in its open leaves; throws
-    // as make_route does.
+    // cameras; on a level, random eyes lie in its open leaves, in a model
+    // read from a file inside it (spatial/inside_points.h); throws as
+    // make_route does.
     std::vector<Camera> route(const std::string &route, int frames, float aspect = 1.0f) const;
     // `count` random views (camera/route.h: random_views), each with a field
     // of view in [fov_min, fov_max] degrees.
@@ -64,6 +66,10 @@ public:
                                      float aspect = 1.0f) const;
 
 private:
+    // Where random eyes may stand: inside the model for a scene read from
+    // a file that is not a level; empty (anywhere, or a level's own test)
+    // otherwise.
+    EyeTest eye_inside() const;
     SceneSetup(std::string name, const CityOptions &city, std::shared_ptr<const Scene> scene,
                const HierarchyOptions &hierarchy);
     std::string name_;
