@@ -38,7 +38,7 @@ public:
             last_frame_depth(frame);
         } else {
             raster_.begin(frame.view_projection, frame.width, frame.height, options_);
-            skins_->render(frame, raster_, limit_);
+            skins_->render_all(frame, raster_, limit_);
             raster_.read(depth_);
             pyramid_.build(raster_.width(), raster_.height(), depth_.data());
         }
@@ -143,6 +143,7 @@ StrategyFamily hierarchical_z_buffer_family()
     };
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
+    f.settings.push_back(occluder_triangles_setting());
     f.databases = {skin_database_need()};
     f.databases[0].read_by = [](const Settings &s) { return s.text("source") == "skins"; };
     f.presets = {

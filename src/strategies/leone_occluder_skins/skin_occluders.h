@@ -3,6 +3,18 @@
 // frame, the largest on screen first, and their faces that face the eye
 // rasterized as quads into a CPU depth buffer (raster/depth_rasterizer.h).
 // Shared by the strategies that take their occluders from skins.
+//
+// Where a mesh has no volume for skins (thin walls, open meshes), the
+// scene's own large triangles can join them (occluder-triangles): those of
+// occluder meshes only, chosen per frame by projected area, the largest
+// first up to a budget, and rasterized by the same conservative
+// rasterizer, as Intel's Masked Occlusion Culling takes a game's own
+// meshes. A front-facing triangle in the frustum is drawn by GL wherever
+// nothing nearer hides it, and what hides it hides what lies behind it,
+// so its farthest depth over a fully covered depth pixel is a safe
+// occluder (Leone, section 3: occluders fuse in the buffer). A triangle
+// across the near plane is clipped there by the rasterizer (the part GL
+// draws), never dropped nor taken whole.
 #pragma once
 
 #include <cstddef>
@@ -36,6 +48,16 @@ public:
     // before already hide. Returns how many it drew.
     std::size_t render(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
 
+    // Renders into `raster` at most `limit` of the scene's occluder
+    // triangles that face the eye in `frame`'s frustum, the largest
+    // projected area first, drawn nearest first. Returns how many it drew.
+    // Needs the scene given to the constructor (kept by reference).
+    std::size_t render_triangles(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
+
+    // Both, as the settings asked: skins, then the triangle budget.
+    std::size_t render_all(const Frame &frame, DepthRasterizer &raster, std::size_t skin_limit);
+    std::size_t triangle_budget() const { return triangle_budget_; }
+
     // Whether skin `i` may stand for its mesh in `frame`: only where the
     // mesh's bounding box lies wholly beyond the near plane. A skin hides
     // what lies behind it because the mesh's surface in front of it is
@@ -53,11 +75,23 @@ private:
     std::vector<Aabb> boxes_;
     std::vector<Aabb> mesh_bounds_;   // per skin, its mesh's
     std::vector<std::pair<float, std::uint32_t>> chosen_;
+
+    // Occluder triangles: mesh and first index of each, from occluder meshes only.
+    const Scene *scene_ = nullptr;
+    std::size_t triangle_budget_ = 0;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> triangles_;
+    std::vector<std::pair<float, std::uint32_t>> chosen_triangles_;
+    std::vector<std::uint32_t> drawn_indices_;
 };
 
 // The settings of every strategy whose occluders are skins: skin-boxes,
 // skin-voxel and skin-database.
 std::vector<SettingSpec> skin_settings();
+
+// The setting of the strategies that rasterize skins into a depth buffer
+// (SkinOccluders::render_all): occluder-triangles, the scene's own largest
+// triangles added per frame (0: skins alone).
+SettingSpec occluder_triangles_setting();
 
 // The skin database those strategies read (skin-database): made with the
 // settings' skin-voxel, for the scene's meshes (culling/databases.h makes it).

@@ -28,7 +28,7 @@ public:
         frame_.emplace(frame);
         raster_.begin(frame.view_projection, frame.width, frame.height, options_);
         if (skins_)
-            skins_->render(frame, raster_, limit_);
+            skins_->render_all(frame, raster_, limit_);
         stats_.passes = 1;
     }
 
@@ -97,6 +97,7 @@ StrategyFamily occluder_skins_family()
     };
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
+    f.settings.push_back(occluder_triangles_setting());
     f.databases = {skin_database_need()};
     f.databases[0].read_by = [](const Settings &s) { return s.text("occluders") != "drawn"; };
     f.presets = {

@@ -41,7 +41,7 @@ public:
         adapt();
         frame_.emplace(frame);
         raster_.begin(frame.view_projection, frame.width, frame.height, options_);
-        skins_.render(frame, raster_, std::size_t(std::lround(budget_)));
+        skins_.render_all(frame, raster_, std::size_t(std::lround(budget_)));
         raster_.read(depth_);
         const int w = raster_.width(), h = raster_.height(), k = divisor_;
         const int mw = (w + k - 1) / k, mh = (h + k - 1) / k;
@@ -141,6 +141,7 @@ StrategyFamily hierarchical_occlusion_map_family()
     };
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
+    f.settings.push_back(occluder_triangles_setting());
     f.databases = {skin_database_need()};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalOcclusionMapCuller>(context, settings);

@@ -5,7 +5,8 @@
 # visible pixel, exits 0 and prints its summary; a strategy that does lose
 # pixels (an approximation, ou:tolerance=0.9) makes it exit 1 naming the
 # strategy, scene and view; bad options and unreadable scenes are refused
-# with a message naming them. Runs on the driver GALLIUM_DRIVER names
+# with a message naming them; the house's own largest triangles as
+# occluders (occluder-triangles) cull there and lose no pixel. Runs on the driver GALLIUM_DRIVER names
 # (llvmpipe if none), given to the program as --driver.
 # Usage: random-views.sh OCCU-RANDOM-VIEWS VIEWS
 set -u
@@ -72,6 +73,25 @@ if [ $status -eq 0 ] && [ -n "$frames" ] && grep -q "^total: $count views" "$dir
 else
     echo "FAIL (status $status): the CI-sized run"
     sed 's/^/    /' "$dir/good"
+    failures=$((failures + 1))
+fi
+
+# The house's thin walls have no volume for skins: its own largest
+# triangles as occluders (occluder-triangles) cull, and lose no pixel.
+triangles=skins:occluder-triangles=256,hzb:occluder-triangles=256,hom:occluder-triangles=256
+if "$views" --scene "$haus" --views 40 --size 128 --seed 2026 --strategies "vfc,$triangles" --driver "$driver" \
+    --out "$dir/triangles" >"$dir/triangles.out" 2>&1; then
+    status=0
+else
+    status=$?
+fi
+if [ $status -eq 0 ] &&
+    grep -q "^scene $haus: 40 views, 4 strategies, 0 visible pixels lost$" "$dir/triangles.out" &&
+    [ "$(grep -cE '^(skins|hzb):occluder-triangles=256 +40 +[0-9.]+ +[0-9.]+x +- +[0-9]+ +([1-9][0-9]|100)\.[0-9]%' "$dir/triangles.out")" -eq 2 ]; then
+    echo "ok: the house's own triangles as occluders, 40 random views on $driver, 0 visible pixels lost"
+else
+    echo "FAIL (status $status): the house's own triangles as occluders (skins and hzb must cull at least 10%)"
+    sed 's/^/    /' "$dir/triangles.out"
     failures=$((failures + 1))
 fi
 

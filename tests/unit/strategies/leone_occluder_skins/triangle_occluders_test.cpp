@@ -1,0 +1,254 @@
+// The scene's own triangles as occluders (SkinOccluders::render_triangles):
+// against a brute-force ray cast, no box with a point the eye sees past
+// every front-facing occluder triangle (the part of it beyond the near
+// plane, as GL draws it) through some pixel centre ever reads occluded, on hand-made scenes: a thin
+// wall with no volume for skins, a triangle across the near plane, a wall
+// seen from behind, a see-through wall, and a heap of random triangles.
+// And the thin wall does hide what stands behind it, which skins alone do not.
+#include "strategies/leone_occluder_skins/skin_occluders.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "scene/city.h"
+
+using namespace occu;
+
+namespace {
+
+std::vector<SettingSpec> specs()
+{
+    std::vector<SettingSpec> s = skin_settings();
+    s.push_back(occluder_triangles_setting());
+    return s;
+}
+
+void add_triangle(Mesh &m, glm::vec3 a, glm::vec3 b, glm::vec3 c)
+{
+    const auto first = std::uint32_t(m.positions.size());
+    for (const glm::vec3 &p : {a, b, c}) {
+        m.positions.push_back(p);
+        m.normals.push_back(glm::vec3(0, 1, 0));
+    }
+    m.indices.insert(m.indices.end(), {first, first + 1, first + 2});
+}
+
+// A quad a, b, c, d counter-clockwise seen from its front.
+void add_quad(Mesh &m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d)
+{
+    add_triangle(m, a, b, c);
+    add_triangle(m, a, c, d);
+}
+
+// The distance along the ray from `eye` in direction `dir` to the nearest
+// front-facing occluder triangle it meets beyond the near plane (its view
+// depth along `forward` past `near`), as GL's depth test sees it; infinity
+// when none (Moeller-Trumbore, in double).
+double nearest_occluder(const Scene &scene, glm::dvec3 eye, glm::dvec3 dir, glm::dvec3 forward, double near)
+{
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Mesh &m : scene.meshes) {
+        if (!m.occluder)
+            continue;
+        for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+            const glm::dvec3 a(m.positions[m.indices[i]]), b(m.positions[m.indices[i + 1]]),
+                c(m.positions[m.indices[i + 2]]);
+            const glm::dvec3 e1 = b - a, e2 = c - a;
+            if (glm::dot(glm::cross(e1, e2), eye - a) <= 0.0)
+                continue;   // a back face: GL culls it
+            const glm::dvec3 h = glm::cross(dir, e2);
+            const double det = glm::dot(e1, h);
+            if (std::abs(det) < 1e-12)
+                continue;
+            const glm::dvec3 s = eye - a;
+            const double u = glm::dot(s, h) / det;
+            const glm::dvec3 q = glm::cross(s, e1);
+            const double v = glm::dot(dir, q) / det;
+            const double t = glm::dot(e2, q) / det;
+            if (u < 0 || v < 0 || u + v > 1 || t <= 0)
+                continue;
+            if (glm::dot(dir * t, forward) > near)
+                nearest = std::min(nearest, t);
+        }
+    }
+    return nearest;
+}
+
+// Whether GL would show some of `box` (drawn with its faces, beyond the
+// near plane) at some pixel centre of the frame: the ray through the
+// centre enters the box before it meets any occluder, by a margin for
+// depth rounding.
+bool seen(const Scene &scene, const Camera &camera, const Frame &frame, const Aabb &box)
+{
+    const glm::dvec3 eye(camera.position);
+    const glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target) - eye);
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(frame.view_projection));
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x) {
+            const glm::dvec4 ndc((x + 0.5) / frame.width * 2.0 - 1.0, (y + 0.5) / frame.height * 2.0 - 1.0, 1.0, 1.0);
+            const glm::dvec4 far = inverse * ndc;
+            const glm::dvec3 dir = glm::dvec3(far) / far.w - eye;
+            // The ray's entry into the box (slabs).
+            double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+            for (int k = 0; k < 3; ++k) {
+                if (std::abs(dir[k]) < 1e-15) {
+                    if (eye[k] < box.min[k] || eye[k] > box.max[k])
+                        t1 = -1.0;
+                    continue;
+                }
+                double a = (double(box.min[k]) - eye[k]) / dir[k], b = (double(box.max[k]) - eye[k]) / dir[k];
+                if (a > b)
+                    std::swap(a, b);
+                t0 = std::max(t0, a);
+                t1 = std::min(t1, b);
+            }
+            if (t0 > t1 || glm::dot(dir * t0, forward) <= double(camera.near_plane))
+                continue;
+            if (t0 < nearest_occluder(scene, eye, dir, forward, double(camera.near_plane)) * (1.0 + 1e-6))
+                return true;
+        }
+    return false;
+}
+
+struct Counts {
+    int occluded = 0, seen_occluded = 0;
+};
+
+// Every box of `boxes` tested as the skins culler tests a leaf.
+Counts check(const Scene &scene, const Camera &camera, const std::vector<Aabb> &boxes, long budget)
+{
+    const std::vector<SettingSpec> s = specs();
+    Settings settings("test", &s);
+    settings.set("occluder-triangles", std::to_string(budget));
+    SkinOccluders occluders(scene, settings);
+    const int size = 96;
+    const Frame frame(camera, size, size);
+    Counts counts;
+    for (int divisor : {1, 2}) {
+        DepthRasterizer raster;
+        raster.begin(frame.view_projection, size, size, {divisor, true});
+        occluders.render_all(frame, raster, 0);
+        for (const Aabb &box : boxes) {
+            const auto f = frame.footprint(box);
+            if (!f || f->rect.empty())
+                continue;
+            const float z = f->window_z_near - 1e-6f;
+            if (!raster.occluded(box, f->rect, z))
+                continue;
+            ++counts.occluded;
+            if (seen(scene, camera, frame, box)) {
+                ++counts.seen_occluded;
+                ADD_FAILURE() << "box (" << box.min.x << ", " << box.min.y << ", " << box.min.z << ")-(" << box.max.x
+                              << ", " << box.max.y << ", " << box.max.z << ") is seen but read occluded, divisor "
+                              << divisor << ", budget " << budget;
+            }
+        }
+    }
+    return counts;
+}
+
+std::vector<Aabb> grid_of_boxes(glm::vec3 lo, glm::vec3 hi, int n, float size)
+{
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            for (int k = 0; k < n; ++k) {
+                const glm::vec3 t(float(i) / float(n - 1), float(j) / float(n - 1), float(k) / float(n - 1));
+                const glm::vec3 c = lo + (hi - lo) * t;
+                boxes.push_back(Aabb::of(c - glm::vec3(size), c + glm::vec3(size)));
+            }
+    return boxes;
+}
+
+Camera looking_down_minus_z()
+{
+    Camera c;
+    c.position = {0, 2, 0};
+    c.target = {0, 2, -1};
+    c.near_plane = 0.5f;
+    return c;
+}
+
+Scene one_mesh(Mesh m, bool occluder = true)
+{
+    Scene scene;
+    m.occluder = occluder;
+    m.update_bounds();
+    scene.meshes.push_back(std::move(m));
+    scene.update_bounds();
+    return scene;
+}
+
+}  // namespace
+
+TEST(TriangleOccluders, AThinWallHidesWhatIsBehindItAndNothingSeen)
+{
+    Mesh wall;   // 10 m x 5 m, no thickness, facing the eye (+z)
+    add_quad(wall, {-5, 0, -10}, {5, 0, -10}, {5, 5, -10}, {-5, 5, -10});
+    const Scene scene = one_mesh(wall);
+    const auto boxes = grid_of_boxes({-12, -1, -40}, {12, 6, -11}, 7, 0.4f);
+    const Counts without = check(scene, looking_down_minus_z(), boxes, 0);
+    EXPECT_EQ(without.occluded, 0) << "skins find no volume in a wall of no thickness";
+    const Counts with = check(scene, looking_down_minus_z(), boxes, 64);
+    EXPECT_GT(with.occluded, 20) << "the wall's own triangles hide the boxes behind it";
+    EXPECT_EQ(with.seen_occluded, 0);
+}
+
+TEST(TriangleOccluders, ATriangleAcrossTheNearPlaneHidesOnlyWhatItsDrawnPartHides)
+{
+    Mesh m;   // from 3 m behind the eye to 25 m ahead, slanting across the view
+    add_triangle(m, {-1, -6, 3}, {6, 3, -25}, {-1, 12, 3});
+    glm::vec3 e1 = m.positions[1] - m.positions[0], e2 = m.positions[2] - m.positions[0];
+    if (glm::dot(glm::cross(e1, e2), looking_down_minus_z().position - m.positions[0]) < 0)
+        std::swap(m.indices[1], m.indices[2]);
+    const Scene scene = one_mesh(m);
+    const auto boxes = grid_of_boxes({-4, -3, -30}, {12, 8, -2}, 8, 0.3f);
+    for (float near : {0.1f, 0.5f, 2.0f}) {
+        Camera c = looking_down_minus_z();
+        c.near_plane = near;
+        const Counts counts = check(scene, c, boxes, 4);
+        EXPECT_GT(counts.occluded, 0) << "near " << near << ": the part beyond the near plane hides something";
+        EXPECT_EQ(counts.seen_occluded, 0) << "near " << near;
+    }
+}
+
+TEST(TriangleOccluders, AWallSeenFromBehindOrSeeThroughHidesNothing)
+{
+    Mesh back;   // facing away from the eye: GL culls it
+    add_quad(back, {-5, 0, -10}, {-5, 5, -10}, {5, 5, -10}, {5, 0, -10});
+    const auto boxes = grid_of_boxes({-4, 0, -30}, {4, 5, -11}, 5, 0.4f);
+    EXPECT_EQ(check(one_mesh(back), looking_down_minus_z(), boxes, 64).occluded, 0);
+    Mesh glass;
+    add_quad(glass, {-5, 0, -10}, {5, 0, -10}, {5, 5, -10}, {-5, 5, -10});
+    EXPECT_EQ(check(one_mesh(glass, false), looking_down_minus_z(), boxes, 64).occluded, 0)
+        << "a see-through mesh (Mesh::occluder false) is never an occluder";
+}
+
+TEST(TriangleOccluders, RandomTrianglesNeverHideASeenBox)
+{
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<float> x(-8, 8), y(-2, 6), z(-30, -1), d(-3, 3);
+    Mesh m;
+    for (int i = 0; i < 40; ++i) {
+        const glm::vec3 a(x(rng), y(rng), z(rng));
+        add_triangle(m, a, a + glm::vec3(d(rng), d(rng), d(rng)), a + glm::vec3(d(rng), d(rng), d(rng)));
+    }
+    const Scene scene = one_mesh(m);
+    const auto boxes = grid_of_boxes({-8, -2, -32}, {8, 6, -3}, 7, 0.25f);
+    int occluded = 0;
+    for (int view = 0; view < 4; ++view) {
+        Camera c = looking_down_minus_z();
+        c.position.x = float(view) - 1.5f;
+        c.target = c.position + glm::vec3(0.1f * float(view - 2), 0.0f, -1.0f);
+        for (long budget : {8L, 1000L}) {
+            const Counts counts = check(scene, c, boxes, budget);
+            occluded += counts.occluded;
+            EXPECT_EQ(counts.seen_occluded, 0) << "view " << view;
+        }
+    }
+    EXPECT_GT(occluded, 0) << "some box is hidden by the heap";
+}
