@@ -1,0 +1,102 @@
+/*
+ * GL_MESAX_occlusion_unit_async: a pass object follows the occlusion mode's
+ * rules between BeginOcclusionPassMESAX and EndOcclusionPassMESAX (issue 1 of
+ * the async spec: "the framebuffer is fixed"), a window-system-provided
+ * framebuffer's too (MESAX_occlusion_unit, issue 24). An async pass begun on
+ * a 64 x 64 buffer with tiles (0, 0, 32, 32) and (32, 32, 32, 32) draws an
+ * 8 x 8 quad at (40, 40); OSMesaMakeCurrent then makes the context's buffer
+ * 32 x 32, which the GL cannot refuse. From then on the pass's drawing
+ * commands generate INVALID_OPERATION and draw nothing: on the smaller buffer
+ * a quad at (4, 4) would otherwise be credited to tile 0 with the old
+ * buffer's y-flip. The pass ends as ever and its result counts what it drew
+ * before the change. Depth tests are off: every fragment passes.
+ *
+ * Subtests:
+ *   make-current-smaller-no-error      OSMesaMakeCurrent itself succeeds, no GL error
+ *   draw-after-change-invalid-operation  the quad at (4, 4): INVALID_OPERATION
+ *   rejected-draw-draws-nothing        a SAMPLES_PASSED query around it reads 0
+ *   result-counts-before-change        OCCLUSION_PASS_RESULT_MESAX 0, no error; NOHC 0
+ *                                      for tile 0 and 64 for tile 1, x and y 40..47
+ */
+#include "ou_util.h"
+
+#include <GL/osmesa.h>
+
+enum { SMALL = 32, LARGE = 64 };
+
+static GLubyte small_pixels[SMALL * SMALL * 4];
+
+static GLenum
+first_error(void)
+{
+    GLenum e = glGetError();
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    return e;
+}
+
+int main(int argc, char **argv)
+{
+    const struct ou_async_functions a = ou_init_async(argc, argv, LARGE, LARGE);
+    glDisable(GL_DEPTH_TEST);
+    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
+        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    GLuint query, pass;
+    GenQueries(1, &query);
+    a.GenOcclusionPasses(1, &pass);
+
+    GLuint records[2][OU_BRIEF_SIZE];
+    GLuint *buffers[2] = {records[0], records[1]};
+    GLsizei sizes[2] = {OU_BRIEF_SIZE, OU_BRIEF_SIZE};
+    const GLint tiles[8] = {0, 0, SMALL, SMALL, SMALL, SMALL, SMALL, SMALL};
+    ou_fill(records[0], OU_BRIEF_SIZE);
+    ou_fill(records[1], OU_BRIEF_SIZE);
+    ScissorsMESAX(2, tiles);
+    OcclusionBuffersMESAX(2, sizes, buffers);
+    a.BeginOcclusionPass(GL_BRIEF_OCCLUSION_MESAX, pass);
+    ou_rect(40, 40, 48, 48, 0.5f);
+
+    const bool made = OSMesaMakeCurrent(OSMesaGetCurrentContext(), small_pixels, GL_UNSIGNED_BYTE, SMALL, SMALL);
+    OSMesaPixelStore(OSMESA_Y_UP, 1);
+    GLenum e = first_error();
+    if (!made || e != GL_NO_ERROR)
+        printf("OSMesaMakeCurrent to 32 x 32 in an async pass: %s, error 0x%x\n", made ? "made" : "failed", e);
+    subtest(made && e == GL_NO_ERROR, "make-current-smaller-no-error");
+    glViewport(0, 0, SMALL, SMALL);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glOrtho(0, SMALL, 0, SMALL, 0, -1);
+    glMatrixMode(GL_MODELVIEW);
+
+    BeginQuery(GL_SAMPLES_PASSED, query);
+    ou_rect(4, 4, 12, 12, 0.5f);
+    e = first_error();
+    EndQuery(GL_SAMPLES_PASSED);
+    if (e != GL_INVALID_OPERATION)
+        printf("a quad inside tile 0 after the change: error 0x%x (expected INVALID_OPERATION)\n", e);
+    subtest(e == GL_INVALID_OPERATION, "draw-after-change-invalid-operation");
+
+    GLuint samples = 0xdeadbeef;
+    GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+    if (samples != 0)
+        printf("SAMPLES_PASSED around the draw after the change: %u (expected 0)\n", samples);
+    subtest(samples == 0, "rejected-draw-draws-nothing");
+
+    a.EndOcclusionPass();
+    GLint overflowed = -1;
+    a.GetOcclusionPassiv(pass, GL_OCCLUSION_PASS_RESULT_MESAX, &overflowed);
+    e = first_error();
+    const GLuint *r = records[1];
+    const bool counted = records[0][OU_NOHC] == 0 && r[OU_NOHC] == 64 && r[OU_XMIN] == 40 &&
+                         r[OU_XMAX] == 47 && r[OU_YMIN] == 40 && r[OU_YMAX] == 47;
+    if (!counted || overflowed != 0 || e != GL_NO_ERROR)
+        printf("the pass: NOHC %u and %u, tile 1 x %u..%u y %u..%u (expected 0 and 64, 40..47, 40..47); "
+               "result %d, error 0x%x\n",
+               records[0][OU_NOHC], r[OU_NOHC], r[OU_XMIN], r[OU_XMAX], r[OU_YMIN], r[OU_YMAX], overflowed, e);
+    subtest(counted && overflowed == 0 && e == GL_NO_ERROR, "result-counts-before-change");
+    a.DeleteOcclusionPasses(1, &pass);
+    piglit_report_result(result);
+}
