@@ -1,18 +1,24 @@
 #!/usr/bin/env bash
 # The API walk (tests/spec/mesax_occlusion_unit/api-random-calls.c) at
-# 1,000,000 calls per driver, from its fixed seed, on the patched Mesa built
-# with AddressSanitizer and UndefinedBehaviorSanitizer (tools/mesa.sh
-# --sanitize, as tools/fuzz-api runs it at 30,000) or, with --plain, on the
-# patched Mesa without them. A run passes when the walk reports pass and
+# 1,000,000 calls per driver, from its fixed seed, on the patched Mesa with
+# the files the series changes built with AddressSanitizer and
+# UndefinedBehaviorSanitizer (tools/mesa.sh --sanitize, as tools/fuzz-api
+# runs it at 30,000), with --all on all of Mesa built with both
+# (tools/mesa.sh --sanitize-all: it also catches upstream Mesa's own errors on
+# the walk's paths), or, with --plain, on the patched Mesa without them.
+# A run passes when the walk reports pass and
 # AddressSanitizer reports nothing (UBSan reports are counted: upstream
 # Mesa 22.3.6 has its own, see tools/fuzz-api).
-# Usage: bench/api-walk.sh [--plain] [CALLS]      (default 1000000)
+# Usage: bench/api-walk.sh [--plain | --all] [CALLS]      (default 1000000)
 # Prints a markdown table: calls/s of wall and of CPU time (user + system),
 # the walk's counters, and any failure with its log.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 mesa=sanitized
-if [ "${1:-}" = --plain ]; then mesa=plain; shift; fi
+case ${1:-} in
+    --plain) mesa=plain; shift ;;
+    --all) mesa=sanitized-all; shift ;;
+esac
 calls=${1:-1000000}
 [[ $calls =~ ^[0-9]+$ ]] && [ "$calls" -ge 1000 ] || die "bench/api-walk.sh: CALLS must be a whole number of at least 1000, not '$calls'"
 prefix=$("$OCCU_ROOT/tools/build.sh" bench)
@@ -20,8 +26,8 @@ walk=$OCCU_ROOT/build/tests/occu-mesax_occlusion_unit-api-random-calls
 out=$OCCU_ROOT/build/bench-api-walk
 mkdir -p "$out"
 run_env=(LD_LIBRARY_PATH="$prefix/lib")
-if [ $mesa = sanitized ]; then
-    sanitized=$("$OCCU_ROOT/tools/mesa.sh" --sanitize)
+if [ $mesa != plain ]; then
+    sanitized=$("$OCCU_ROOT/tools/mesa.sh" --${mesa/sanitized/sanitize})
     run_env=(LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)"
              LD_LIBRARY_PATH="$sanitized/lib" ASAN_OPTIONS=detect_leaks=0:halt_on_error=1
              UBSAN_OPTIONS=halt_on_error=0:print_stacktrace=0)

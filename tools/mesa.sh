@@ -2,19 +2,30 @@
 # Fetches Debian's Mesa source, applies patches/mesa/series, builds and installs it
 # into a cache outside the work tree; prints the install prefix on stdout.
 #
-# Usage: tools/mesa.sh [--unpatched | --sanitize]
+# Usage: tools/mesa.sh [--unpatched | --sanitize | --sanitize-all]
 #   --unpatched   build the same Mesa with the same options but an empty series
 #                 (the reference for patched-vs-unpatched measurements)
-#   --sanitize    the patched Mesa built with AddressSanitizer and
-#                 UndefinedBehaviorSanitizer (its own options key; programs run
-#                 on it with the sanitizers' runtimes in LD_PRELOAD, as tools/test does)
+#   --sanitize    the patched Mesa with the files the series changes built with
+#                 AddressSanitizer and UndefinedBehaviorSanitizer, every other
+#                 file as the plain build (tools/sanitizing-compiler: ccache hands
+#                 those objects back, so it costs the changed files and the
+#                 links). ASan's runtime replaces malloc and the string and memory
+#                 functions everywhere; accesses are checked in the changed files.
+#                 What tools/test runs the API walk on.
+#   --sanitize-all  all of the patched Mesa built with both sanitizers (a cold
+#                 build about as long as the plain one; bench/api-walk.sh --all,
+#                 which also catches upstream Mesa's own errors on the walk's paths)
+# Programs run on a sanitized Mesa with the sanitizers' runtimes in LD_PRELOAD.
 #
 # Cache layout under $OCCU_CACHE/mesa/<debian version>/:
 #   source/                  the unpacked source package, a git repository whose first
 #                            commit is pristine; each patch of the series is one commit
 #                            on it (git am), as in a merge request's branch
-#   source-unpatched/, source-sanitized/   work trees of that commit for the other
+#   source-unpatched/, source-sanitized-all/   work trees of that commit for the other
 #                            variants (the sanitized one with the series applied)
+#   sanitized/source/, sanitized/build-<options>/   the same for --sanitize, one
+#                            level down so that meson spells every source path as the
+#                            plain build does (../source/...), which ccache needs
 #   build-<options>-<variant>/   meson build dir, reused so that a patch change
 #                            rebuilds only what it touches
 #   install-<options>-<patches>/ the installed Mesa, one per key; '.complete' marks it done
@@ -30,6 +41,13 @@ case ${1:-} in
     --unpatched) variant=unpatched ;;
     --sanitize)
         variant=sanitized
+        # Identical compile options to the plain build (the wrapper adds the
+        # sanitizers per file); shared libraries may then leave the
+        # sanitizers' symbols undefined: the runtime comes from LD_PRELOAD.
+        options+=(-Db_lundef=false)
+        export CC="$OCCU_ROOT/tools/sanitizing-compiler gcc" CXX="$OCCU_ROOT/tools/sanitizing-compiler g++" ;;
+    --sanitize-all)
+        variant=sanitized-all
         # Shared libraries with sanitizers: their runtime comes from the program
         # (LD_PRELOAD), so undefined symbols are allowed at link time. GCC 12
         # with ASan reports a null format string in util/log.c that cannot
@@ -40,7 +58,7 @@ case ${1:-} in
         options=("${options[@]/-Dbuild-tests=true/-Dbuild-tests=false}")
         options+=(-Db_sanitize=address,undefined -Db_lundef=false
                   -Dc_args=-Wno-error=format-overflow -Dcpp_args=-Wno-error=format-overflow) ;;
-    *) die "tools/mesa.sh: unknown option '$1' (expected --unpatched, --sanitize or nothing)" ;;
+    *) die "tools/mesa.sh: unknown option '$1' (expected --unpatched, --sanitize, --sanitize-all or nothing)" ;;
 esac
 
 
@@ -55,7 +73,8 @@ if [ $variant != unpatched ] && [ -f "$series_file" ]; then
     done < "$series_file"
 fi
 
-options_hash=$(printf '%s\n' "${options[@]}" | sha256sum | cut -c1-12)
+options_hash=$( { printf '%s\n' "${options[@]}"; [ $variant != sanitized ] || echo "sanitize changed files"; } |
+               sha256sum | cut -c1-12)
 # The series as it is now, copied: another build of the cache may hold the lock
 # below for minutes, and the patches applied after it must be the ones hashed.
 snapshot=$(mktemp -d)
@@ -69,6 +88,7 @@ patches_hash=$( { printf '%s\n' "${patches[@]##*/}"; for p in "${patches[@]}"; d
 top=$OCCU_CACHE/mesa/$MESA_DEBIAN_VERSION
 src=$top/source
 build=$top/build-$options_hash-$variant
+[ $variant != sanitized ] || build=$top/sanitized/build-$options_hash
 prefix=$top/install-$options_hash-$patches_hash
 
 if [ -f "$prefix/.complete" ]; then
@@ -117,11 +137,13 @@ flock -u 8
 # made from the pristine commit, so that building one variant never touches
 # the files of another's build, nor a Mesa developer's edits in source/.
 if [ $variant != patched ]; then
-    if [ ! -d "$top/source-$variant" ]; then
-        git -C "$src" worktree add -q --detach "$top/source-$variant" \
-            "$(git -C "$src" rev-list --max-parents=0 HEAD)"
+    tree=$top/source-$variant
+    [ $variant != sanitized ] || tree=$top/sanitized/source
+    if [ ! -d "$tree" ]; then
+        mkdir -p "${tree%/*}"
+        git -C "$src" worktree add -q --detach "$tree" "$(git -C "$src" rev-list --max-parents=0 HEAD)"
     fi
-    src=$top/source-$variant
+    src=$tree
 fi
 
 # --- patch: reset the tree to pristine, commit the series on it in order ---------------
@@ -157,9 +179,28 @@ if [ ! -f "$build/build.ninja" ]; then
 else
     meson configure "$build" --prefix="$prefix" >/dev/null
 fi
+if [ $variant = sanitized ]; then
+    # The files tools/sanitizing-compiler instruments: the series' C and C++
+    # sources, as meson names them (relative to the build directory).
+    git -C "$src" diff --name-only "$(git -C "$src" rev-list --max-parents=0 HEAD)" HEAD -- '*.c' '*.cpp' |
+        sed 's|^|../source/|' >"$build/occu-sanitize-sources"
+    [ -s "$build/occu-sanitize-sources" ] || die "the series changes no C source to sanitize"
+fi
 say "building Mesa into $prefix (log: $top/build-$variant.log)"
 start=$(date +%s)
-if ! ninja -C "$build" install >"$top/build-$variant.log" 2>&1; then
+# What is installed, and of Mesa's own tests only main_test (tools/test runs
+# it): nir_tests, spirv_tests, util_tests and the rest are about a tenth of
+# the build's objects and some of its slowest to compile.
+mapfile -t targets < <(meson introspect --targets "$build" | /usr/bin/python3 -c '
+import json, os, sys
+build = sys.argv[1]
+for t in json.load(sys.stdin):
+    if t["installed"] or t["name"] == "main_test":
+        for f in t["filename"]:
+            print(os.path.relpath(f, build))' "$build")
+[ ${#targets[@]} -gt 0 ] || die "meson lists no installed targets in $build"
+if ! { ninja -C "$build" "${targets[@]}" && meson install -C "$build" --no-rebuild --quiet; } \
+        >"$top/build-$variant.log" 2>&1; then
     grep -E 'error|FAILED' "$top/build-$variant.log" | head -n 30 >&2
     die "Mesa build failed (log: $top/build-$variant.log)"
 fi
