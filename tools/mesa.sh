@@ -45,7 +45,9 @@ case ${1:-} in
         # sanitizers per file); shared libraries may then leave the
         # sanitizers' symbols undefined: the runtime comes from LD_PRELOAD.
         options+=(-Db_lundef=false)
-        export CC="$OCCU_ROOT/tools/sanitizing-compiler gcc" CXX="$OCCU_ROOT/tools/sanitizing-compiler g++" ;;
+        # cc and c++, as meson names them for the plain build: ccache's key
+        # holds the compiler's name.
+        export CC="$OCCU_ROOT/tools/sanitizing-compiler cc" CXX="$OCCU_ROOT/tools/sanitizing-compiler c++" ;;
     --sanitize-all)
         variant=sanitized-all
         # Shared libraries with sanitizers: their runtime comes from the program
@@ -189,15 +191,15 @@ fi
 say "building Mesa into $prefix (log: $top/build-$variant.log)"
 start=$(date +%s)
 # What is installed, and of Mesa's own tests only main_test (tools/test runs
-# it): nir_tests, spirv_tests, util_tests and the rest are about a tenth of
-# the build's objects and some of its slowest to compile.
+# it from the plain build): nir_tests, spirv_tests, util_tests and the rest
+# are about a tenth of the build's objects and some of its slowest to compile.
 mapfile -t targets < <(meson introspect --targets "$build" | /usr/bin/python3 -c '
 import json, os, sys
-build = sys.argv[1]
+build, variant = sys.argv[1:]
 for t in json.load(sys.stdin):
-    if t["installed"] or t["name"] == "main_test":
+    if t["installed"] or (t["name"] == "main_test" and variant == "patched"):
         for f in t["filename"]:
-            print(os.path.relpath(f, build))' "$build")
+            print(os.path.relpath(f, build))' "$build" $variant)
 [ ${#targets[@]} -gt 0 ] || die "meson lists no installed targets in $build"
 if ! { ninja -C "$build" "${targets[@]}" && meson install -C "$build" --no-rebuild --quiet; } \
         >"$top/build-$variant.log" 2>&1; then
