@@ -26,15 +26,6 @@ enum { SMALL = 32, LARGE = 64 };
 
 static GLubyte small_pixels[SMALL * SMALL * 4];
 
-static GLenum
-first_error(void)
-{
-    GLenum e = glGetError();
-    while (glGetError() != GL_NO_ERROR)
-        ;
-    return e;
-}
-
 int main(int argc, char **argv)
 {
     const struct ou_async_functions a = ou_init_async(argc, argv, LARGE, LARGE);
@@ -61,7 +52,7 @@ int main(int argc, char **argv)
 
     const bool made = OSMesaMakeCurrent(OSMesaGetCurrentContext(), small_pixels, GL_UNSIGNED_BYTE, SMALL, SMALL);
     OSMesaPixelStore(OSMESA_Y_UP, 1);
-    GLenum e = first_error();
+    GLenum e = ou_first_error();
     if (!made || e != GL_NO_ERROR)
         printf("OSMesaMakeCurrent to 32 x 32 in an async pass: %s, error 0x%x\n", made ? "made" : "failed", e);
     subtest(made && e == GL_NO_ERROR, "make-current-smaller-no-error");
@@ -73,7 +64,7 @@ int main(int argc, char **argv)
 
     BeginQuery(GL_SAMPLES_PASSED, query);
     ou_rect(4, 4, 12, 12, 0.5f);
-    e = first_error();
+    e = ou_first_error();
     EndQuery(GL_SAMPLES_PASSED);
     if (e != GL_INVALID_OPERATION)
         printf("a quad inside tile 0 after the change: error 0x%x (expected INVALID_OPERATION)\n", e);
@@ -88,7 +79,7 @@ int main(int argc, char **argv)
     a.EndOcclusionPass();
     GLint overflowed = -1;
     a.GetOcclusionPassiv(pass, GL_OCCLUSION_PASS_RESULT_MESAX, &overflowed);
-    e = first_error();
+    e = ou_first_error();
     const GLuint *r = records[1];
     const bool counted = records[0][OU_NOHC] == 0 && r[OU_NOHC] == 64 && r[OU_XMIN] == 40 &&
                          r[OU_XMAX] == 47 && r[OU_YMIN] == 40 && r[OU_YMAX] == 47;

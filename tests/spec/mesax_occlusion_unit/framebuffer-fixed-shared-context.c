@@ -56,15 +56,6 @@ make_current(OSMesaContext context, void *buffer)
     return true;
 }
 
-static GLenum
-first_error(void)
-{
-    GLenum e = glGetError();
-    while (glGetError() != GL_NO_ERROR)
-        ;
-    return e;
-}
-
 static void
 begin_pass(void)
 {
@@ -84,7 +75,7 @@ reallocate(int index, int size)
     static const GLenum formats[2] = {GL_RGBA8, GL_DEPTH_COMPONENT24};
     f.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[index]);
     f.RenderbufferStorage(GL_RENDERBUFFER, formats[index], size, size);
-    return first_error();
+    return ou_first_error();
 }
 
 static GLint
@@ -134,7 +125,7 @@ int main(int argc, char **argv)
     glDepthFunc(GL_LESS);
     glClearDepth(1.0);
     glClear(GL_DEPTH_BUFFER_BIT);
-    first_error();
+    ou_first_error();
 
     /* B reallocates A's depth buffer in the middle of A's pass. */
     begin_pass();
@@ -149,21 +140,21 @@ int main(int argc, char **argv)
     subtest(b_error == GL_NO_ERROR && b_width == 2 * S, "other-context-reallocates");
 
     ou_rect(16, 16, 24, 24, 0.5f);
-    GLenum e = first_error();
+    GLenum e = ou_first_error();
     if (e != GL_INVALID_OPERATION)
         printf("A's quad after the reallocation: error 0x%x (expected INVALID_OPERATION)\n", e);
     subtest(e == GL_INVALID_OPERATION, "draw-after-reallocation-invalid-operation");
 
     f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-    const GLenum rebind = first_error();
+    const GLenum rebind = ou_first_error();
     ou_rect(16, 16, 24, 24, 0.5f);
-    e = first_error();
+    e = ou_first_error();
     if (rebind != GL_NO_ERROR || e != GL_INVALID_OPERATION)
         printf("rebinding: error 0x%x (expected none); a quad then: 0x%x (expected INVALID_OPERATION)\n", rebind, e);
     subtest(rebind == GL_NO_ERROR && e == GL_INVALID_OPERATION, "rebind-then-draw-invalid-operation");
 
     glRenderMode(GL_RENDER);
-    e = first_error();
+    e = ou_first_error();
     if (record[OU_NOHC] != 64 || e != GL_NO_ERROR)
         printf("A's pass: NOHC %u (expected 64, the quad before the reallocation), error 0x%x\n", record[OU_NOHC], e);
     subtest(record[OU_NOHC] == 64 && e == GL_NO_ERROR, "pass-counts-before-reallocation");
@@ -177,7 +168,7 @@ int main(int argc, char **argv)
     const GLenum b_colour_error = reallocate(0, 2 * S);
     make_current(a_context, a_buffer);
     ou_rect(16, 16, 24, 24, 0.5f);
-    e = first_error();
+    e = ou_first_error();
     glRenderMode(GL_RENDER);
     if (b_colour_error != GL_NO_ERROR || e != GL_INVALID_OPERATION || record[OU_NOHC] != 64)
         printf("colour reallocation: B's error 0x%x, A's draw 0x%x (expected INVALID_OPERATION), NOHC %u (64)\n",
@@ -197,10 +188,10 @@ int main(int argc, char **argv)
     glEnableClientState(GL_VERTEX_ARRAY);
     glDrawArrays(GL_QUADS, 0, 4);
     glDisableClientState(GL_VERTEX_ARRAY);
-    e = first_error();
+    e = ou_first_error();
     f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     ou_rect(4, 4, 12, 12, 0.5f);
-    const GLenum begin_error = first_error();
+    const GLenum begin_error = ou_first_error();
     glRenderMode(GL_RENDER);
     if (!joined || thread_result != GL_NO_ERROR || e != GL_INVALID_OPERATION || begin_error != GL_INVALID_OPERATION ||
         record[OU_NOHC] != 0)
@@ -218,7 +209,7 @@ int main(int argc, char **argv)
     begin_pass();
     ou_rect(4, 4, 12, 12, 0.5f);
     glRenderMode(GL_RENDER);
-    e = first_error();
+    e = ou_first_error();
     if (status != GL_FRAMEBUFFER_COMPLETE || record[OU_NOHC] != 64 || e != GL_NO_ERROR)
         printf("a pass after the reallocations: status 0x%x, NOHC %u (expected 64), error 0x%x\n", status,
                record[OU_NOHC], e);

@@ -42,15 +42,6 @@ pixel_projection(int size)
     glMatrixMode(GL_MODELVIEW);
 }
 
-static GLenum
-first_error(void)
-{
-    GLenum e = glGetError();
-    while (glGetError() != GL_NO_ERROR)
-        ;
-    return e;
-}
-
 int main(int argc, char **argv)
 {
     ou_init(argc, argv, SMALL, SMALL);
@@ -76,12 +67,12 @@ int main(int argc, char **argv)
     /* The context's window-system framebuffer becomes 64 x 64. */
     const bool made = OSMesaMakeCurrent(OSMesaGetCurrentContext(), large_pixels, GL_UNSIGNED_BYTE, LARGE, LARGE);
     OSMesaPixelStore(OSMESA_Y_UP, 1);
-    subtest(made && first_error() == GL_NO_ERROR, "make-current-larger-no-error");
+    subtest(made && ou_first_error() == GL_NO_ERROR, "make-current-larger-no-error");
     pixel_projection(LARGE);
 
     BeginQuery(GL_SAMPLES_PASSED, query);
     ou_rect(4, 4, 12, 12, 0.5f);
-    GLenum e = first_error();
+    GLenum e = ou_first_error();
     if (e != GL_INVALID_OPERATION)
         printf("a quad inside tile 0 after the change: error 0x%x (expected INVALID_OPERATION)\n", e);
     subtest(e == GL_INVALID_OPERATION, "begin-after-change-invalid-operation");
@@ -91,7 +82,7 @@ int main(int argc, char **argv)
     glEnableClientState(GL_VERTEX_ARRAY);
     glDrawArrays(GL_QUADS, 0, 4);
     glDisableClientState(GL_VERTEX_ARRAY);
-    e = first_error();
+    e = ou_first_error();
     if (e != GL_INVALID_OPERATION)
         printf("a DrawArrays quad at (40, 40) after the change: error 0x%x (expected INVALID_OPERATION)\n", e);
     subtest(e == GL_INVALID_OPERATION, "draw-arrays-after-change-invalid-operation");
@@ -100,11 +91,11 @@ int main(int argc, char **argv)
     memset(bitmap, 0xff, sizeof(bitmap));
     glRasterPos2i(4, 4);
     glDrawPixels(8, 8, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
-    const GLenum draw_pixels = first_error();
+    const GLenum draw_pixels = ou_first_error();
     glBitmap(8, 8, 0, 0, 0, 0, bitmap);
-    const GLenum bitmap_error = first_error();
+    const GLenum bitmap_error = ou_first_error();
     glCopyPixels(0, 0, 8, 8, GL_COLOR);
-    const GLenum copy_pixels = first_error();
+    const GLenum copy_pixels = ou_first_error();
     EndQuery(GL_SAMPLES_PASSED);
     if (draw_pixels != GL_INVALID_OPERATION || bitmap_error != GL_INVALID_OPERATION ||
         copy_pixels != GL_INVALID_OPERATION)
@@ -121,7 +112,7 @@ int main(int argc, char **argv)
     subtest(samples == 0, "rejected-draws-draw-nothing");
 
     const GLint overflowed = glRenderMode(GL_RENDER);
-    e = first_error();
+    e = ou_first_error();
     const GLuint *r = records[0];
     const bool counted = r[OU_NOHC] == 64 && r[OU_XMIN] == 4 && r[OU_XMAX] == 11 && r[OU_YMIN] == 4 &&
                          r[OU_YMAX] == 11;
@@ -138,7 +129,7 @@ int main(int argc, char **argv)
     glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
     ou_rect(40, 40, 48, 48, 0.5f);
     glRenderMode(GL_RENDER);
-    e = first_error();
+    e = ou_first_error();
     if (records[0][OU_NOHC] != 0 || records[1][OU_NOHC] != 64 || e != GL_NO_ERROR)
         printf("a pass on the 64 x 64 buffer: NOHC %u and %u (expected 0 and 64), error 0x%x\n", records[0][OU_NOHC],
                records[1][OU_NOHC], e);

@@ -213,6 +213,16 @@ ou_brief_pass(int num_tiles, const GLint *tiles, GLuint (*records)[OU_BRIEF_SIZE
     return r;
 }
 
+/* The first error glGetError reports, and the others cleared. */
+static inline GLenum
+ou_first_error(void)
+{
+    GLenum e = glGetError();
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    return e;
+}
+
 /* GL_MESAX_occlusion_unit_async's entry points (ou_init_async). */
 struct ou_async_functions {
     PFNGLGENOCCLUSIONPASSESMESAXPROC GenOcclusionPasses;
