@@ -2,26 +2,28 @@
 # Builds occu: installs what is missing, builds (or reuses) the patched Mesa,
 # then configures and builds the meson project in build/.
 # Prints the Mesa prefix on stdout; source "<prefix>/occu/env.sh" to run on it.
+# Usage: tools/build.sh [build|test|...]   (the packages tools/deps.sh installs)
+# Environment:
+#   OCCU_MESA_PREFIX  build against the Mesa installed there (it needs
+#                     lib/pkgconfig/osmesa.pc and occu/env.sh, as tools/mesa.sh
+#                     and tools/check-mesa-series.sh install it) instead of
+#                     building the series with tools/mesa.sh
+#   OCCU_BUILD_DIR    the build directory (default: build/ of this tree)
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
 "$OCCU_ROOT/tools/deps.sh" "${1:-build}"
-prefix=$("$OCCU_ROOT/tools/mesa.sh")
+if [ -n "${OCCU_MESA_PREFIX:-}" ]; then
+    [ -f "$OCCU_MESA_PREFIX/occu/env.sh" ] || die "OCCU_MESA_PREFIX=$OCCU_MESA_PREFIX has no occu/env.sh (not a Mesa installed by tools/mesa.sh or tools/check-mesa-series.sh)"
+    prefix=$(cd "$OCCU_MESA_PREFIX" && pwd)
+else
+    prefix=$("$OCCU_ROOT/tools/mesa.sh")
+fi
 source "$prefix/occu/env.sh"
 
-build=$OCCU_ROOT/build
+build=${OCCU_BUILD_DIR:-$OCCU_ROOT/build}
 export PATH=/usr/bin:$PATH   # Debian's meson and python, whatever is first on PATH
-if [ ! -f "$build/build.ninja" ] || [ "$(cat "$build/.occu-mesa-prefix" 2>/dev/null)" != "$prefix" ]; then
-    say "configuring occu against $prefix"
-    # pkg_config_path as an option: meson keeps the PKG_CONFIG_PATH of the first
-    # setup across --reconfigure, which would leave the old Mesa's rpath behind.
-    if [ -f "$build/build.ninja" ]; then
-        meson setup --reconfigure "$build" "$OCCU_ROOT" -Dpkg_config_path="$prefix/lib/pkgconfig" >/dev/null
-    else
-        meson setup "$build" "$OCCU_ROOT" -Dpkg_config_path="$prefix/lib/pkgconfig" >/dev/null
-    fi
-    echo "$prefix" > "$build/.occu-mesa-prefix"
-fi
+occu_configure "$build" "$prefix"
 say "building occu"
 ninja -C "$build" >"$build/ninja.log" 2>&1 || { tail -n 40 "$build/ninja.log" >&2; die "occu build failed (log: $build/ninja.log)"; }
 echo "$prefix"

@@ -11,9 +11,11 @@ A stage whose results are missing, unreadable or fewer than the tests it
 declares counts as failed (one failure per missing result), so that the last
 line of tools/test cannot say '0 failed' for tests that did not run.
 
-  count-results.py meson BUILD_DIR MESON_STATUS
-      BUILD_DIR/meson-logs/testlog.json against `meson test --list` (the
-      tests the suite declares, counted by meson itself); a non-zero exit
+  count-results.py meson BUILD_DIR MESON_STATUS [SELECTION...]
+      BUILD_DIR/meson-logs/testlog.json against `meson test --list
+      SELECTION` (the tests the suite declares, counted by meson itself;
+      SELECTION: the --suite and --no-suite options the run was given, as
+      tools/check-mesa-series.sh gives them); a non-zero exit
       status of `meson test` with no failed result is a failure of its own.
       A GoogleTest program that passes with skipped test cases is counted
       as passed, and each skipped case is counted as skipped and named
@@ -53,8 +55,8 @@ def gtest_skips(build, report):
     return skips, None
 
 
-def meson(build, status):
-    declared = subprocess.run(['meson', 'test', '-C', build, '--list', '--no-rebuild'],
+def meson(build, status, selection=()):
+    declared = subprocess.run(['meson', 'test', '-C', build, '--list', '--no-rebuild', *selection],
                               capture_output=True, text=True)
     names = [n.strip() for n in declared.stdout.splitlines() if n.strip()]
     if declared.returncode != 0 or not names:
@@ -147,7 +149,7 @@ def piglit(results_dir, profiles):
 
 def main():
     if len(sys.argv) >= 4 and sys.argv[1] == 'meson':
-        meson(sys.argv[2], int(sys.argv[3]))
+        meson(sys.argv[2], int(sys.argv[3]), sys.argv[4:])
     elif len(sys.argv) >= 4 and sys.argv[1] == 'piglit':
         piglit(sys.argv[2], sys.argv[3:])
     else:

@@ -38,3 +38,48 @@ MESA_OPTIONS=(
     -Dvalgrind=disabled -Dlibunwind=disabled -Dlmsensors=disabled -Dselinux=false
     -Dbuild-tests=true -Dtools=
 )
+
+# Writes PREFIX/occu/env.sh, which a shell sources to run programs on the Mesa
+# installed in PREFIX, and the glvnd vendor file it names (tools/mesa.sh,
+# tools/check-mesa-series.sh). WHAT says which Mesa it is, in env.sh's comment.
+# glvnd finds vendors through JSON files; programs are pointed at this one
+# (absolute path, so that no system Mesa is picked instead) with
+# __EGL_VENDOR_LIBRARY_FILENAMES.
+write_mesa_env() {  # PREFIX WHAT
+    local prefix=$1 what=$2
+    mkdir -p "$prefix/occu"
+    cat > "$prefix/occu/egl_vendor.json" <<JSON
+{
+    "file_format_version" : "1.0.0",
+    "ICD" : { "library_path" : "$prefix/lib/libEGL_mesa.so.0" }
+}
+JSON
+    cat > "$prefix/occu/env.sh" <<ENV
+# Source this to run programs on occu's Mesa ($what).
+export PKG_CONFIG_PATH="$prefix/lib/pkgconfig\${PKG_CONFIG_PATH:+:\$PKG_CONFIG_PATH}"
+export LD_LIBRARY_PATH="$prefix/lib\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
+export LIBGL_DRIVERS_PATH="$prefix/lib/dri"
+export __EGL_VENDOR_LIBRARY_FILENAMES="$prefix/occu/egl_vendor.json"
+ENV
+}
+
+# Configures occu's meson build directory BUILD against the Mesa installed in
+# PREFIX, or again when it was configured against another (tools/build.sh;
+# tools/check-mesa-series.sh, one build directory per part of the series).
+occu_configure() {  # BUILD PREFIX
+    local build=$1 prefix=$2
+    [ -f "$prefix/lib/pkgconfig/osmesa.pc" ] || die "no Mesa installed in $prefix (no lib/pkgconfig/osmesa.pc)"
+    if [ ! -f "$build/build.ninja" ] || [ "$(cat "$build/.occu-mesa-prefix" 2>/dev/null)" != "$prefix" ]; then
+        say "configuring occu in $build against $prefix"
+        # pkg_config_path as an option: meson keeps the PKG_CONFIG_PATH of the first
+        # setup across --reconfigure, which would leave the old Mesa's rpath behind.
+        if [ -f "$build/build.ninja" ]; then
+            PATH=/usr/bin:$PATH meson setup --reconfigure "$build" "$OCCU_ROOT" \
+                -Dpkg_config_path="$prefix/lib/pkgconfig" >/dev/null
+        else
+            PATH=/usr/bin:$PATH meson setup "$build" "$OCCU_ROOT" \
+                -Dpkg_config_path="$prefix/lib/pkgconfig" >/dev/null
+        fi
+        echo "$prefix" > "$build/.occu-mesa-prefix"
+    fi
+}

@@ -214,22 +214,7 @@ if [ -x "$build/src/mesa/main/tests/main_test" ]; then
     cp "$build/src/mesa/main/tests/main_test" "$prefix/occu/tests/mesa_main_test"
 fi
 
-# glvnd finds vendors through JSON files; programs are pointed at this one (absolute
-# path, so that no system Mesa is picked instead) with __EGL_VENDOR_LIBRARY_FILENAMES.
-mkdir -p "$prefix/occu"
-cat > "$prefix/occu/egl_vendor.json" <<JSON
-{
-    "file_format_version" : "1.0.0",
-    "ICD" : { "library_path" : "$prefix/lib/libEGL_mesa.so.0" }
-}
-JSON
-cat > "$prefix/occu/env.sh" <<ENV
-# Source this to run programs on occu's Mesa ($variant, series $patches_hash).
-export PKG_CONFIG_PATH="$prefix/lib/pkgconfig\${PKG_CONFIG_PATH:+:\$PKG_CONFIG_PATH}"
-export LD_LIBRARY_PATH="$prefix/lib\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
-export LIBGL_DRIVERS_PATH="$prefix/lib/dri"
-export __EGL_VENDOR_LIBRARY_FILENAMES="$prefix/occu/egl_vendor.json"
-ENV
+write_mesa_env "$prefix" "$variant, series $patches_hash"
 touch "$prefix/.complete"
 say "Mesa built in $(( $(date +%s) - start ))s"
 echo "$prefix"
