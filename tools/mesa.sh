@@ -44,10 +44,7 @@ case ${1:-} in
         # Identical compile options to the plain build (the wrapper adds the
         # sanitizers per file); shared libraries may then leave the
         # sanitizers' symbols undefined: the runtime comes from LD_PRELOAD.
-        options+=(-Db_lundef=false)
-        # cc and c++, as meson names them for the plain build: ccache's key
-        # holds the compiler's name.
-        export CC="$OCCU_ROOT/tools/sanitizing-compiler cc" CXX="$OCCU_ROOT/tools/sanitizing-compiler c++" ;;
+        options+=(-Db_lundef=false) ;;
     --sanitize-all)
         variant=sanitized-all
         # Shared libraries with sanitizers: their runtime comes from the program
@@ -75,7 +72,9 @@ if [ $variant != unpatched ] && [ -f "$series_file" ]; then
     done < "$series_file"
 fi
 
-options_hash=$( { printf '%s\n' "${options[@]}"; [ $variant != sanitized ] || echo "sanitize changed files"; } |
+wrapper_hash=$(sha256sum "$OCCU_ROOT/tools/sanitizing-compiler" | cut -c1-12)
+options_hash=$( { printf '%s\n' "${options[@]}"
+                  [ $variant != sanitized ] || echo "sanitize changed files, wrapper $wrapper_hash"; } |
                sha256sum | cut -c1-12)
 # The series as it is now, copied: another build of the cache may hold the lock
 # below for minutes, and the patches applied after it must be the ones hashed.
@@ -92,6 +91,20 @@ src=$top/source
 build=$top/build-$options_hash-$variant
 [ $variant != sanitized ] || build=$top/sanitized/build-$options_hash
 prefix=$top/install-$options_hash-$patches_hash
+if [ $variant = sanitized ]; then
+    # meson keeps the compiler's absolute path in the build directory and runs
+    # it again when it reconfigures: the wrapper is a copy in the cache, named
+    # by its content, which outlives the tree (a clone, a worktree) that
+    # configured the build. cc and c++, as meson names them for the plain
+    # build: ccache's key holds the compiler's name.
+    wrapper=$top/sanitized/sanitizing-compiler-$wrapper_hash
+    if [ ! -x "$wrapper" ]; then
+        mkdir -p "$top/sanitized"
+        cp "$OCCU_ROOT/tools/sanitizing-compiler" "$wrapper.tmp.$$" && chmod 755 "$wrapper.tmp.$$" &&
+            mv "$wrapper.tmp.$$" "$wrapper"
+    fi
+    export CC="$wrapper cc" CXX="$wrapper c++"
+fi
 
 if [ -f "$prefix/.complete" ]; then
     echo "$prefix"; exit 0
