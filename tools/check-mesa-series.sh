@@ -11,7 +11,7 @@
 # 'base'.
 #
 # 1. Each patch builds on the ones before it: for k = 1..N, the pristine source
-#    with patches 1..k applied is built with the options of tools/mesa.sh, in a
+#    with patches 1..k applied (patch k applied to the tree of step k-1) is built with the options of tools/mesa.sh, in a
 #    work tree and build directory of their own (not installed).
 # 2. Each part passes the extension's tests on the parts before it alone: at
 #    the last patch of a part, that build is installed into a prefix of its
@@ -135,11 +135,13 @@ pristine=$(git -C "$top/source" rev-list --max-parents=0 HEAD)
 export PATH=/usr/bin:$PATH
 export CCACHE_DIR=${CCACHE_DIR:-$OCCU_CACHE/ccache}
 part_first=1
+# The tree goes from pristine through each patch in turn, so that a step
+# touches only the files of its patch and ninja rebuilds what depends on them,
+# not every file some patch of the series changes.
+(cd "$src" && git checkout -q --detach "$pristine" && git reset -q --hard && git clean -q -fdx)
 for k in "${!patches[@]}"; do
-    (cd "$src" && git checkout -q --detach "$pristine" && git reset -q --hard && git clean -q -fdx)
-    for p in "${patches[@]:0:k+1}"; do
-        (cd "$src" && git apply --whitespace=nowarn "$p") || die "${p##*/} does not apply on the patches before it"
-    done
+    (cd "$src" && git apply --whitespace=nowarn "${patches[k]}") ||
+        die "${patches[k]##*/} does not apply on the patches before it"
     if [ ! -f "$build/build.ninja" ]; then
         meson setup "$build" "$src" --prefix="$top/install-series-check" --libdir=lib "${MESA_OPTIONS[@]}" \
             >"$build.configure.log" 2>&1 || die "meson setup failed (log: $build.configure.log)"

@@ -34,27 +34,14 @@
  */
 #include "ou_util.h"
 
-#include <GL/osmesa.h>
+#include "ou_two_contexts.h"
 
 enum { S = 32 };
 
 static struct ou_fbo_functions f;
-static OSMesaContext a_context, b_context;
-static GLubyte b_pixels[S * S * 4];
-static void *a_buffer;
+static struct ou_two_contexts contexts;
 static GLuint renderbuffers[2]; /* colour, depth */
 static GLuint record[OU_BRIEF_SIZE];
-
-static bool
-make_current(OSMesaContext context, void *buffer)
-{
-    if (!OSMesaMakeCurrent(context, buffer, GL_UNSIGNED_BYTE, S, S)) {
-        printf("OSMesaMakeCurrent failed\n");
-        return false;
-    }
-    OSMesaPixelStore(OSMESA_Y_UP, 1);
-    return true;
-}
 
 static void
 begin_pass(void)
@@ -92,7 +79,7 @@ static int
 other_thread(void *arg)
 {
     (void)arg;
-    if (!make_current(b_context, b_pixels))
+    if (!ou_make_b_current(&contexts))
         return -1;
     const GLenum e = reallocate(1, S);
     glFinish();
@@ -104,21 +91,7 @@ int main(int argc, char **argv)
 {
     ou_init(argc, argv, S, S);
     f = ou_fbo_functions();
-    a_context = OSMesaGetCurrentContext();
-    GLint width, height, format;
-    if (!OSMesaGetColorBuffer(a_context, &width, &height, &format, &a_buffer)) {
-        printf("OSMesaGetColorBuffer failed\n");
-        piglit_report_result(PIGLIT_FAIL);
-    }
-    static const int attribs[] = {
-        OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
-        OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0,
-    };
-    b_context = OSMesaCreateContextAttribs(attribs, a_context);
-    if (!b_context) {
-        printf("could not make a second context sharing the first\n");
-        piglit_report_result(PIGLIT_FAIL);
-    }
+    contexts = ou_make_second_context(S);
 
     const GLuint fbo = ou_make_fbo(&f, S, S, 0, true, renderbuffers);
     glEnable(GL_DEPTH_TEST);
@@ -131,10 +104,10 @@ int main(int argc, char **argv)
     begin_pass();
     ou_rect(4, 4, 12, 12, 0.5f);
     glFlush();
-    make_current(b_context, b_pixels);
+    ou_make_b_current(&contexts);
     const GLenum b_error = reallocate(1, 2 * S);
     const GLint b_width = renderbuffer_width();
-    make_current(a_context, a_buffer);
+    ou_make_a_current(&contexts);
     if (b_error != GL_NO_ERROR || b_width != 2 * S)
         printf("B's RenderbufferStorage: error 0x%x, width %d (expected none, %d)\n", b_error, b_width, 2 * S);
     subtest(b_error == GL_NO_ERROR && b_width == 2 * S, "other-context-reallocates");
@@ -164,9 +137,9 @@ int main(int argc, char **argv)
     glClear(GL_DEPTH_BUFFER_BIT);
     begin_pass();
     ou_rect(4, 4, 12, 12, 0.5f);
-    make_current(b_context, b_pixels);
+    ou_make_b_current(&contexts);
     const GLenum b_colour_error = reallocate(0, 2 * S);
-    make_current(a_context, a_buffer);
+    ou_make_a_current(&contexts);
     ou_rect(16, 16, 24, 24, 0.5f);
     e = ou_first_error();
     glRenderMode(GL_RENDER);
