@@ -361,6 +361,9 @@ void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup 
     SessionOptions so;
     so.allocator = o.allocator;
     so.batch = default_batch;
+    // Unrelated views (random eyes, camera/route.h): no policies across frames.
+    so.coherence = !unrelated_views(route_name);
+    so.switch_off = unrelated_views(route_name) ? 0.0 : so.switch_off;
     so.lost_pixels = SessionOptions::PixelCheck::all;
     DatabaseProvider databases(o.databases, o.make_databases);
     so.databases = &databases;

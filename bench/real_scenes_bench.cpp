@@ -82,7 +82,7 @@ struct Options {
                                             openarena + "pak1-maps.pk3:maps/oa_dm5.bsp"};
     std::vector<std::string> strategies;   // empty: every strategy once, and bsp-pvs's chains
     std::vector<std::string> common;       // --set key=value
-    int spawn_views = 1, orbit_frames = 60, random_views = 200;
+    int spawn_views = 2, orbit_frames = 60, random_views = 200;
     unsigned long seed = 2026;
     int size = 512, repeat = 3, batch = 32;
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
@@ -108,7 +108,7 @@ struct Options {
                  "                              [--make-databases required|all] [--out DIR]\n"
                  "Every strategy (default: every name of the registry once, and bsp-pvs+ou-shared, bsp-pvs+om-ps)\n"
                  "on each scene (default: seven OpenArena levels and three assimp-testmodels buildings) along its\n"
-                 "own route (a level: spawn:K, K views a spawn point, default 1; a model: orbit, default 60 frames)\n"
+                 "own route (a level: spawn:K, K views a spawn point, default 2; a model: orbit, default 60 frames)\n"
                  "and random:N:SEED (default 200 eyes in the scene's open space, seed %lu, one more a scene),\n"
                  "512x512 llvmpipe by default, every frame compared with the unculled one (--coherence and\n"
                  "--switch-off, default on and 0.5, apply to the own routes; random eyes run without either).\n"
@@ -257,12 +257,11 @@ Run run_route(const Options &o, const SceneSetup &setup, const std::string &rout
     SessionOptions so;
     so.allocator = o.allocator;
     so.batch = std::size_t(o.batch);
-    // Random eyes are unrelated views: what one frame saw says nothing of
-    // the next, so neither temporal coherence nor the switch-off applies
-    // (as occu-random-views runs them).
-    const bool random = route_name.rfind("random:", 0) == 0;
-    so.coherence = o.coherence && !random;
-    so.switch_off = random ? 0.0 : o.switch_off;
+    // Random eyes are unrelated views (camera/route.h): neither temporal
+    // coherence nor the switch-off applies (as occu-random-views runs them).
+    const bool unrelated = unrelated_views(route_name);
+    so.coherence = o.coherence && !unrelated;
+    so.switch_off = unrelated ? 0.0 : o.switch_off;
     so.lost_pixels = SessionOptions::PixelCheck::all;
     DatabaseProvider databases(o.databases, o.make_databases);
     so.databases = &databases;
