@@ -361,19 +361,31 @@ Verdicts verdicts(const Run &run)
         std::snprintf(t, sizeof(t), "n/a (floor hides %.0f%%)", 100.0 * run.floor_hides());
         v.efficiency = t;
     } else {
-        std::string low;
+        // The strategies at or above the target by name, and the highest.
+        std::string above;
+        const Row *highest = nullptr;
         int judged = 0, below = 0;
         for (const Row &r : run.rows) {
             if (r.reference || !r.efficiency)
                 continue;
             ++judged;
+            if (!highest || *r.efficiency > *highest->efficiency)
+                highest = &r;
             if (r.low_efficiency) {
                 ++below;
-                std::snprintf(t, sizeof(t), "%s`%s` %.0f%%", low.empty() ? "" : ", ", r.label.c_str(), *r.efficiency);
-                low += t;
+            } else {
+                std::snprintf(t, sizeof(t), "%s`%s` %.0f%%", above.empty() ? "" : ", ", r.label.c_str(), *r.efficiency);
+                above += t;
             }
         }
-        std::snprintf(t, sizeof(t), "%d of %d below%s%s", below, judged, below ? ": " : "", low.c_str());
+        std::snprintf(t, sizeof(t), "%d of %d below%s%s", below, judged, above.empty() ? "" : "; at or above: ",
+                      above.c_str());
+        std::string text = t;
+        if (highest && above.empty()) {
+            std::snprintf(t, sizeof(t), "; highest `%s` %.0f%%", highest->label.c_str(), *highest->efficiency);
+            text += t;
+        }
+        std::snprintf(t, sizeof(t), "%s", text.c_str());
         v.efficiency = mark(below == 0, t);
     }
     if (!run.pvs_ms) {
