@@ -24,8 +24,13 @@
 //     (walkthrough's), 512, 1024.
 // Choices and paths (databases) are not swept: listed as left out, with why.
 //
-// Writes DIR/knobs.csv (one row per strategy, setting, value and route, and
-// route "all": the means over the routes), DIR/<strategy>.png (frame time
+// Scenes: the city (default) or any others --scenes names (a level, a
+// building read from a file: docs/real-scenes.md), every route on every
+// scene; a run is one scene's route, named by the route alone on a single
+// scene and "SCENE ROUTE" (the file's short name) on several.
+//
+// Writes DIR/knobs.csv (one row per strategy, setting, value and run, and
+// route "all": the means over the runs), DIR/<strategy>.png (frame time
 // against wrong pixels and against efficiency, the Pareto fronts and the
 // default marked; gnuplot), and prints a markdown table per strategy.
 // Exits 1 when an approximation knob has no value with 0 wrong pixels on
@@ -60,7 +65,14 @@ const char *const leaf_knob = "leaf-triangles (hierarchy)";
 
 struct Options {
     AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
+    std::vector<std::string> scenes = {"city"};
     std::vector<std::string> routes = {"dense", "medium", "open"};
+    // Every route on every scene, made by parse(): a run is one of them.
+    struct Run {
+        std::size_t scene;
+        std::string route, label;
+    };
+    std::vector<Run> runs;
     std::vector<std::string> strategies;   // empty: every family with a knob
     std::map<std::string, std::vector<std::string>> knobs;   // --knob: only these, with these values
     int frames = 20;
@@ -78,13 +90,16 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "occu-bench-knobs: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: occu-bench-knobs [--routes ROUTE,...] [--strategies NAME,...] [--knob SETTING=V1,V2,...]...\n"
+                 "usage: occu-bench-knobs [--scenes SCENE,...] [--routes ROUTE,...] [--strategies NAME,...]\n"
+                 "                        [--knob SETTING=V1,V2,...]...\n"
                  "                        [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--out DIR]\n"
                  "                        [--allocator keep|system]\n"
                  "                        [--plots on|off] [--databases DIR] [--make-databases required|all]\n"
                  "Sweeps every approximation and cost setting of each strategy (default: every registered family\n"
                  "with one), and the common knobs batch and leaf-triangles, on each route (default\n"
-                 "dense,medium,open; 20 frames, 512x512), beside vfc and ideal. --knob keeps only the named\n"
+                 "dense,medium,open; 20 frames, 512x512), beside vfc and ideal, on each scene (default the city;\n"
+                 "a level PAK.pk3:maps/NAME.bsp or a model file: every route on every scene, the means over all\n"
+                 "of these runs). --knob keeps only the named\n"
                  "settings (repeat it for several), with the given values. Writes DIR/knobs.csv and DIR/<strategy>.png\n"
                  "(default DIR knobs-out) and prints a table per strategy; exits 1 when an approximation knob has\n"
                  "no value exact (0 wrong pixels) on every route. The databases the variants require are made\n"
@@ -282,7 +297,11 @@ Options parse(int argc, char **argv)
 {
     Options o;
     for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
-        if (a == "--routes") {
+        if (a == "--scenes") {
+            o.scenes = list_items(v, ',');
+            if (o.scenes.empty())
+                usage("--scenes is empty");
+        } else if (a == "--routes") {
             o.routes = list_items(v, ',');
             if (o.routes.empty())
                 usage("--routes is empty");
@@ -309,6 +328,15 @@ Options parse(int argc, char **argv)
     });
     if (o.strategies.empty())
         o.strategies = default_strategies();
+    for (std::size_t scene = 0; scene < o.scenes.size(); ++scene)
+        for (const std::string &route : o.routes) {
+            const std::string &name = o.scenes[scene];
+            // A file's or a level's name without folder and extension.
+            const std::size_t member = name.rfind(':');
+            const std::string short_name =
+                std::filesystem::path(name.substr(member == std::string::npos ? 0 : member + 1)).stem().string();
+            o.runs.push_back({scene, route, o.scenes.size() == 1 ? route : short_name + " " + route});
+        }
     try {
         gl::parse_driver(o.driver);
         for (const std::string &s : o.strategies) {
@@ -328,11 +356,14 @@ Options parse(int argc, char **argv)
 void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup &setup, Sweep &sweep,
           gl::OffscreenContext &ctx, std::set<std::string> &notes)
 {
-    const std::string &route_name = o.routes[route_index];
+    const std::string &route_name = o.runs[route_index].route;
     const std::vector<Camera> route = setup.route(route_name, o.frames);
     SessionOptions so;
     so.allocator = o.allocator;
     so.batch = default_batch;
+    // Unrelated views (random eyes, camera/route.h): no policies across frames.
+    so.coherence = !unrelated_views(route_name);
+    so.switch_off = unrelated_views(route_name) ? 0.0 : so.switch_off;
     so.lost_pixels = SessionOptions::PixelCheck::all;
     DatabaseProvider databases(o.databases, o.make_databases);
     so.databases = &databases;
@@ -350,7 +381,7 @@ void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup 
             v.refused = e.what();
         }
     }
-    std::printf("route %s, leaves of %d triangles (%zu leaves): %zu variants, %zu frames\n", route_name.c_str(), leaf,
+    std::printf("route %s, leaves of %d triangles (%zu leaves): %zu variants, %zu frames\n", o.runs[route_index].label.c_str(), leaf,
                 setup.hierarchy().leaf_count(), variant_of.size(), route.size());
     std::fflush(stdout);
     session.walk(route, "frames");
@@ -506,8 +537,8 @@ bool plot(const Options &o, const std::string &strategy, const Sweep &sweep, dou
     const std::string png = o.out + "/" + file_name(strategy) + ".png";
     std::ofstream gp(base + ".gp");
     std::string routes;
-    for (const std::string &r : o.routes)
-        routes += (routes.empty() ? "" : ",") + r;
+    for (const Options::Run &r : o.runs)
+        routes += (routes.empty() ? "" : ",") + r.label;
     gp << "set terminal pngcairo size 1400,620 font ',10' noenhanced\n"
        << "set output " << gnuplot_quoted(png) << "\n"
        << "set multiplot layout 1,2 title "
@@ -553,36 +584,38 @@ int main(int argc, char **argv)
     try {
         gl::select_driver(gl::parse_driver(o.driver));
         for (Variant &v : sweep.variants)
-            v.routes.resize(o.routes.size());
-        // The city, its hierarchy for each leaf size swept.
-        std::map<int, SceneSetup> setups;
-        for (const Variant &v : sweep.variants)
-            if (!setups.count(v.leaf)) {
-                HierarchyOptions leaf;
-                leaf.max_leaf_triangles = std::uint32_t(v.leaf);
-                if (setups.empty()) {
-                    SceneChoice city;
-                    city.hierarchy = leaf;
-                    setups.emplace(v.leaf, SceneSetup(city));
-                } else {
-                    setups.emplace(v.leaf, setups.begin()->second.with_hierarchy(leaf));
+            v.routes.resize(o.runs.size());
+        // Each scene, its hierarchy for each leaf size swept.
+        std::vector<std::map<int, SceneSetup>> setups(o.scenes.size());
+        for (std::size_t scene = 0; scene < o.scenes.size(); ++scene)
+            for (const Variant &v : sweep.variants)
+                if (!setups[scene].count(v.leaf)) {
+                    HierarchyOptions leaf;
+                    leaf.max_leaf_triangles = std::uint32_t(v.leaf);
+                    if (setups[scene].empty()) {
+                        SceneChoice choice;
+                        choice.name = o.scenes[scene];
+                        choice.hierarchy = leaf;
+                        setups[scene].emplace(v.leaf, SceneSetup(choice));
+                    } else {
+                        setups[scene].emplace(v.leaf, setups[scene].begin()->second.with_hierarchy(leaf));
+                    }
                 }
-            }
         // Routes are checked before any run.
-        for (const std::string &r : o.routes)
-            setups.begin()->second.route(r, o.frames);
+        for (const Options::Run &r : o.runs)
+            setups[r.scene].begin()->second.route(r.route, o.frames);
         gl::OffscreenContext ctx(o.size, o.size);
         std::filesystem::create_directories(o.out);
         std::printf("occu-bench-knobs: %zu variants of %zu strategies, routes", sweep.variants.size() - 2,
                     o.strategies.size());
-        for (const std::string &r : o.routes)
-            std::printf(" %s", r.c_str());
+        for (const Options::Run &r : o.runs)
+            std::printf(" %s", r.label.c_str());
         std::printf(", %d frames, %dx%d, %s\n", o.frames, o.size, o.size, ctx.renderer().c_str());
         for (const std::string &l : sweep.left_out)
             std::printf("left out: %s\n", l.c_str());
         std::set<std::string> notes;
-        for (std::size_t r = 0; r < o.routes.size(); ++r)
-            for (const auto &[leaf, setup] : setups)
+        for (std::size_t r = 0; r < o.runs.size(); ++r)
+            for (const auto &[leaf, setup] : setups[o.runs[r].scene])
                 walk(o, r, leaf, setup, sweep, ctx, notes);
 
         // The CSV: per row and route, then the means over the routes.
@@ -596,15 +629,15 @@ int main(int argc, char **argv)
             const Figures f = figures(v, route), vfc = figures(sweep.variants[0], route),
                           ideal = figures(sweep.variants[1], route);
             csv << strategy << ',' << setting << ',' << value << ',' << (is_default ? "yes" : "no") << ',' << role << ','
-                << v.spec << ',' << v.leaf << ',' << v.batch << ',' << (route ? o.routes[*route] : "all") << ','
+                << v.spec << ',' << v.leaf << ',' << v.batch << ',' << (route ? o.runs[*route].label : "all") << ','
                 << o.frames << ',' << f.ms << ',' << f.median << ',' << fixed(vfc.ms / f.ms, 3) << ','
                 << fixed(f.ms / ideal.ms, 3) << ',' << fixed(f.efficiency, 2) << ',' << fixed(f.wrong, 2) << ','
                 << f.max_wrong << ',' << f.visible_culled << ',' << f.triangles << '\n';
         };
         for (const std::size_t b : {std::size_t(0), std::size_t(1)})
-            for (std::size_t r = 0; r <= o.routes.size(); ++r)
+            for (std::size_t r = 0; r <= o.runs.size(); ++r)
                 csv_row(sweep.variants[b].spec, "-", "-", true, "baseline", sweep.variants[b],
-                        r < o.routes.size() ? std::optional<std::size_t>(r) : std::nullopt);
+                        r < o.runs.size() ? std::optional<std::size_t>(r) : std::nullopt);
         for (const Variant &v : sweep.variants)
             if (!v.refused.empty())
                 std::printf("left out: %s: %s\n", v.spec.c_str(), v.refused.c_str());
@@ -612,9 +645,9 @@ int main(int argc, char **argv)
                                         [&sweep](const Row &r) { return !sweep.variants[r.variant].refused.empty(); }),
                          sweep.rows.end());
         for (const Row &row : sweep.rows)
-            for (std::size_t r = 0; r <= o.routes.size(); ++r)
+            for (std::size_t r = 0; r <= o.runs.size(); ++r)
                 csv_row(row.strategy, row.setting, row.value, row.is_default, row.role, sweep.variants[row.variant],
-                        r < o.routes.size() ? std::optional<std::size_t>(r) : std::nullopt);
+                        r < o.runs.size() ? std::optional<std::size_t>(r) : std::nullopt);
         if (!csv.flush())
             throw std::runtime_error("cannot write '" + path + "'");
 

@@ -20,6 +20,7 @@
 #include <zip.h>
 
 #include "evaluation/allocator.h"
+#include "level_statistics.h"
 #include "scene/quake3_bsp.h"
 #include "scene/scene_file.h"
 #include "spatial/hierarchy.h"
@@ -91,9 +92,7 @@ int main(int argc, char **argv)
     }
     if (levels.empty())
         usage("no level named");
-    std::printf("level,load_ms,hierarchy_ms,triangles,meshes,see_through_meshes,see_through_triangles,faces,"
-                "drawn_patches,patches,see_through_faces,billboards,hidden_faces,leaves,open_leaves,clusters,spawns,"
-                "size_x_m,size_y_m,size_z_m\n");
+    std::printf("level,load_ms,hierarchy_ms,%s\n", LevelStatistics::columns());
     int failures = 0;
     for (const std::string &level_name : levels) {
         double load = 1e30, build = 1e30;
@@ -107,24 +106,7 @@ int main(int argc, char **argv)
                 const Hierarchy h = Hierarchy::build(scene);
                 build = std::min(build, ms_since(t0));
             }
-            const Quake3Level &level = *scene.quake3;
-            std::size_t see_meshes = 0, see_triangles = 0, drawn_patches = 0, open_leaves = 0;
-            for (const Mesh &m : scene.meshes)
-                if (!m.occluder) {
-                    ++see_meshes;
-                    see_triangles += m.triangle_count();
-                }
-            for (const Quake3Level::Face &f : level.faces)
-                drawn_patches += f.type == 2 && f.mesh >= 0;
-            for (const Quake3Level::Leaf &l : level.leaves)
-                open_leaves += l.cluster >= 0;
-            const glm::vec3 size = scene.bounds.extent();
-            std::printf("%s,%.1f,%.1f,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%d,%zu,%.1f,%.1f,%.1f\n",
-                        level_name.c_str(), load, build, scene.triangle_count(), scene.meshes.size(), see_meshes,
-                        see_triangles, level.faces.size(), drawn_patches, level.patch_count,
-                        level.see_through_face_count, level.billboard_count, level.hidden_face_count,
-                        level.leaves.size(), open_leaves, level.cluster_count, level.spawns.size(), double(size.x),
-                        double(size.y), double(size.z));
+            std::printf("%s,%.1f,%.1f,%s\n", level_name.c_str(), load, build, level_statistics(scene).row().c_str());
         } catch (const std::exception &e) {
             std::fprintf(stderr, "occu-bench-level-load: %s\n", e.what());
             ++failures;

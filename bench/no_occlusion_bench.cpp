@@ -46,7 +46,7 @@ constexpr double target = 1.05;
 
 struct Options {
     AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
-    std::vector<std::string> strategies;   // empty: every strategy of the registry (strategy_names(), without repeats)
+    std::vector<std::string> strategies;   // empty: every strategy of the registry once (distinct_strategy_names())
     int frames = 120;
     int rounds = 1;   // walks of each route, strategies made anew for each
     int size = 512;
@@ -80,25 +80,6 @@ struct Options {
     std::exit(error.empty() ? 0 : 2);
 }
 
-// Every name of the registry, a family's own name left out where one of its
-// presets means the same settings (om and om-ps): each strategy once.
-std::vector<std::string> every_strategy()
-{
-    std::vector<std::string> names;
-    for (const StrategyFamily &f : strategy_families()) {
-        const std::string defaults = choose_strategy(f.name).settings.changed();
-        bool repeated = false;
-        for (const StrategyPreset &p : f.presets)
-            repeated = repeated || (!p.former_name && choose_strategy(p.name).settings.changed() == defaults);
-        if (!repeated)
-            names.push_back(f.name);
-        for (const StrategyPreset &p : f.presets)
-            if (!p.former_name)
-                names.push_back(p.name);
-    }
-    return names;
-}
-
 Options parse(int argc, char **argv)
 {
     Options o;
@@ -124,7 +105,7 @@ Options parse(int argc, char **argv)
     try {
         gl::parse_driver(o.driver);
         if (o.strategies.empty())
-            o.strategies = every_strategy();
+            o.strategies = distinct_strategy_names();
         for (const std::string &s : o.strategies)
             choose_strategy(s);
     } catch (const std::invalid_argument &e) {

@@ -297,4 +297,9 @@ std::vector<Camera> random_views(const Aabb &bounds, long count, unsigned long s
     return views;
 }
 
+bool unrelated_views(const std::string &name)
+{
+    return name.rfind("random:", 0) == 0;
+}
+
 }  // namespace occu

@@ -68,6 +68,12 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds
                                int frames, float aspect, const Quake3Level *level = nullptr,
                                const EyeTest &eye_inside = {});
 
+// Whether the cameras of route `name` are unrelated views (random:N:SEED):
+// what one frame saw says nothing of the next, so the traversal's policies
+// across frames (traversal/policies.h: temporal coherence, the switch-off)
+// have nothing to go on, and the benches run such routes without them.
+bool unrelated_views(const std::string &name);
+
 // The cameras of the route random:COUNT:SEED (eyes uniformly inside the
 // bounds, buildings and streets alike; random headings; pitch within 60
 // degrees of the horizon), each with a vertical field of view drawn

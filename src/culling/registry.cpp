@@ -200,6 +200,23 @@ std::vector<std::string> strategy_names()
     return names;
 }
 
+std::vector<std::string> distinct_strategy_names()
+{
+    std::vector<std::string> names;
+    for (const StrategyFamily &f : strategy_families()) {
+        const std::string defaults = choose_strategy(f.name).settings.changed();
+        bool repeated = false;
+        for (const StrategyPreset &p : f.presets)
+            repeated = repeated || (!p.former_name && choose_strategy(p.name).settings.changed() == defaults);
+        if (!repeated)
+            names.push_back(f.name);
+        for (const StrategyPreset &p : f.presets)
+            if (!p.former_name)
+                names.push_back(p.name);
+    }
+    return names;
+}
+
 std::string strategies_help()
 {
     std::string h;

@@ -160,6 +160,9 @@ Strategy make_strategy(const std::string &spec, const StrategyContext &context,
 
 // Names that choose_strategy takes and help lists (families, presets).
 std::vector<std::string> strategy_names();
+// Every strategy once: strategy_names() without a family's own name where
+// one of its presets means the same settings (om and om-ps).
+std::vector<std::string> distinct_strategy_names();
 // The families, their papers, presets and settings, for --help.
 std::string strategies_help();
 // The same as one markdown table, a row per family (README's strategies

@@ -73,6 +73,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     variants.push_back({"ou:max-test-area=1", 1});
     variants.push_back({"ou:max-test-area=1", 16});
     variants.push_back({"ou:proxy=triangles:max-test-area=1", 16});
+    variants.push_back({"hp:proxy=triangles", 16});
     variants.push_back({"ou-shared", 32, true});
     variants.push_back({"om-ps", 16, true});
     // The scene's own triangles beside the skins, for every family that takes them.
@@ -135,6 +136,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     EXPECT_LT(drawn["ou:max-test-area=1/16"], drawn_none / 2) << "ou culled too little for the comparison to mean anything";
     EXPECT_LE(drawn["ou:proxy=triangles:max-test-area=1/16"], drawn["ou:max-test-area=1/16"])
         << "triangles as proxies should cull at least what boxes do";
+    EXPECT_LE(drawn["hp:proxy=triangles/16"], drawn["hp/16"]) << "triangles as proxies should cull at least what boxes do";
     EXPECT_LE(drawn["ideal/16"], drawn["ou:max-test-area=1/1"]) << "nothing culls more than the floor";
     std::filesystem::remove_all(databases.directory());
     // A query counts the whole grown proxy, a tile only the box's footprint:

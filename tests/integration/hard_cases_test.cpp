@@ -657,6 +657,7 @@ std::vector<Variant> conservative_variants(int width)
     variants.push_back({"ou:max-test-area=1", 1});
     variants.push_back({"ou:max-test-area=1", 16});
     variants.push_back({"ou:proxy=triangles:max-test-area=1", 16});
+    variants.push_back({"hp:proxy=triangles", 16});
     return variants;
 }
 

@@ -16,7 +16,12 @@
 //       depth writes off; a batch issues its queries and then reads them,
 //       so the rasterizer works through the batch before the first answer
 //       is needed. Boxes without a footprint (they hold the eye or cross
-//       the near plane) are visible untested.
+//       the near plane) are visible untested. proxy=triangles queries a
+//       leaf with its own triangles instead of its box, as the Occlusion
+//       Unit's proxy=triangles does (strategies/bartz_occlusion_unit): a
+//       box shows above and beside occluders where what it holds does not;
+//       the triangles, drawn as they would be, are exact, for the leaf's
+//       vertex work in the query.
 #pragma once
 
 #include "culling/registry.h"

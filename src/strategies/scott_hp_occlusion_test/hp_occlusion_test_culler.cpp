@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "render/occlusion_proxy.h"
+#include "render/scene_renderer.h"
 
 namespace occu::strategies {
 
@@ -11,7 +12,8 @@ namespace {
 
 class HpOcclusionTestCuller final : public Culler {
 public:
-    HpOcclusionTestCuller()
+    HpOcclusionTestCuller(const StrategyContext &context, const Settings &settings)
+        : renderer_(context.renderer), leaf_triangles_(settings.text("proxy") == "triangles")
     {
         GenQueries_ = reinterpret_cast<PFNGLGENQUERIESPROC>(gl::get_proc_address("glGenQueries"));
         DeleteQueries_ = reinterpret_cast<PFNGLDELETEQUERIESPROC>(gl::get_proc_address("glDeleteQueries"));
@@ -45,8 +47,12 @@ public:
             if (f.frustum.classify(t.box) == Frustum::Side::outside) {
                 t.result = Visibility::view_culled;
             } else if (f.footprint(t.box)) {
-                // A box whose proxy cannot be drawn whole is visible untested.
-                if (const auto proxy = proxy_box(t.box, f.camera, f.view_projection, f.height)) {
+                if (leaf_triangles_ && t.leaf) {
+                    // The leaf's own triangles stand for it (no proxy box).
+                    queried.push_back(i);
+                    proxies_.push_back(Aabb{});
+                } else if (const auto proxy = proxy_box(t.box, f.camera, f.view_projection, f.height)) {
+                    // A box whose proxy cannot be drawn whole is visible untested.
                     queried.push_back(i);
                     proxies_.push_back(*proxy);
                 }
@@ -66,7 +72,12 @@ public:
             glDepthMask(GL_FALSE);
             for (std::size_t k = 0; k < queried.size(); ++k) {
                 BeginQuery_(GL_SAMPLES_PASSED, queries_[k]);
-                draw_proxy_box(proxies_[k]);
+                const NodeTest &t = tests[queried[k]];
+                if (leaf_triangles_ && t.leaf)
+                    // All of them: a leaf whose see-through triangles show is visible.
+                    renderer_.draw_leaf_flat(t.node, LeafPart::all);
+                else
+                    draw_proxy_box(proxies_[k]);
                 EndQuery_(GL_SAMPLES_PASSED);
             }
         }
@@ -86,8 +97,10 @@ private:
     PFNGLBEGINQUERYPROC BeginQuery_;
     PFNGLENDQUERYPROC EndQuery_;
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv_;
+    const SceneRenderer &renderer_;
+    bool leaf_triangles_;
     std::vector<GLuint> queries_;
-    std::vector<Aabb> proxies_;   // of the queried boxes, in order
+    std::vector<Aabb> proxies_;   // of the queried boxes, in order (empty for a leaf drawn as its triangles)
     std::optional<Frame> frame_;
     CullerStats stats_;
 };
@@ -103,8 +116,11 @@ StrategyFamily hp_occlusion_test_family()
     f.summary = "one occlusion query per node box, front to back, the flag read before the box is drawn or opened";
     f.traversal.coherence = true;
     f.traversal.switch_off = true;
-    f.make = [](const StrategyContext &, const Settings &) -> std::unique_ptr<Culler> {
-        return std::make_unique<HpOcclusionTestCuller>();
+    f.settings = {
+        choice_setting("proxy", {"box", "triangles"}, "what stands for a leaf in the query: its box or its triangles"),
+    };
+    f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
+        return std::make_unique<HpOcclusionTestCuller>(context, settings);
     };
     return f;
 }

@@ -281,3 +281,10 @@ TEST(Route, RandomEyesInALevelLieInItsOpenLeaves)
     solid.leaves[0].cluster = -1;
     EXPECT_THROW(make_route("random:5:3", box, CityOptions{}, 1, 1.0f, &solid), std::invalid_argument);
 }
+
+TEST(Route, OnlyRandomEyesAreUnrelatedViews)
+{
+    EXPECT_TRUE(unrelated_views("random:200:7"));
+    for (const char *route : {"dense", "street", "medium", "open", "orbit", "overhead", "spawn", "spawn:2", "route.txt"})
+        EXPECT_FALSE(unrelated_views(route)) << route;
+}

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "evaluation/oracle.h"
@@ -161,6 +162,24 @@ TEST(Registry, PresetsAndFormerNames)
     EXPECT_EQ(choose_strategy("om-ps:occluders=8").label(), "om-ps:occluders=8");
     EXPECT_EQ(choose_strategy("om:selection=fh").label(), "om:selection=fh");
     EXPECT_EQ(choose_strategy("om-mos", {"database=/data/city.db"}).label(), "om-mos") << "files are not in labels";
+}
+
+TEST(Registry, DistinctStrategiesNameEachSettingsOnce)
+{
+    const auto names = distinct_strategy_names();
+    // om's defaults are om-ps's: the preset is listed, the family's own name is not.
+    EXPECT_EQ(std::count(names.begin(), names.end(), "om"), 0);
+    EXPECT_EQ(std::count(names.begin(), names.end(), "om-ps"), 1);
+    // A family whose presets all change something keeps its own name.
+    EXPECT_EQ(std::count(names.begin(), names.end(), "ou"), 1);
+    EXPECT_EQ(std::count(names.begin(), names.end(), "ou-shared"), 1);
+    EXPECT_EQ(std::count(names.begin(), names.end(), "occu-hier"), 0) << "former names are not listed";
+    // No two names mean the same family and settings.
+    std::set<std::string> meanings;
+    for (const std::string &n : names) {
+        const StrategyChoice c = choose_strategy(n);
+        EXPECT_TRUE(meanings.insert(c.family->name + ":" + c.settings.changed()).second) << n << " repeats another";
+    }
 }
 
 TEST(Registry, SettingsAndCommonSettings)
