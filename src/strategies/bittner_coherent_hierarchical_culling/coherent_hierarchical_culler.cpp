@@ -58,7 +58,8 @@ public:
           max_test_area_(settings.number("max-test-area")), tiles_per_pass_(async_->batch_capacity()),
           conditional_(settings.text("conditional") == "off"      ? Conditional::off
                        : settings.text("conditional") == "always" ? Conditional::always
-                                                                  : Conditional::waits)
+                                                                  : Conditional::waits),
+          poll_every_(std::uint32_t(settings.integer("poll")))
     {
         parent_.assign(nodes_.size(), none);
         for (std::uint32_t n = 0; n < nodes_.size(); ++n)
@@ -137,7 +138,15 @@ public:
             // because nothing else is left to do.
             // Passes end in order and the rasterizer finishes them in
             // order, so the front one is asked first.
-            while (!flight_.empty()) {
+            // While there is traversal to do, only every poll_every_-th
+            // step asks (0: none). Asking costs little in itself, but a GL
+            // may take a question asked with nothing drawn since the last
+            // as a wait and start rendering the pass at once (llvmpipe then
+            // ends the scene being binned: spec MESAX_occlusion_unit_async,
+            // issue 19), and steps that open inner nodes draw nothing.
+            const bool busy = !distance_.empty() || !iqueue_.empty();
+            const bool ask = !busy || (poll_every_ > 0 && ++steps_ % poll_every_ == 0);
+            while (ask && !flight_.empty()) {
                 auto next = flight_.begin();
                 if (!async_->ready(next->batch)) {
                     if (!distance_.empty() || !iqueue_.empty())
@@ -401,6 +410,8 @@ private:
     // of a wait (when nothing is left but results, none of them an inner
     // node's), or always, right after their pass ends.
     enum class Conditional { off, waits, always } conditional_;
+    std::uint32_t poll_every_;
+    std::uint64_t steps_ = 0;
     std::vector<std::uint32_t> parent_, offset_;
     std::vector<std::int64_t> visible_frame_;   // the last frame a node was visible in
     std::int64_t frame_number_ = 0;
@@ -456,6 +467,10 @@ StrategyFamily coherent_hierarchical_culling_family()
                        "previously invisible leaves drawn under conditional rendering on their tiles (the GL decides, "
                        "nobody waits) instead of once their results are read: in place of a wait at the end of the "
                        "traversal, always (right after their pass), or never"),
+        integer_setting("poll", 1, 0, 1000, Role::cost,
+                        "the oldest pass in flight is asked for its result every this many steps of the traversal "
+                        "(0: only when it has nothing else to do); asking with nothing drawn in between may start "
+                        "the pass on the GL (a scene of its own on llvmpipe)"),
     };
     f.presets = {{"chc-shared", "passes=shared"}};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {

@@ -14,6 +14,10 @@
  *   available-in-end-order       A then B ended; once B is available, A is
  *                                (one query), and A's records are A's
  *   finish-writes-no-records     glFinish wrote neither pass's buffers
+ *   available-by-polling-alone   A ended, then only availability queries (no
+ *                                Flush, no draw): one of them returns TRUE
+ *                                (the GL completes an ended pass in finite
+ *                                time, issue 15), and the records are A's
  */
 #include "ou_util.h"
 
@@ -74,6 +78,13 @@ int main(int argc, char **argv)
         printf("glFinish wrote the buffers: word 0 0x%08x\n", records[0][OU_NOHC]);
     a.GetOcclusionPassiv(pass[1], GL_OCCLUSION_PASS_RESULT_MESAX, &overflowed);
     subtest(untouched && records[1][OU_NOHC] == 16 && piglit_check_gl_error(GL_NO_ERROR), "finish-writes-no-records");
+
+    run_pass(pass[0], 0);
+    const bool polled = ou_wait_available(&a, pass[0]);
+    overflowed = -1;
+    a.GetOcclusionPassiv(pass[0], GL_OCCLUSION_PASS_RESULT_NO_WAIT_MESAX, &overflowed);
+    subtest(polled && overflowed == 0 && records[0][OU_NOHC] == heavy && piglit_check_gl_error(GL_NO_ERROR),
+            "available-by-polling-alone");
 
     a.DeleteOcclusionPasses(2, pass);
     piglit_report_result(result);
