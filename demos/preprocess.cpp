@@ -67,11 +67,13 @@
 // them). --shard I/N takes the cells c with c % N == I - 1; `merge` joins
 // PVS shards too. Only the generated city qualifies: a loaded scene has no
 // known 2.5D occluders (--scene is refused, saying so).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -304,6 +306,33 @@ int skins(const Options &o)
                      db.skipped.size() - listed, o.out.c_str());
     std::printf("%s: %zu meshes in %.2f s: %zu boxes on %zu meshes, %zu meshes without skins\n", o.out.c_str(),
                 db.mesh_count(), s, db.box_count(), db.skins.size(), db.skipped.size());
+    // Why meshes have no skins, counted by the kind of reason (the reason
+    // up to its first point: "not watertight: the flood from the inner
+    // voxel"), and how far the meshes spread: the largest side of each
+    // mesh's box over the scene's largest side. A mesh whose box holds the
+    // eye cannot stand behind its skins (SkinOccluders::usable), so
+    // meshes that span the scene give no usable skins even when they have some.
+    std::map<std::string, std::size_t> kinds;
+    for (const auto &[mesh, reason] : db.skipped)
+        ++kinds[reason.substr(0, reason.find(" at "))];
+    for (const auto &[kind, count] : kinds)
+        std::printf("  without skins: %zu: %s\n", count, kind.c_str());
+    const glm::vec3 scene_extent = scene.bounds.extent();
+    const float scene_side = std::max({scene_extent.x, scene_extent.y, scene_extent.z});
+    std::vector<float> spread;
+    for (std::uint32_t m = 0; m < scene.meshes.size(); ++m)
+        if (db.skins.count(m) || db.skipped.count(m)) {
+            const glm::vec3 e = scene.meshes[m].bounds.extent();
+            spread.push_back(scene_side > 0.0f ? std::max({e.x, e.y, e.z}) / scene_side : 0.0f);
+        }
+    if (!spread.empty()) {
+        std::sort(spread.begin(), spread.end());
+        const auto over_half = std::size_t(spread.end() - std::upper_bound(spread.begin(), spread.end(), 0.5f));
+        std::printf("  mesh box's largest side / the scene's (%.1f m): median %.0f%%, largest %.0f%%; %zu of %zu "
+                    "meshes over half\n",
+                    double(scene_side), 100.0 * spread[spread.size() / 2], 100.0 * spread.back(), over_half,
+                    spread.size());
+    }
     return 0;
 }
 

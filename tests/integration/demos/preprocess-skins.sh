@@ -10,7 +10,11 @@ walkthrough=$2
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 opts="--voxel-size 1"
-"$bin" skins $opts --out "$dir/whole.txt" >/dev/null 2>&1
+"$bin" skins $opts --out "$dir/whole.txt" >"$dir/whole.log" 2>&1
+# The summary counts meshes without skins by reason and how far meshes
+# spread: the city's ground (1 m thick, no interior at 1 m voxels) spans it.
+grep -q '^  without skins: 1: no interior' "$dir/whole.log" || { echo "no count of meshes without skins:"; cat "$dir/whole.log"; exit 1; }
+grep -q 'largest 100%; 1 of [0-9]* meshes over half$' "$dir/whole.log" || { echo "no spread of the meshes:"; cat "$dir/whole.log"; exit 1; }
 "$bin" skins $opts --shard 1/2 --out "$dir/s1.txt" >/dev/null 2>&1
 "$bin" skins $opts --shard 2/2 --out "$dir/s2.txt" >/dev/null 2>&1
 "$bin" merge --out "$dir/merged.txt" "$dir/s2.txt" "$dir/s1.txt" >/dev/null 2>&1
