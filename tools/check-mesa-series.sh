@@ -94,8 +94,8 @@ check_part() {  # PART FIRST_PATCH LAST_PATCH (1-based)
     occu_configure "$occu_build" "$prefix"
     # A build directory left by an earlier check is regenerated first, so that
     # the tests tests/meson.build declares now are the ones listed and run.
-    ninja -C "$occu_build" build.ninja >"$occu_build.regenerate.log" 2>&1 ||
-        die "part $suite: $occu_build does not regenerate (log: $occu_build.regenerate.log)"
+    ninja -C "$occu_build" build.ninja >"$occu_build/regenerate.log" 2>&1 ||
+        die "part $suite: $occu_build does not regenerate (log: $occu_build/regenerate.log)"
     local programs
     programs=$(meson introspect --tests "$occu_build" | /usr/bin/python3 -c '
 import json, os, sys
