@@ -24,14 +24,6 @@ enum { S = 32 };
 
 static struct ou_two_contexts c;
 
-static GLint
-get_integer(GLenum pname)
-{
-    GLint v = -1;
-    glGetIntegerv(pname, &v);
-    return v;
-}
-
 int main(int argc, char **argv)
 {
     const struct ou_async_functions as = ou_init_async(argc, argv, S, S);
@@ -106,7 +98,7 @@ int main(int argc, char **argv)
     ou_rect(0, 0, 8, 8, 0.5f);
 
     ou_make_b_current(&c);
-    const GLint b_mode_async = get_integer(GL_RENDER_MODE);
+    const GLint b_mode_async = ou_get_integer(GL_RENDER_MODE);
     static const unsigned char red[4] = {255, 0, 0, 255};
     glClear(GL_COLOR_BUFFER_BIT);
     glColor4ub(255, 0, 0, 255);

@@ -223,6 +223,26 @@ ou_first_error(void)
     return e;
 }
 
+/* An integer state; -1 if the query wrote nothing. */
+static inline GLint
+ou_get_integer(GLenum pname)
+{
+    GLint v = -1;
+    glGetIntegerv(pname, &v);
+    return v;
+}
+
+/* Subtest `name`: the brief record counts no fragment (NOHC 0, PHC 0) and
+ * the GL raised no error; `counted` says what a nonzero count would mean. */
+static inline void
+ou_expect_no_fragments(const GLuint *record, const char *name, const char *counted)
+{
+    const bool ok = record[OU_NOHC] == 0 && record[OU_PHC] == 0;
+    if (!ok)
+        printf("%s: NOHC %u PHC %u, expected 0 0 (%s)\n", name, record[OU_NOHC], record[OU_PHC], counted);
+    subtest(ok && piglit_check_gl_error(GL_NO_ERROR), name);
+}
+
 /* GL_MESAX_occlusion_unit_async's entry points (ou_init_async). */
 struct ou_async_functions {
     PFNGLGENOCCLUSIONPASSESMESAXPROC GenOcclusionPasses;

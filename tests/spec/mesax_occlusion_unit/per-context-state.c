@@ -21,14 +21,6 @@ enum { S = 32 };
 
 static struct ou_two_contexts c;
 
-static GLint
-get_integer(GLenum pname)
-{
-    GLint v = -1;
-    glGetIntegerv(pname, &v);
-    return v;
-}
-
 int main(int argc, char **argv)
 {
     ou_init(argc, argv, S, S);
@@ -62,11 +54,11 @@ int main(int argc, char **argv)
     GLsizei sizes[2] = {OU_BRIEF_SIZE, OU_BRIEF_SIZE};
     ScissorsMESAX(2, a_tiles);
     OcclusionBuffersMESAX(2, sizes, buffers);
-    const bool a_state = get_integer(GL_OCCLUSION_TILE_COUNT_MESAX) == 2 &&
-                         get_integer(GL_OCCLUSION_BUFFER_COUNT_MESAX) == 2;
+    const bool a_state = ou_get_integer(GL_OCCLUSION_TILE_COUNT_MESAX) == 2 &&
+                         ou_get_integer(GL_OCCLUSION_BUFFER_COUNT_MESAX) == 2;
     ou_make_b_current(&c);
-    const bool b_state = get_integer(GL_OCCLUSION_TILE_COUNT_MESAX) == 1 &&
-                         get_integer(GL_OCCLUSION_BUFFER_COUNT_MESAX) == 0;
+    const bool b_state = ou_get_integer(GL_OCCLUSION_TILE_COUNT_MESAX) == 1 &&
+                         ou_get_integer(GL_OCCLUSION_BUFFER_COUNT_MESAX) == 0;
     ou_make_a_current(&c);
     if (!a_state || !b_state)
         printf("tile and buffer counts: A's %s, B's %s\n", a_state ? "right" : "wrong", b_state ? "right" : "wrong");
@@ -80,7 +72,7 @@ int main(int argc, char **argv)
     glFlush();
 
     ou_make_b_current(&c);
-    const GLint b_mode = get_integer(GL_RENDER_MODE);
+    const GLint b_mode = ou_get_integer(GL_RENDER_MODE);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT);
     glColor4f(1, 1, 1, 1);
@@ -95,7 +87,7 @@ int main(int argc, char **argv)
     glFinish();
 
     ou_make_a_current(&c);
-    const GLint a_mode = get_integer(GL_RENDER_MODE);
+    const GLint a_mode = ou_get_integer(GL_RENDER_MODE);
     glRenderMode(GL_RENDER);
     if (b_mode != GL_RENDER || a_mode != GL_BRIEF_OCCLUSION_MESAX)
         printf("RENDER_MODE during A's pass: 0x%x in B, 0x%x in A\n", b_mode, a_mode);
