@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -335,10 +336,15 @@ std::vector<std::optional<bool>> CullMap::visible_by_unit(const gl::OcclusionUni
     glDepthFunc(GL_LESS);
     glEnableClientState(GL_VERTEX_ARRAY);
 
-    // Passes of boxes whose pixels do not overlap, one tile each.
+    // Passes of boxes whose pixels do not overlap, one tile each. Nothing
+    // writes the map between them, so every pass is begun and ended without
+    // waiting and all are read at the end: the rasterizer answers them
+    // together (on llvmpipe, in the scene of the map's own drawing) rather
+    // than one hand-over per pass.
     std::vector<std::uint32_t> owner(std::size_t(region_.width) * std::size_t(region_.height), 0);
     std::uint32_t pass_id = 0;
-    std::size_t pass_count = 0;
+    std::vector<std::unique_ptr<gl::AsyncOcclusionPass>> issued;
+    std::vector<std::vector<std::size_t>> issued_boxes;
     while (!pending.empty()) {
         ++pass_id;
         std::vector<std::size_t> in_pass, later;
@@ -370,17 +376,21 @@ std::vector<std::optional<bool>> CullMap::visible_by_unit(const gl::OcclusionUni
                                double(r.y1), z, double(r.x0), double(r.y1), z});
         }
         glVertexPointer(3, GL_DOUBLE, 0, v.data());
-        gl::OcclusionPass pass(unit, gl::OcclusionMode::brief, tiles);
-        glDrawArrays(GL_QUADS, 0, GLsizei(v.size() / 3));
-        const std::vector<gl::OcclusionRecord> &records = pass.end();
-        for (std::size_t k = 0; k < in_pass.size(); ++k)
-            visible[in_pass[k]] = records[k].nohc > 0;
-        ++pass_count;
+        issued.push_back(std::make_unique<gl::AsyncOcclusionPass>(unit));
+        issued.back()->begin(gl::OcclusionMode::brief, tiles);
+        glDrawArrays(GL_QUADS, 0, GLsizei(v.size() / 3));   // the vertices are copied here
+        issued.back()->end();
+        issued_boxes.push_back(std::move(in_pass));
         pending.swap(later);
     }
     glPopClientAttrib();
+    for (std::size_t p = 0; p < issued.size(); ++p) {
+        const std::vector<gl::OcclusionRecord> &records = issued[p]->records();
+        for (std::size_t k = 0; k < issued_boxes[p].size(); ++k)
+            visible[issued_boxes[p][k]] = records[k].nohc > 0;
+    }
     if (passes)
-        *passes = pass_count;
+        *passes = issued.size();
     return visible;
 }
 
