@@ -1,12 +1,16 @@
 #include "scene/quake3_bsp.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <stdexcept>
+
+#include <polyclipping/clipper.hpp>
 
 #include "scene/palette.h"
 
@@ -286,6 +290,138 @@ bool straight(const FileVertex *control, std::int64_t n, std::int64_t lines, std
 // Quadratic Bernstein weights at t.
 glm::vec3 bernstein2(float t) { return {(1 - t) * (1 - t), 2 * t * (1 - t), t * t}; }
 
+
+// A world brush that is an opaque solid (scene/quake3_bsp.h), in Quake's
+// coordinates: the file's planes, inside where dot(normal, p) <= distance.
+struct BrushSolid {
+    std::vector<glm::vec4> planes;
+    glm::vec3 lo, hi;   // bounds, from its axial (bevel) sides
+    std::int32_t number = 0;   // in the brushes lump
+};
+
+// Clipper's integer units per Quake unit; a gap narrower than
+// `sliver_units` between covering polygons (float rounding of the face
+// vertices, which lie on the brushes' sides) counts as covered.
+constexpr double clipper_units = 1024.0;
+constexpr double sliver_units = 1.0 / 256.0;
+
+ClipperLib::Path clipper_path(std::initializer_list<glm::dvec2> points)
+{
+    ClipperLib::Path path;
+    for (const glm::dvec2 &p : points)
+        path.emplace_back(ClipperLib::cInt(std::llround(p.x * clipper_units)),
+                          ClipperLib::cInt(std::llround(p.y * clipper_units)));
+    if (!ClipperLib::Orientation(path))
+        ClipperLib::ReversePath(path);
+    return path;
+}
+
+// The box brushes (six axial sides) and, per side, whether opaque drawn
+// triangles lying in the side's plane and facing out of the brush cover
+// all of it (see Quake3Level::BoxBrush).
+void select_box_brushes(const std::vector<BrushSolid> &solids, const std::vector<Mesh> &meshes,
+                               Quake3Level &level)
+{
+    // Axial side of a box: axis a, outward sign, coordinate.
+    struct Side {
+        int axis;
+        bool positive;
+        float at;
+    };
+    auto key = [](int axis, bool positive, long at) { return (at * 3 + axis) * 2 + (positive ? 1 : 0); };
+    // The opaque triangles that lie in an axial plane on the integer grid
+    // (brush sides do), by plane and facing, as polygons in the plane's two
+    // other axes.
+    std::map<long, ClipperLib::Paths> axial;
+    for (const Mesh &mesh : meshes) {
+        if (!mesh.occluder)
+            continue;
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            glm::dvec3 q[3];
+            for (int k = 0; k < 3; ++k) {
+                const glm::dvec3 o(mesh.positions[mesh.indices[t + std::size_t(k)]]);
+                q[k] = glm::dvec3(o.x, -o.z, o.y) / double(quake3_unit_metres);
+            }
+            const glm::dvec3 n = glm::cross(q[1] - q[0], q[2] - q[0]);
+            for (int a = 0; a < 3; ++a) {
+                const double at = std::round(q[0][a]);
+                if (!(std::abs(n[a]) > 0.0) || std::abs(q[0][a] - at) > 0.01 || std::abs(q[1][a] - at) > 0.01 ||
+                    std::abs(q[2][a] - at) > 0.01)
+                    continue;
+                const int u = (a + 1) % 3, v = (a + 2) % 3;
+                axial[key(a, n[a] > 0.0, long(at))].push_back(clipper_path(
+                    {glm::dvec2(q[0][u], q[0][v]), glm::dvec2(q[1][u], q[1][v]), glm::dvec2(q[2][u], q[2][v])}));
+                break;
+            }
+        }
+    }
+
+    // The boxes: six axial sides on the integer grid.
+    std::vector<std::size_t> boxes;
+    for (std::size_t s = 0; s < solids.size(); ++s) {
+        const BrushSolid &solid = solids[s];
+        bool box = solid.planes.size() == 6;
+        for (const glm::vec4 &p : solid.planes)
+            box = box && std::abs(p.x) + std::abs(p.y) + std::abs(p.z) == 1.0f &&
+                  (std::abs(p.x) == 1.0f || std::abs(p.y) == 1.0f || std::abs(p.z) == 1.0f) && p.w == std::round(p.w);
+        if (box && solid.lo.x < solid.hi.x && solid.lo.y < solid.hi.y && solid.lo.z < solid.hi.z)
+            boxes.push_back(s);
+    }
+    // Each side's part covered by triangles, once.
+    std::vector<std::array<ClipperLib::Paths, 6>> drawn(boxes.size());
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+        const BrushSolid &solid = solids[boxes[b]];
+        for (int k = 0; k < 6; ++k) {
+            const int a = k / 2, u = (a + 1) % 3, v = (a + 2) % 3;
+            const bool positive = k % 2 == 1;
+            const auto found = axial.find(key(a, positive, long(positive ? solid.hi[a] : solid.lo[a])));
+            if (found == axial.end())
+                continue;
+            ClipperLib::Clipper clipper;
+            clipper.AddPaths(found->second, ClipperLib::ptSubject, true);
+            clipper.AddPath(clipper_path({glm::dvec2(solid.lo[u], solid.lo[v]), glm::dvec2(solid.hi[u], solid.lo[v]),
+                                          glm::dvec2(solid.hi[u], solid.hi[v]), glm::dvec2(solid.lo[u], solid.hi[v])}),
+                            ClipperLib::ptClip, true);
+            clipper.Execute(ClipperLib::ctIntersection, drawn[b][std::size_t(k)], ClipperLib::pftNonZero,
+                            ClipperLib::pftNonZero);
+        }
+    }
+    // One unit inside every side: what the level draws on a brush's face
+    // (decals, patches, models flush with it) lies within float rounding
+    // of the face, and a skin there would hide it.
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+        const BrushSolid &solid = solids[boxes[b]];
+        if (!glm::all(glm::lessThan(solid.lo + 2.0f, solid.hi)))
+            continue;
+        Quake3Level::BoxBrush box;
+        box.bounds = Aabb::of(quake3_to_occu(solid.lo + 1.0f), quake3_to_occu(solid.hi - 1.0f));
+        box.number = solid.number;
+        for (int k = 0; k < 6; ++k) {
+            const int a = k / 2, u = (a + 1) % 3, v = (a + 2) % 3;
+            ClipperLib::ClipperOffset grow;
+            grow.AddPaths(drawn[b][std::size_t(k)], ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
+            ClipperLib::Paths grown;
+            grow.Execute(grown, sliver_units * clipper_units / 2.0);
+            ClipperLib::Clipper clipper;
+            clipper.AddPath(clipper_path({glm::dvec2(solid.lo[u], solid.lo[v]), glm::dvec2(solid.hi[u], solid.lo[v]),
+                                          glm::dvec2(solid.hi[u], solid.hi[v]), glm::dvec2(solid.lo[u], solid.hi[v])}),
+                            ClipperLib::ptSubject, true);
+            clipper.AddPaths(grown, ClipperLib::ptClip, true);
+            ClipperLib::Paths uncovered;
+            clipper.Execute(ClipperLib::ctDifference, uncovered, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+            if (!uncovered.empty())
+                continue;
+            // Quake's axis a, side k % 2 (1: the high one), in occu's
+            // coordinates (x, z, -y): Quake's y is occu's z reversed.
+            const int axis = a == 0 ? 0 : a == 1 ? 2 : 1;
+            const bool high = (k % 2 == 1) != (a == 1);
+            box.drawn_sides |= std::uint8_t(1u << (axis * 2 + (high ? 1 : 0)));
+        }
+        if (box.drawn_sides)
+            level.box_brushes.push_back(box);
+    }
+}
+
 }  // namespace
 
 std::int32_t Quake3Level::leaf_at(const glm::vec3 &p) const
@@ -434,6 +570,52 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
             r.refuse(models_lump, m, "faces " + std::to_string(first) + " to " + std::to_string(std::int64_t(first) + n) +
                                          " overlap those of model " + std::to_string(runs[k + 1].second));
         std::fill(face_model.begin() + first, face_model.begin() + first + n, std::int32_t(m));
+    }
+
+    // World brushes (model 0) that are opaque solids, in Quake's
+    // coordinates (the file's planes; level->planes are occu's); the boxes
+    // among them are chosen once the faces are read.
+    std::vector<BrushSolid> solids;
+    constexpr std::uint32_t contents_solid = 0x1;
+    if (r.count(models_lump) > 0) {
+        const std::int32_t first = r.i32(r.at(models_lump, 0, 32)), n = r.i32(r.at(models_lump, 0, 36));
+        for (std::int32_t b = first; b < first + n; ++b) {
+            const std::size_t br = std::size_t(b);
+            const std::int32_t first_side = r.i32(r.at(brushes_lump, br, 0)), sides = r.i32(r.at(brushes_lump, br, 4));
+            const std::int32_t texture = r.i32(r.at(brushes_lump, br, 8));
+            r.require_range(brushes_lump, br, "brush sides", first_side, sides, brush_sides_lump);
+            r.require_range(brushes_lump, br, "texture", texture, 1, textures_lump);
+            const std::uint32_t contents = level->textures[std::size_t(texture)].content_flags;
+            if (!(contents & contents_solid) || (contents & (contents_translucent | contents_water | contents_fog)))
+                continue;
+            bool sky = false;
+            BrushSolid solid;
+            solid.number = b;
+            solid.lo = glm::vec3(-std::numeric_limits<float>::infinity());
+            solid.hi = glm::vec3(std::numeric_limits<float>::infinity());
+            for (std::int32_t k = first_side; k < first_side + sides; ++k) {
+                const std::size_t side = std::size_t(k);
+                const std::int32_t plane = r.i32(r.at(brush_sides_lump, side, 0));
+                const std::int32_t side_texture = r.i32(r.at(brush_sides_lump, side, 4));
+                r.require_range(brush_sides_lump, side, "plane", plane, 1, planes_lump);
+                r.require_range(brush_sides_lump, side, "texture", side_texture, 1, textures_lump);
+                sky = sky || (level->textures[std::size_t(side_texture)].surface_flags & surf_sky);
+                const glm::vec3 normal = r.vec3(r.at(planes_lump, std::size_t(plane), 0));
+                const float distance = r.f32(r.at(planes_lump, std::size_t(plane), 12));
+                solid.planes.emplace_back(normal, distance);
+                for (int a = 0; a < 3; ++a) {
+                    const glm::vec3 e(a == 0, a == 1, a == 2);
+                    if (normal == e) solid.hi[a] = std::min(solid.hi[a], distance);
+                    if (normal == -e) solid.lo[a] = std::max(solid.lo[a], -distance);
+                }
+            }
+            // Every brush the compiler writes carries its six axial (bevel) planes.
+            if (sky || !(solid.lo.x < solid.hi.x && solid.lo.y < solid.hi.y && solid.lo.z < solid.hi.z) ||
+                !finite(solid.lo) || !finite(solid.hi))
+                continue;
+            level->solid_brush_bounds.push_back(Aabb::of(quake3_to_occu(solid.lo), quake3_to_occu(solid.hi)));
+            solids.push_back(std::move(solid));
+        }
     }
 
     const std::size_t vertex_count = r.count(vertices_lump);
@@ -636,6 +818,7 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
     if (scene.meshes.empty())
         r.refuse(faces_lump, "none of its " + std::to_string(face_count) + " faces is drawn");
 
+    select_box_brushes(solids, scene.meshes, *level);
     level->spawns = spawns_of(r, parse_entities(r));
     scene.update_bounds();
     scene.quake3 = std::move(level);

@@ -145,6 +145,33 @@ struct Quake3Level {
     std::int32_t bytes_per_cluster = 0;
     std::vector<std::uint8_t> visibility;
 
+    // The world's (model 0's) opaque solid brushes: CONTENTS_SOLID (0x1),
+    // none of the see-through contents above, no sky side. Their bounds,
+    // in occu's coordinates: an eye must keep clear of every one.
+    std::vector<Aabb> solid_brush_bounds;
+    // Those that are boxes (six axial sides on the integer grid), the
+    // designer's own solids, which Leone et al. (section 4) take as the
+    // best occluders when made by hand. A brush hides what lies behind it
+    // from an eye only where every ray from the eye that enters it first
+    // meets a drawn opaque face: a ray enters a box through a side whose
+    // outer half-space holds the eye, so the box is an occluder for the
+    // eyes from which every side it sees is drawn all over. That a side's
+    // shader is drawn is not enough, nor that it lies against another
+    // solid: level designers give sides no player sees the nodraw shader
+    // common/caulk (Quake III's SURF_NODRAW, 0x80), which faces open space
+    // behind the level's outer walls and under its patches, and the
+    // compiler drops the faces of drawn sides that face the void outside
+    // the level. So a side counts as drawn where triangles of the level's
+    // own opaque drawn faces, in the side's plane and facing out of the
+    // brush, cover all of it.
+    struct BoxBrush {
+        Aabb bounds;                  // one unit inside the brush's sides
+        std::uint8_t drawn_sides = 0; // bit 2 * axis + (1: the side at bounds.max), occu's axes
+        std::int32_t number = 0;      // in the brushes lump
+    };
+    // Only those with at least one side drawn all over.
+    std::vector<BoxBrush> box_brushes;
+
     // Counts, for statistics.
     std::size_t patch_count = 0, billboard_count = 0, hidden_face_count = 0, see_through_face_count = 0;
 
