@@ -42,7 +42,13 @@ struct BspFile {
         std::int32_t leaf_face, leaf_face_count, leaf_brush, leaf_brush_count;
     };
     struct Model {
-        std::int32_t face, face_count;
+        std::int32_t face, face_count, brush = 0, brush_count = 0;
+    };
+    struct Brush {
+        std::int32_t side, side_count, texture;
+    };
+    struct BrushSide {
+        std::int32_t plane, texture;
     };
     struct Vertex {
         glm::vec3 position, normal;
@@ -60,6 +66,8 @@ struct BspFile {
     std::vector<Leaf> leaves;
     std::vector<std::int32_t> leaf_faces;
     std::vector<Model> models;
+    std::vector<Brush> brushes;
+    std::vector<BrushSide> brush_sides;
     std::vector<Vertex> vertices;
     std::vector<std::int32_t> meshverts;
     std::vector<Face> faces;
@@ -109,9 +117,15 @@ struct BspFile {
         for (const Model &m : models) {
             for (int k = 0; k < 6; ++k)
                 f32(lumps[7], 0.0f);
-            for (std::int32_t v : {m.face, m.face_count, 0, 0})
+            for (std::int32_t v : {m.face, m.face_count, m.brush, m.brush_count})
                 i32(lumps[7], v);
         }
+        for (const Brush &b : brushes)
+            for (std::int32_t v : {b.side, b.side_count, b.texture})
+                i32(lumps[8], v);
+        for (const BrushSide &b : brush_sides)
+            for (std::int32_t v : {b.plane, b.texture})
+                i32(lumps[9], v);
         for (const Vertex &v : vertices) {
             v3(lumps[10], v.position);
             for (int k = 0; k < 4; ++k)
@@ -413,6 +427,75 @@ TEST(Quake3Bsp, SpawnPointsAtEyeHeightLookingAlongTheirAngle)
     EXPECT_EQ(spawns[1].classname, "team_CTF_bluespawn");
     EXPECT_FLOAT_EQ(spawns[1].yaw_degrees, 180.0f) << "the yaw of 'angles'";
     expect_near(spawns[1].direction, {-1, 0, 0});
+}
+
+// Adds to `f` a world brush over [lo, hi] (Quake units) with the texture
+// `texture` on every side but the top, which has `top`.
+void add_box_brush(BspFile &f, glm::ivec3 lo, glm::ivec3 hi, std::int32_t texture, std::int32_t top)
+{
+    const std::int32_t first = std::int32_t(f.brush_sides.size());
+    for (int a = 0; a < 3; ++a)
+        for (int high = 0; high < 2; ++high) {
+            glm::vec3 n(0.0f);
+            n[a] = high ? 1.0f : -1.0f;
+            f.planes.push_back(glm::vec4(n, high ? float(hi[a]) : -float(lo[a])));
+            f.brush_sides.push_back({std::int32_t(f.planes.size() - 1), a == 2 && high ? top : texture});
+        }
+    f.brushes.push_back({first, 6, texture});
+    f.models[0].brush_count = std::int32_t(f.brushes.size());
+}
+
+// Adds a square polygon face at height z over [x0, x1] x [y0, y1], facing
+// up (or down).
+void add_square_face(BspFile &f, float z, float x0, float x1, float y0, float y1, bool facing_up)
+{
+    const glm::vec3 n(0, 0, facing_up ? 1.0f : -1.0f);
+    const std::int32_t first = std::int32_t(f.vertices.size()), meshvert = std::int32_t(f.meshverts.size());
+    f.vertices.insert(f.vertices.end(), {{{x0, y0, z}, n}, {{x1, y0, z}, n}, {{x1, y1, z}, n}, {{x0, y1, z}, n}});
+    if (facing_up)
+        f.meshverts.insert(f.meshverts.end(), {0, 2, 1, 0, 3, 2});
+    else
+        f.meshverts.insert(f.meshverts.end(), {0, 1, 2, 0, 2, 3});
+    f.faces.push_back({0, 1, first, 4, meshvert, 6, n});
+    f.models[0].face_count = std::int32_t(f.faces.size());
+}
+
+TEST(Quake3Bsp, BoxBrushSidesCountAsDrawnOnlyWhereTheLevelsOwnFacesCoverThem)
+{
+    BspFile f = minimal_level();
+    // 0: a caulked box whose top is drawn and has its face: one drawn side.
+    add_box_brush(f, {100, 0, 0}, {132, 32, 32}, 1, 0);
+    add_square_face(f, 32, 100, 132, 0, 32, true);
+    // 1: its top's shader is drawn, but the compiler kept only half the
+    // face (the rest against the void or another brush): no drawn side.
+    add_box_brush(f, {200, 0, 0}, {232, 32, 32}, 1, 0);
+    add_square_face(f, 32, 200, 216, 0, 32, true);
+    // 2: a whole face in the top's plane, but facing into the brush.
+    add_box_brush(f, {300, 0, 0}, {332, 32, 32}, 1, 0);
+    add_square_face(f, 32, 300, 332, 0, 32, false);
+    // 3: covered by two faces that meet: drawn.
+    add_box_brush(f, {400, 0, 0}, {432, 32, 32}, 1, 0);
+    add_square_face(f, 32, 400, 416, 0, 32, true);
+    add_square_face(f, 32, 416, 432, 0, 32, true);
+    // 4: see-through (glass) and 5: a sky side: never occluders.
+    add_box_brush(f, {500, 0, 0}, {532, 32, 32}, 3, 3);
+    add_square_face(f, 32, 500, 532, 0, 32, true);
+    add_box_brush(f, {600, 0, 0}, {632, 32, 32}, 2, 0);
+    add_square_face(f, 32, 600, 632, 0, 32, true);
+
+    const Scene s = read(f);
+    const auto &boxes = s.quake3->box_brushes;
+    ASSERT_EQ(boxes.size(), 2u);
+    // Quake's up is occu's +y: bit 2 * 1 + 1.
+    EXPECT_EQ(boxes[0].number, 0);
+    EXPECT_EQ(boxes[0].drawn_sides, 1u << 3);
+    EXPECT_EQ(boxes[1].number, 3);
+    EXPECT_EQ(boxes[1].drawn_sides, 1u << 3);
+    // One unit inside the brush.
+    expect_near(boxes[0].bounds.min, glm::min(q(101, 1, 1), q(131, 31, 31)), 1e-4f);
+    expect_near(boxes[0].bounds.max, glm::max(q(101, 1, 1), q(131, 31, 31)), 1e-4f);
+    // Every opaque solid brush (not the glass, not the sky one) bounds the eye.
+    EXPECT_EQ(s.quake3->solid_brush_bounds.size(), 4u);
 }
 
 TEST(Quake3Bsp, BadHeadersAreRefused)
