@@ -57,6 +57,7 @@
 #pragma once
 
 #include <cstdint>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -164,12 +165,56 @@ struct Quake3Level {
     // the level. So a side counts as drawn where triangles of the level's
     // own opaque drawn faces, in the side's plane and facing out of the
     // brush, cover all of it.
-    struct BoxBrush {
-        Aabb bounds;                  // one unit inside the brush's sides
-        std::uint8_t drawn_sides = 0; // bit 2 * axis + (1: the side at bounds.max), occu's axes
-        std::int32_t number = 0;      // in the brushes lump
+    struct OpaqueBrush {
+        std::vector<glm::vec4> planes;   // occu's: inside where dot(normal, p) <= w
+        std::vector<bool> drawn;         // per side: drawn all over
+        // Whether every side whose outer half-space holds `eye` is drawn
+        // all over: a ray from there that enters the brush meets a drawn
+        // face first.
+        bool closed_from(const glm::vec3 &eye) const
+        {
+            for (std::size_t k = 0; k < planes.size(); ++k)
+                if (!drawn[k] && glm::dot(glm::vec3(planes[k]), eye) > planes[k].w)
+                    return false;
+            return true;
+        }
     };
-    // Only those with at least one side drawn all over.
+    // One per opaque solid brush, in the order of solid_brush_bounds.
+    std::vector<OpaqueBrush> opaque_brushes;
+    struct BoxBrush {
+        Aabb bounds;   // one unit inside the brush's sides, occu's coordinates
+        // Per side, 2 * axis + (1: the side at bounds.max), occu's axes: a
+        // side is closed when drawn all over, or when the opaque brushes
+        // `against` (into opaque_brushes) lie just outside the rest of it;
+        // a ray entering there comes through one of those, so they must
+        // each be closed_from the eye.
+        struct Side {
+            bool closed = false;
+            std::vector<std::int32_t> against;
+        };
+        std::array<Side, 6> sides;
+        std::int32_t brush = 0;    // into opaque_brushes
+        std::int32_t number = 0;   // in the brushes lump
+        // Whether the box hides what lies behind it from `eye` (outside
+        // every opaque brush): every side whose outer half-space holds the
+        // eye is closed, with the brushes against it closed from the eye.
+        bool hides_from(const glm::vec3 &eye, const std::vector<OpaqueBrush> &brushes) const
+        {
+            for (int a = 0; a < 3; ++a)
+                for (int high = 0; high < 2; ++high) {
+                    if (high ? !(eye[a] > bounds.max[a]) : !(eye[a] < bounds.min[a]))
+                        continue;
+                    const Side &side = sides[std::size_t(2 * a + high)];
+                    if (!side.closed)
+                        return false;
+                    for (std::int32_t o : side.against)
+                        if (!brushes[std::size_t(o)].closed_from(eye))
+                            return false;
+                }
+            return true;
+        }
+    };
+    // Only those with at least one side closed.
     std::vector<BoxBrush> box_brushes;
 
     // Counts, for statistics.

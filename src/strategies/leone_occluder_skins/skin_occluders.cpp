@@ -81,15 +81,11 @@ bool SkinOccluders::usable(std::size_t i, const Frame &frame) const
             return false;
     if (!brushes_)
         return true;
-    // The box's sides whose outer half-space holds the eye: a ray from the
-    // eye enters the box through one of them, and must meet a drawn face
-    // there (scene/quake3_bsp.h, Quake3Level::BoxBrush).
-    const Aabb &box = boxes_[i];
-    const std::uint8_t drawn = drawn_sides_[i];
-    for (int a = 0; a < 3; ++a)
-        if ((eye[a] > double(box.max[a]) && !(drawn & (1u << (2 * a + 1)))) ||
-            (eye[a] < double(box.min[a]) && !(drawn & (1u << (2 * a)))))
-            return false;
+    // Quake3Level::BoxBrush: a ray from the eye enters the box through a
+    // side whose outer half-space holds the eye, and must meet a drawn face
+    // there or before.
+    if (!scene_->quake3->box_brushes[i].hides_from(frame.camera.position, scene_->quake3->opaque_brushes))
+        return false;
     return eye_clear(frame);
 }
 
@@ -135,10 +131,8 @@ SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
         // level's designer made its solids as brushes.
         if (!scene.quake3)
             throw std::runtime_error("skin-source=brushes: the scene is not a Quake III level (it has no brushes)");
-        for (const Quake3Level::BoxBrush &box : scene.quake3->box_brushes) {
+        for (const Quake3Level::BoxBrush &box : scene.quake3->box_brushes)
             boxes_.push_back(box.bounds);
-            drawn_sides_.push_back(box.drawn_sides);
-        }
         mesh_bounds_ = boxes_;
         solids_ = scene.quake3->solid_brush_bounds;
         brushes_ = true;

@@ -86,7 +86,6 @@ private:
     // skin-source=brushes: every solid brush's bounds, and whether the eye
     // of the frame last asked about is clear of them.
     bool brushes_ = false;
-    std::vector<std::uint8_t> drawn_sides_;   // per skin, Quake3Level::BoxBrush::drawn_sides
     std::vector<Aabb> solids_;
     bool eye_clear(const Frame &frame) const;
     mutable glm::mat4 clear_view_projection_{0.0f};

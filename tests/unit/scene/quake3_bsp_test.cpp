@@ -483,19 +483,43 @@ TEST(Quake3Bsp, BoxBrushSidesCountAsDrawnOnlyWhereTheLevelsOwnFacesCoverThem)
     add_box_brush(f, {600, 0, 0}, {632, 32, 32}, 2, 0);
     add_square_face(f, 32, 600, 632, 0, 32, true);
 
+    // 6: a caulked box under box 0, its top against box 0's bottom: closed
+    // by box 0 (which must then be closed from the eye), its other sides not.
+    add_box_brush(f, {100, 0, -32}, {132, 32, 0}, 1, 1);
+
     const Scene s = read(f);
-    const auto &boxes = s.quake3->box_brushes;
-    ASSERT_EQ(boxes.size(), 2u);
-    // Quake's up is occu's +y: bit 2 * 1 + 1.
+    const auto &level = *s.quake3;
+    const auto &boxes = level.box_brushes;
+    ASSERT_EQ(boxes.size(), 3u);
+    // Quake's up is occu's +y: side 2 * 1 + 1, down side 2 * 1.
+    constexpr std::size_t top = 3, bottom = 2;
     EXPECT_EQ(boxes[0].number, 0);
-    EXPECT_EQ(boxes[0].drawn_sides, 1u << 3);
     EXPECT_EQ(boxes[1].number, 3);
-    EXPECT_EQ(boxes[1].drawn_sides, 1u << 3);
+    EXPECT_EQ(boxes[2].number, 6);
+    for (const auto &box : boxes)
+        for (std::size_t k = 0; k < 6; ++k)
+            EXPECT_EQ(box.sides[k].closed, k == top || (box.number == 0 && k == bottom))
+                << "brush " << box.number << " side " << k;
+    // Boxes 0 and 6 close each other's sides that meet; opaque_brushes
+    // holds the opaque solid brushes in the file's order (box 6 the fifth).
+    EXPECT_TRUE(boxes[0].sides[top].against.empty());
+    EXPECT_EQ(boxes[0].sides[bottom].against, std::vector<std::int32_t>{4});
+    EXPECT_EQ(boxes[2].sides[top].against, std::vector<std::int32_t>{0});
+    EXPECT_EQ(boxes[2].brush, 4);
     // One unit inside the brush.
     expect_near(boxes[0].bounds.min, glm::min(q(101, 1, 1), q(131, 31, 31)), 1e-4f);
     expect_near(boxes[0].bounds.max, glm::max(q(101, 1, 1), q(131, 31, 31)), 1e-4f);
+    // Box 0 hides from an eye above it, not from one beside it (its caulked
+    // side faces that eye); box 6 from neither: box 0, against its top,
+    // shows that eye its caulked side.
+    EXPECT_TRUE(boxes[0].hides_from(q(116, 16, 100), level.opaque_brushes));
+    EXPECT_FALSE(boxes[0].hides_from(q(116, 16, 100) + q(100, 0, 0), level.opaque_brushes));
+    EXPECT_FALSE(boxes[0].hides_from(q(50, 16, 16), level.opaque_brushes));
+    EXPECT_TRUE(boxes[2].hides_from(q(116, 16, 100), level.opaque_brushes));
+    EXPECT_FALSE(boxes[2].hides_from(q(116, 16, 100) + q(100, 0, 0), level.opaque_brushes));
     // Every opaque solid brush (not the glass, not the sky one) bounds the eye.
-    EXPECT_EQ(s.quake3->solid_brush_bounds.size(), 4u);
+    EXPECT_EQ(level.solid_brush_bounds.size(), 5u);
+    EXPECT_EQ(level.opaque_brushes.size(), 5u);
 }
 
 TEST(Quake3Bsp, BadHeadersAreRefused)
