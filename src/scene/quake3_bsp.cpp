@@ -687,6 +687,12 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
                 sky = sky || (level->textures[std::size_t(side_texture)].surface_flags & surf_sky);
                 const glm::vec3 normal = r.vec3(r.at(planes_lump, std::size_t(plane), 0));
                 const float distance = r.f32(r.at(planes_lump, std::size_t(plane), 12));
+                // Sides are clipped as polygons (select_box_brushes): within
+                // the compiler's world (q3map2: 65536 units either way).
+                if (!(std::abs(glm::length(normal) - 1.0f) < 1e-3f) || !(std::abs(distance) <= 1048576.0f))
+                    r.refuse(planes_lump, std::size_t(plane),
+                             "a brush side's plane (normal length " + std::to_string(glm::length(normal)) +
+                                 ", distance " + std::to_string(distance) + ") is not a unit normal within 2^20 units");
                 solid.planes.emplace_back(normal, distance);
                 for (int a = 0; a < 3; ++a) {
                     const glm::vec3 e(a == 0, a == 1, a == 2);

@@ -150,21 +150,19 @@ struct Quake3Level {
     // none of the see-through contents above, no sky side. Their bounds,
     // in occu's coordinates: an eye must keep clear of every one.
     std::vector<Aabb> solid_brush_bounds;
-    // Those that are boxes (six axial sides on the integer grid), the
-    // designer's own solids, which Leone et al. (section 4) take as the
-    // best occluders when made by hand. A brush hides what lies behind it
-    // from an eye only where every ray from the eye that enters it first
-    // meets a drawn opaque face: a ray enters a box through a side whose
-    // outer half-space holds the eye, so the box is an occluder for the
-    // eyes from which every side it sees is drawn all over. That a side's
-    // shader is drawn is not enough, nor that it lies against another
-    // solid: level designers give sides no player sees the nodraw shader
-    // common/caulk (Quake III's SURF_NODRAW, 0x80), which faces open space
-    // behind the level's outer walls and under its patches, and the
-    // compiler drops the faces of drawn sides that face the void outside
-    // the level. So a side counts as drawn where triangles of the level's
-    // own opaque drawn faces, in the side's plane and facing out of the
-    // brush, cover all of it.
+    // Brushes are the designer's own solids, which Leone et al. (section
+    // 4) take as the best occluders when made by hand. A brush hides what
+    // lies behind it from an eye only where every ray from the eye that
+    // enters it first meets a drawn opaque face, and a ray enters a convex
+    // brush through a side whose outer half-space holds the eye. That a
+    // side's shader is drawn is not enough, nor that it lies against
+    // another solid: designers give the sides no player is meant to see
+    // the nodraw shader common/caulk (SURF_NODRAW, 0x80), and such sides
+    // face open space too (behind a level's outer walls, where random eyes
+    // stand; under patches and models); the compiler also drops the faces
+    // of drawn sides that face the void outside the level. So a side
+    // counts as drawn where the level's own opaque drawn triangles, in the
+    // side's plane and facing out of the brush, cover all of it.
     struct OpaqueBrush {
         std::vector<glm::vec4> planes;   // occu's: inside where dot(normal, p) <= w
         std::vector<bool> drawn;         // per side: drawn all over
