@@ -428,11 +428,23 @@ void select_box_brushes(const std::vector<BrushSolid> &solids, const std::vector
                 rest = {clipper_path(poly)};
                 const auto found = planar.find(plane_key(n, d));
                 if (found != planar.end()) {
+                    // The plane's triangles over the side's bounds (a floor's
+                    // plane holds thousands, across the level).
+                    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+                    for (const glm::dvec2 &p : poly) {
+                        lo = glm::min(lo, p);
+                        hi = glm::max(hi, p);
+                    }
                     ClipperLib::Paths triangles;
-                    for (const auto &t : found->second)
-                        triangles.push_back(clipper_path({glm::dvec2(t[0][u], t[0][v]), glm::dvec2(t[1][u], t[1][v]),
-                                                          glm::dvec2(t[2][u], t[2][v])}));
-                    rest = clip(ClipperLib::ctDifference, rest, grown(triangles));
+                    for (const auto &t : found->second) {
+                        const glm::dvec2 a2(t[0][u], t[0][v]), b2(t[1][u], t[1][v]), c2(t[2][u], t[2][v]);
+                        const glm::dvec2 top = glm::max(a2, glm::max(b2, c2)), bottom = glm::min(a2, glm::min(b2, c2));
+                        if (top.x < lo.x || top.y < lo.y || bottom.x > hi.x || bottom.y > hi.y)
+                            continue;
+                        triangles.push_back(clipper_path({a2, b2, c2}));
+                    }
+                    if (!triangles.empty())
+                        rest = clip(ClipperLib::ctDifference, rest, grown(triangles));
                 }
             }
             brush.planes.emplace_back(glm::vec3(n.x, n.z, -n.y), float(d) * quake3_unit_metres);
