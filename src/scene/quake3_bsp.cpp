@@ -291,13 +291,6 @@ bool straight(const FileVertex *control, std::int64_t n, std::int64_t lines, std
 glm::vec3 bernstein2(float t) { return {(1 - t) * (1 - t), 2 * t * (1 - t), t * t}; }
 
 
-// A world brush that is an opaque solid (scene/quake3_bsp.h), in Quake's
-// coordinates: the file's planes, inside where dot(normal, p) <= distance.
-struct BrushSolid {
-    std::vector<glm::vec4> planes;
-    glm::vec3 lo, hi;   // bounds, from its axial (bevel) sides
-    std::int32_t number = 0;   // in the brushes lump
-};
 
 // Clipper's integer units per Quake unit; a gap narrower than
 // `sliver_units` between covering polygons (float rounding of the face
@@ -383,12 +376,15 @@ int dominant_axis(const glm::dvec3 &n)
     return a;
 }
 
-// The opaque brushes with, per side, whether the level's own opaque drawn
-// triangles in the side's plane, facing out of the brush, cover all of it;
-// and the box brushes among them with, per side, the brushes that cover
-// what the triangles leave of it (see Quake3Level::BoxBrush).
-void select_box_brushes(const std::vector<BrushSolid> &solids, const std::vector<Mesh> &meshes, Quake3Level &level)
+}  // namespace
+
+Quake3BrushOccluders quake3_brush_occluders(const Scene &scene)
 {
+    if (!scene.quake3)
+        throw std::runtime_error("the scene is not a Quake III level (it has no brushes)");
+    const std::vector<Quake3Level::Brush> &solids = scene.quake3->opaque_solids;
+    const std::vector<Mesh> &meshes = scene.meshes;
+    Quake3BrushOccluders level;
     // The opaque triangles, by plane (normal to 1/1024, distance to 1/16
     // unit) and in Quake's coordinates.
     auto plane_key = [](const glm::dvec3 &n, double d) {
@@ -416,8 +412,8 @@ void select_box_brushes(const std::vector<BrushSolid> &solids, const std::vector
     std::vector<std::vector<ClipperLib::Paths>> open(solids.size());
     level.opaque_brushes.resize(solids.size());
     for (std::size_t s = 0; s < solids.size(); ++s) {
-        const BrushSolid &solid = solids[s];
-        Quake3Level::OpaqueBrush &brush = level.opaque_brushes[s];
+        const Quake3Level::Brush &solid = solids[s];
+        Quake3BrushOccluders::OpaqueBrush &brush = level.opaque_brushes[s];
         for (std::size_t k = 0; k < solid.planes.size(); ++k) {
             const glm::dvec3 n(solid.planes[k]);
             const double d = solid.planes[k].w;
@@ -456,13 +452,13 @@ void select_box_brushes(const std::vector<BrushSolid> &solids, const std::vector
     // The boxes: six axial sides on the integer grid, at least a unit
     // thick within the one-unit inset.
     for (std::size_t s = 0; s < solids.size(); ++s) {
-        const BrushSolid &solid = solids[s];
+        const Quake3Level::Brush &solid = solids[s];
         bool box = solid.planes.size() == 6;
         for (const glm::vec4 &p : solid.planes)
             box = box && std::abs(p.x) + std::abs(p.y) + std::abs(p.z) == 1.0f && p.w == std::round(p.w);
         if (!box || !glm::all(glm::lessThan(solid.lo + 2.0f, solid.hi)))
             continue;
-        Quake3Level::BoxBrush result;
+        Quake3BrushOccluders::BoxBrush result;
         result.bounds = Aabb::of(quake3_to_occu(solid.lo + 1.0f), quake3_to_occu(solid.hi - 1.0f));
         result.number = solid.number;
         result.brush = std::int32_t(s);
@@ -474,7 +470,7 @@ void select_box_brushes(const std::vector<BrushSolid> &solids, const std::vector
             // Quake's axis a in occu's (x, z, -y): Quake's y is occu's z reversed.
             const int axis = a == 0 ? 0 : a == 1 ? 2 : 1;
             const std::size_t side = std::size_t(axis * 2 + (high != (a == 1) ? 1 : 0));
-            Quake3Level::BoxBrush::Side &out = result.sides[side];
+            Quake3BrushOccluders::BoxBrush::Side &out = result.sides[side];
             if (open[s][k].empty()) {
                 out.closed = true;
                 usable = true;
@@ -486,7 +482,7 @@ void select_box_brushes(const std::vector<BrushSolid> &solids, const std::vector
             const double at = solid.planes[k].w * (high ? 1.0 : -1.0), out_sign = high ? 1.0 : -1.0;
             ClipperLib::Paths rest = open[s][k], against;
             for (std::size_t o = 0; o < solids.size() && !rest.empty(); ++o) {
-                const BrushSolid &other = solids[o];
+                const Quake3Level::Brush &other = solids[o];
                 const int u = (a + 1) % 3, v = (a + 2) % 3;
                 if (o == s || !(other.lo[a] <= at + out_sign * 0.5 && at + out_sign * 0.5 <= other.hi[a]) ||
                     !(other.lo[a] <= at && at <= other.hi[a]) || !(other.lo[u] < solid.hi[u] && solid.lo[u] < other.hi[u]) ||
@@ -517,9 +513,8 @@ void select_box_brushes(const std::vector<BrushSolid> &solids, const std::vector
         if (usable)
             level.box_brushes.push_back(result);
     }
+    return level;
 }
-
-}  // namespace
 
 std::int32_t Quake3Level::leaf_at(const glm::vec3 &p) const
 {
@@ -670,9 +665,7 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
     }
 
     // World brushes (model 0) that are opaque solids, in Quake's
-    // coordinates (the file's planes; level->planes are occu's); the boxes
-    // among them are chosen once the faces are read.
-    std::vector<BrushSolid> solids;
+    // coordinates (the file's planes; level->planes are occu's).
     constexpr std::uint32_t contents_solid = 0x1;
     if (r.count(models_lump) > 0) {
         const std::int32_t first = r.i32(r.at(models_lump, 0, 32)), n = r.i32(r.at(models_lump, 0, 36));
@@ -686,7 +679,7 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
             if (!(contents & contents_solid) || (contents & (contents_translucent | contents_water | contents_fog)))
                 continue;
             bool sky = false;
-            BrushSolid solid;
+            Quake3Level::Brush solid;
             solid.number = b;
             solid.lo = glm::vec3(-std::numeric_limits<float>::infinity());
             solid.hi = glm::vec3(std::numeric_limits<float>::infinity());
@@ -699,7 +692,7 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
                 sky = sky || (level->textures[std::size_t(side_texture)].surface_flags & surf_sky);
                 const glm::vec3 normal = r.vec3(r.at(planes_lump, std::size_t(plane), 0));
                 const float distance = r.f32(r.at(planes_lump, std::size_t(plane), 12));
-                // Sides are clipped as polygons (select_box_brushes): within
+                // Sides are clipped as polygons (quake3_brush_occluders): within
                 // the compiler's world (q3map2: 65536 units either way).
                 if (!(std::abs(glm::length(normal) - 1.0f) < 1e-3f) || !(std::abs(distance) <= 1048576.0f))
                     r.refuse(planes_lump, std::size_t(plane),
@@ -717,7 +710,7 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
                 !finite(solid.lo) || !finite(solid.hi))
                 continue;
             level->solid_brush_bounds.push_back(Aabb::of(quake3_to_occu(solid.lo), quake3_to_occu(solid.hi)));
-            solids.push_back(std::move(solid));
+            level->opaque_solids.push_back(std::move(solid));
         }
     }
 
@@ -921,7 +914,6 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
     if (scene.meshes.empty())
         r.refuse(faces_lump, "none of its " + std::to_string(face_count) + " faces is drawn");
 
-    select_box_brushes(solids, scene.meshes, *level);
     level->spawns = spawns_of(r, parse_entities(r));
     scene.update_bounds();
     scene.quake3 = std::move(level);

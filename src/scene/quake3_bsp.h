@@ -150,6 +150,27 @@ struct Quake3Level {
     // none of the see-through contents above, no sky side. Their bounds,
     // in occu's coordinates: an eye must keep clear of every one.
     std::vector<Aabb> solid_brush_bounds;
+    // The same brushes in Quake's coordinates (the file's planes, inside
+    // where dot(normal, p) <= w), for quake3_brush_occluders.
+    struct Brush {
+        std::vector<glm::vec4> planes;
+        glm::vec3 lo, hi;          // bounds, from its axial (bevel) sides
+        std::int32_t number = 0;   // in the brushes lump
+    };
+    std::vector<Brush> opaque_solids;
+
+    // Counts, for statistics.
+    std::size_t patch_count = 0, billboard_count = 0, hidden_face_count = 0, see_through_face_count = 0;
+
+    // The leaf holding `p`, by descending the tree from the root.
+    std::int32_t leaf_at(const glm::vec3 &p) const;
+    // Whether cluster `to` is in the PVS of cluster `from` (true when
+    // either is < 0 or the level has no visibility data).
+    bool cluster_sees(std::int32_t from, std::int32_t to) const;
+};
+
+// A level's brushes as occluders (quake3_brush_occluders).
+struct Quake3BrushOccluders {
     // Brushes are the designer's own solids, which Leone et al. (section
     // 4) take as the best occluders when made by hand. A brush hides what
     // lies behind it from an eye only where every ray from the eye that
@@ -177,7 +198,7 @@ struct Quake3Level {
             return true;
         }
     };
-    // One per opaque solid brush, in the order of solid_brush_bounds.
+    // One per opaque solid brush, in the order of Quake3Level::opaque_solids.
     std::vector<OpaqueBrush> opaque_brushes;
     struct BoxBrush {
         Aabb bounds;   // one unit inside the brush's sides, occu's coordinates
@@ -214,16 +235,15 @@ struct Quake3Level {
     };
     // Only those with at least one side closed.
     std::vector<BoxBrush> box_brushes;
-
-    // Counts, for statistics.
-    std::size_t patch_count = 0, billboard_count = 0, hidden_face_count = 0, see_through_face_count = 0;
-
-    // The leaf holding `p`, by descending the tree from the root.
-    std::int32_t leaf_at(const glm::vec3 &p) const;
-    // Whether cluster `to` is in the PVS of cluster `from` (true when
-    // either is < 0 or the level has no visibility data).
-    bool cluster_sees(std::int32_t from, std::int32_t to) const;
 };
+
+// The box brushes of a level (Scene::quake3) and what they hide from which
+// eyes, from its opaque solid brushes and the scene's opaque triangles.
+// Clips every brush side against the triangles in its plane: about 0.1 to
+// 0.3 s a level, so made only for the strategies that ask
+// (skin-source=brushes). Throws std::runtime_error on a scene that is no
+// level.
+Quake3BrushOccluders quake3_brush_occluders(const Scene &scene);
 
 // Reads a level from `bytes` (a .bsp file's, or a pk3 member's). `source`
 // names it in messages ("maps/x.bsp", "pak.pk3:maps/x.bsp"). Returns its

@@ -84,7 +84,7 @@ bool SkinOccluders::usable(std::size_t i, const Frame &frame) const
     // Quake3Level::BoxBrush: a ray from the eye enters the box through a
     // side whose outer half-space holds the eye, and must meet a drawn face
     // there or before.
-    if (!scene_->quake3->box_brushes[i].hides_from(frame.camera.position, scene_->quake3->opaque_brushes))
+    if (!brush_occluders_.box_brushes[i].hides_from(frame.camera.position, brush_occluders_.opaque_brushes))
         return false;
     return eye_clear(frame);
 }
@@ -131,7 +131,9 @@ SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
         // level's designer made its solids as brushes.
         if (!scene.quake3)
             throw std::runtime_error("skin-source=brushes: the scene is not a Quake III level (it has no brushes)");
-        for (const Quake3Level::BoxBrush &box : scene.quake3->box_brushes)
+        brush_occluders_ = quake3_brush_occluders(scene);
+        boxes_.clear();
+        for (const Quake3BrushOccluders::BoxBrush &box : brush_occluders_.box_brushes)
             boxes_.push_back(box.bounds);
         mesh_bounds_ = boxes_;
         solids_ = scene.quake3->solid_brush_bounds;

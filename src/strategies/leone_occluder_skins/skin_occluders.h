@@ -27,6 +27,7 @@
 #include "culling/settings.h"
 #include "strategies/leone_occluder_skins/occluder_skins.h"
 #include "raster/depth_rasterizer.h"
+#include "scene/quake3_bsp.h"
 #include "scene/scene.h"
 
 namespace occu {
@@ -86,6 +87,7 @@ private:
     // skin-source=brushes: every solid brush's bounds, and whether the eye
     // of the frame last asked about is clear of them.
     bool brushes_ = false;
+    Quake3BrushOccluders brush_occluders_;
     std::vector<Aabb> solids_;
     bool eye_clear(const Frame &frame) const;
     mutable glm::mat4 clear_view_projection_{0.0f};

@@ -488,7 +488,7 @@ TEST(Quake3Bsp, BoxBrushSidesCountAsDrawnOnlyWhereTheLevelsOwnFacesCoverThem)
     add_box_brush(f, {100, 0, -32}, {132, 32, 0}, 1, 1);
 
     const Scene s = read(f);
-    const auto &level = *s.quake3;
+    const Quake3BrushOccluders level = quake3_brush_occluders(s);
     const auto &boxes = level.box_brushes;
     ASSERT_EQ(boxes.size(), 3u);
     // Quake's up is occu's +y: side 2 * 1 + 1, down side 2 * 1.
@@ -518,7 +518,8 @@ TEST(Quake3Bsp, BoxBrushSidesCountAsDrawnOnlyWhereTheLevelsOwnFacesCoverThem)
     EXPECT_TRUE(boxes[2].hides_from(q(116, 16, 100), level.opaque_brushes));
     EXPECT_FALSE(boxes[2].hides_from(q(116, 16, 100) + q(100, 0, 0), level.opaque_brushes));
     // Every opaque solid brush (not the glass, not the sky one) bounds the eye.
-    EXPECT_EQ(level.solid_brush_bounds.size(), 5u);
+    EXPECT_EQ(s.quake3->solid_brush_bounds.size(), 5u);
+    EXPECT_EQ(s.quake3->opaque_solids.size(), 5u);
     EXPECT_EQ(level.opaque_brushes.size(), 5u);
 }
 
