@@ -165,7 +165,8 @@ std::vector<SettingSpec> skin_settings()
     return {
         choice_setting("skin-source", {"meshes", "brushes"},
                        "where skins come from: boxes made inside each closed mesh, or a Quake III level's "
-                       "solid brushes that are boxes (its meshes are open surfaces and have no skins)"),
+                       "box brushes, each from the eyes that see only drawn faces of it (a level's meshes are "
+                       "open surfaces and have no skins)"),
         integer_setting("skin-boxes", 8, 1, 1 << 16, SettingSpec::Role::cost, "skin boxes per mesh, the largest first"),
         // Tighter than SkinOptions' default (95% of the city's buildings'
         // bodies against 89%) for seven times its second: what benchmarks
