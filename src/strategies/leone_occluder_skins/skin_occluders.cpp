@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "strategies/leone_occluder_skins/occluder_skins.h"
-#include "scene/quake3_bsp.h"
 
 namespace occu {
 
@@ -81,7 +80,7 @@ bool SkinOccluders::usable(std::size_t i, const Frame &frame) const
             return false;
     if (!brushes_)
         return true;
-    // Quake3Level::BoxBrush: a ray from the eye enters the box through a
+    // Quake3BrushOccluders::BoxBrush: a ray from the eye enters the box through a
     // side whose outer half-space holds the eye, and must meet a drawn face
     // there or before.
     if (!brush_occluders_.box_brushes[i].hides_from(frame.camera.position, brush_occluders_.opaque_brushes))

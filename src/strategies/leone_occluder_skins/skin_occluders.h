@@ -66,7 +66,7 @@ public:
     // eye inside the mesh sees its walls from behind, where back-face
     // culling drops them: in both GL shows what the skin would hide.
     // With skin-source=brushes (a Quake III level's box brushes,
-    // scene/quake3_bsp.h, Quake3Level::BoxBrush) also only where every
+    // scene/quake3_bsp.h, Quake3BrushOccluders::BoxBrush) also only where every
     // side of the box whose outer half-space holds the eye is drawn all
     // over (a ray enters the box through such a side and must meet a drawn
     // face there), and no solid brush comes nearer the eye than the near
