@@ -78,12 +78,66 @@ bool SkinOccluders::usable(std::size_t i, const Frame &frame) const
     for (int c = 0; c < 8; ++c)
         if (!(glm::dot(glm::dvec3(m.corner(c)) - eye, forward) > near))
             return false;
+    if (!brushes_)
+        return true;
+    // Quake3BrushOccluders::BoxBrush: a ray from the eye enters the box through a
+    // side whose outer half-space holds the eye, and must meet a drawn face
+    // there or before.
+    if (!brush_occluders_.box_brushes[i].hides_from(frame.camera.position, brush_occluders_.opaque_brushes))
+        return false;
+    return eye_clear(frame);
+}
+
+bool SkinOccluders::eye_clear(const Frame &frame) const
+{
+    if (frame.view_projection == clear_view_projection_)
+        return clear_;
+    clear_view_projection_ = frame.view_projection;
+    clear_ = false;
+    const glm::dvec3 eye(frame.camera.position);
+    if (scene_->quake3) {
+        const std::int32_t leaf = scene_->quake3->leaf_at(frame.camera.position);
+        if (leaf < 0 || scene_->quake3->leaves[std::size_t(leaf)].cluster < 0)
+            return false;   // in a solid or outside the level
+    }
+    // The near rectangle's farthest corner from the eye: every point of
+    // the frustum nearer than the near plane lies within it.
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(frame.view_projection));
+    double reach = 0.0;
+    for (int c = 0; c < 4; ++c) {
+        const glm::dvec4 p = inverse * glm::dvec4(c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, -1.0, 1.0);
+        if (!(std::abs(p.w) > 0.0))
+            return false;
+        reach = std::max(reach, glm::length(glm::dvec3(p) / p.w - eye));
+    }
+    if (!std::isfinite(reach))
+        return false;
+    reach = reach * 1.01 + 1e-4;
+    for (const Aabb &b : solids_) {
+        const glm::dvec3 d = glm::max(glm::max(glm::dvec3(b.min) - eye, eye - glm::dvec3(b.max)), glm::dvec3(0.0));
+        if (glm::dot(d, d) <= reach * reach)
+            return false;
+    }
+    clear_ = true;
     return true;
 }
 
 SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
     : SkinOccluders(scene, settings.text("skin-database"), int(settings.integer("skin-boxes")), skin_options(settings))
 {
+    if (settings.text("skin-source") == "brushes") {
+        // Leone et al., section 4: occluders made by hand are the best; a
+        // level's designer made its solids as brushes.
+        if (!scene.quake3)
+            throw std::runtime_error("skin-source=brushes: the scene is not a Quake III level (it has no brushes)");
+        brush_occluders_ = quake3_brush_occluders(scene);
+        boxes_.clear();
+        for (const Quake3BrushOccluders::BoxBrush &box : brush_occluders_.box_brushes)
+            boxes_.push_back(box.bounds);
+        mesh_bounds_ = boxes_;
+        solids_ = scene.quake3->solid_brush_bounds;
+        brushes_ = true;
+    }
     if (settings.knows("occluder-triangles"))
         triangle_budget_ = std::size_t(settings.integer("occluder-triangles"));
     if (triangle_budget_ == 0)
@@ -108,6 +162,10 @@ SettingSpec occluder_triangles_setting()
 std::vector<SettingSpec> skin_settings()
 {
     return {
+        choice_setting("skin-source", {"meshes", "brushes"},
+                       "where skins come from: boxes made inside each closed mesh, or a Quake III level's "
+                       "box brushes, each from the eyes that see only drawn faces of it (a level's meshes are "
+                       "open surfaces and have no skins)"),
         integer_setting("skin-boxes", 8, 1, 1 << 16, SettingSpec::Role::cost, "skin boxes per mesh, the largest first"),
         // Tighter than SkinOptions' default (95% of the city's buildings'
         // bodies against 89%) for seven times its second: what benchmarks

@@ -27,6 +27,7 @@
 #include "culling/settings.h"
 #include "strategies/leone_occluder_skins/occluder_skins.h"
 #include "raster/depth_rasterizer.h"
+#include "scene/quake3_bsp.h"
 #include "scene/scene.h"
 
 namespace occu {
@@ -64,6 +65,13 @@ public:
     // drawn; a near plane through the mesh clips that surface away, and an
     // eye inside the mesh sees its walls from behind, where back-face
     // culling drops them: in both GL shows what the skin would hide.
+    // With skin-source=brushes (a Quake III level's box brushes,
+    // scene/quake3_bsp.h, Quake3BrushOccluders::BoxBrush) also only where every
+    // side of the box whose outer half-space holds the eye is drawn all
+    // over (a ray enters the box through such a side and must meet a drawn
+    // face there), and no solid brush comes nearer the eye than the near
+    // rectangle's corners, nor holds it (the near plane must not clip that
+    // face away).
     bool usable(std::size_t i, const Frame &frame) const;
 
     std::size_t size() const { return boxes_.size(); }
@@ -76,6 +84,15 @@ private:
     std::vector<Aabb> mesh_bounds_;   // per skin, its mesh's
     std::vector<std::pair<float, std::uint32_t>> chosen_;
 
+    // skin-source=brushes: every solid brush's bounds, and whether the eye
+    // of the frame last asked about is clear of them.
+    bool brushes_ = false;
+    Quake3BrushOccluders brush_occluders_;
+    std::vector<Aabb> solids_;
+    bool eye_clear(const Frame &frame) const;
+    mutable glm::mat4 clear_view_projection_{0.0f};
+    mutable bool clear_ = false;
+
     // Occluder triangles: mesh and first index of each, from occluder meshes only.
     const Scene *scene_ = nullptr;
     std::size_t triangle_budget_ = 0;
@@ -84,8 +101,8 @@ private:
     std::vector<std::uint32_t> drawn_indices_;
 };
 
-// The settings of every strategy whose occluders are skins: skin-boxes,
-// skin-voxel and skin-database.
+// The settings of every strategy whose occluders are skins: skin-source,
+// skin-boxes, skin-voxel and skin-database.
 std::vector<SettingSpec> skin_settings();
 
 // The setting of the strategies that rasterize skins into a depth buffer

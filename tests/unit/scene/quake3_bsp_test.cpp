@@ -42,7 +42,13 @@ struct BspFile {
         std::int32_t leaf_face, leaf_face_count, leaf_brush, leaf_brush_count;
     };
     struct Model {
-        std::int32_t face, face_count;
+        std::int32_t face, face_count, brush = 0, brush_count = 0;
+    };
+    struct Brush {
+        std::int32_t side, side_count, texture;
+    };
+    struct BrushSide {
+        std::int32_t plane, texture;
     };
     struct Vertex {
         glm::vec3 position, normal;
@@ -60,6 +66,8 @@ struct BspFile {
     std::vector<Leaf> leaves;
     std::vector<std::int32_t> leaf_faces;
     std::vector<Model> models;
+    std::vector<Brush> brushes;
+    std::vector<BrushSide> brush_sides;
     std::vector<Vertex> vertices;
     std::vector<std::int32_t> meshverts;
     std::vector<Face> faces;
@@ -109,9 +117,15 @@ struct BspFile {
         for (const Model &m : models) {
             for (int k = 0; k < 6; ++k)
                 f32(lumps[7], 0.0f);
-            for (std::int32_t v : {m.face, m.face_count, 0, 0})
+            for (std::int32_t v : {m.face, m.face_count, m.brush, m.brush_count})
                 i32(lumps[7], v);
         }
+        for (const Brush &b : brushes)
+            for (std::int32_t v : {b.side, b.side_count, b.texture})
+                i32(lumps[8], v);
+        for (const BrushSide &b : brush_sides)
+            for (std::int32_t v : {b.plane, b.texture})
+                i32(lumps[9], v);
         for (const Vertex &v : vertices) {
             v3(lumps[10], v.position);
             for (int k = 0; k < 4; ++k)
@@ -415,6 +429,100 @@ TEST(Quake3Bsp, SpawnPointsAtEyeHeightLookingAlongTheirAngle)
     expect_near(spawns[1].direction, {-1, 0, 0});
 }
 
+// Adds to `f` a world brush over [lo, hi] (Quake units) with the texture
+// `texture` on every side but the top, which has `top`.
+void add_box_brush(BspFile &f, glm::ivec3 lo, glm::ivec3 hi, std::int32_t texture, std::int32_t top)
+{
+    const std::int32_t first = std::int32_t(f.brush_sides.size());
+    for (int a = 0; a < 3; ++a)
+        for (int high = 0; high < 2; ++high) {
+            glm::vec3 n(0.0f);
+            n[a] = high ? 1.0f : -1.0f;
+            f.planes.push_back(glm::vec4(n, high ? float(hi[a]) : -float(lo[a])));
+            f.brush_sides.push_back({std::int32_t(f.planes.size() - 1), a == 2 && high ? top : texture});
+        }
+    f.brushes.push_back({first, 6, texture});
+    f.models[0].brush_count = std::int32_t(f.brushes.size());
+}
+
+// Adds a square polygon face at height z over [x0, x1] x [y0, y1], facing
+// up (or down).
+void add_square_face(BspFile &f, float z, float x0, float x1, float y0, float y1, bool facing_up)
+{
+    const glm::vec3 n(0, 0, facing_up ? 1.0f : -1.0f);
+    const std::int32_t first = std::int32_t(f.vertices.size()), meshvert = std::int32_t(f.meshverts.size());
+    f.vertices.insert(f.vertices.end(), {{{x0, y0, z}, n}, {{x1, y0, z}, n}, {{x1, y1, z}, n}, {{x0, y1, z}, n}});
+    if (facing_up)
+        f.meshverts.insert(f.meshverts.end(), {0, 2, 1, 0, 3, 2});
+    else
+        f.meshverts.insert(f.meshverts.end(), {0, 1, 2, 0, 2, 3});
+    f.faces.push_back({0, 1, first, 4, meshvert, 6, n});
+    f.models[0].face_count = std::int32_t(f.faces.size());
+}
+
+TEST(Quake3Bsp, BoxBrushSidesCountAsDrawnOnlyWhereTheLevelsOwnFacesCoverThem)
+{
+    BspFile f = minimal_level();
+    // 0: a caulked box whose top is drawn and has its face: one drawn side.
+    add_box_brush(f, {100, 0, 0}, {132, 32, 32}, 1, 0);
+    add_square_face(f, 32, 100, 132, 0, 32, true);
+    // 1: its top's shader is drawn, but the compiler kept only half the
+    // face (the rest against the void or another brush): no drawn side.
+    add_box_brush(f, {200, 0, 0}, {232, 32, 32}, 1, 0);
+    add_square_face(f, 32, 200, 216, 0, 32, true);
+    // 2: a whole face in the top's plane, but facing into the brush.
+    add_box_brush(f, {300, 0, 0}, {332, 32, 32}, 1, 0);
+    add_square_face(f, 32, 300, 332, 0, 32, false);
+    // 3: covered by two faces that meet: drawn.
+    add_box_brush(f, {400, 0, 0}, {432, 32, 32}, 1, 0);
+    add_square_face(f, 32, 400, 416, 0, 32, true);
+    add_square_face(f, 32, 416, 432, 0, 32, true);
+    // 4: see-through (glass) and 5: a sky side: never occluders.
+    add_box_brush(f, {500, 0, 0}, {532, 32, 32}, 3, 3);
+    add_square_face(f, 32, 500, 532, 0, 32, true);
+    add_box_brush(f, {600, 0, 0}, {632, 32, 32}, 2, 0);
+    add_square_face(f, 32, 600, 632, 0, 32, true);
+
+    // 6: a caulked box under box 0, its top against box 0's bottom: closed
+    // by box 0 (which must then be closed from the eye), its other sides not.
+    add_box_brush(f, {100, 0, -32}, {132, 32, 0}, 1, 1);
+
+    const Scene s = read(f);
+    const Quake3BrushOccluders level = quake3_brush_occluders(s);
+    const auto &boxes = level.box_brushes;
+    ASSERT_EQ(boxes.size(), 3u);
+    // Quake's up is occu's +y: side 2 * 1 + 1, down side 2 * 1.
+    constexpr std::size_t top = 3, bottom = 2;
+    EXPECT_EQ(boxes[0].number, 0);
+    EXPECT_EQ(boxes[1].number, 3);
+    EXPECT_EQ(boxes[2].number, 6);
+    for (const auto &box : boxes)
+        for (std::size_t k = 0; k < 6; ++k)
+            EXPECT_EQ(box.sides[k].closed, k == top || (box.number == 0 && k == bottom))
+                << "brush " << box.number << " side " << k;
+    // Boxes 0 and 6 close each other's sides that meet; opaque_brushes
+    // holds the opaque solid brushes in the file's order (box 6 the fifth).
+    EXPECT_TRUE(boxes[0].sides[top].against.empty());
+    EXPECT_EQ(boxes[0].sides[bottom].against, std::vector<std::int32_t>{4});
+    EXPECT_EQ(boxes[2].sides[top].against, std::vector<std::int32_t>{0});
+    EXPECT_EQ(boxes[2].brush, 4);
+    // One unit inside the brush.
+    expect_near(boxes[0].bounds.min, glm::min(q(101, 1, 1), q(131, 31, 31)), 1e-4f);
+    expect_near(boxes[0].bounds.max, glm::max(q(101, 1, 1), q(131, 31, 31)), 1e-4f);
+    // Box 0 hides from an eye above it, not from one beside it (its caulked
+    // side faces that eye); box 6 from neither: box 0, against its top,
+    // shows that eye its caulked side.
+    EXPECT_TRUE(boxes[0].hides_from(q(116, 16, 100), level.opaque_brushes));
+    EXPECT_FALSE(boxes[0].hides_from(q(116, 16, 100) + q(100, 0, 0), level.opaque_brushes));
+    EXPECT_FALSE(boxes[0].hides_from(q(50, 16, 16), level.opaque_brushes));
+    EXPECT_TRUE(boxes[2].hides_from(q(116, 16, 100), level.opaque_brushes));
+    EXPECT_FALSE(boxes[2].hides_from(q(116, 16, 100) + q(100, 0, 0), level.opaque_brushes));
+    // Every opaque solid brush (not the glass, not the sky one) bounds the eye.
+    EXPECT_EQ(s.quake3->solid_brush_bounds.size(), 5u);
+    EXPECT_EQ(s.quake3->opaque_solids.size(), 5u);
+    EXPECT_EQ(level.opaque_brushes.size(), 5u);
+}
+
 TEST(Quake3Bsp, BadHeadersAreRefused)
 {
     const std::vector<char> good = minimal_level().bytes();
@@ -486,6 +594,11 @@ TEST(Quake3Bsp, IndicesOutsideTheirLumpsAreRefusedNamingLumpAndRecord)
         {"visdata negative", [](BspFile &f) { f.visdata[3] = char(0x80); }, "lump 16 (visdata): -2147483646 clusters"},
         {"nan vertex", [](BspFile &f) { f.vertices[5].position.y = std::numeric_limits<float>::quiet_NaN(); }, "lump 10 (vertexes): record 5: position (64.000000, nan, 64.000000) is not finite"},
         {"infinite vertex", [](BspFile &f) { f.vertices[9].position.z = std::numeric_limits<float>::infinity(); }, "lump 10 (vertexes): record 9: position"},
+        {"brush sides", [](BspFile &f) { add_box_brush(f, {0, 0, 0}, {8, 8, 8}, 0, 0); f.brushes[0].side_count = 7; }, "lump 8 (brushes): record 0: brush sides 0 to 7 lie outside the 6 brushsides"},
+        {"brush texture", [](BspFile &f) { add_box_brush(f, {0, 0, 0}, {8, 8, 8}, 0, 0); f.brushes[0].texture = 5; }, "lump 8 (brushes): record 0: texture 5 to 6"},
+        {"brush side plane", [](BspFile &f) { add_box_brush(f, {0, 0, 0}, {8, 8, 8}, 0, 0); f.brush_sides[2].plane = 9; }, "lump 9 (brushsides): record 2: plane 9 to 10"},
+        {"brush side plane not unit", [](BspFile &f) { add_box_brush(f, {0, 0, 0}, {8, 8, 8}, 0, 0); f.planes[3] = {0, 2, 0, 8}; }, "lump 2 (planes): record 3: a brush side's plane (normal length 2.000000"},
+        {"brush side plane far", [](BspFile &f) { add_box_brush(f, {0, 0, 0}, {8, 8, 8}, 0, 0); f.planes[3].w = 1e30f; }, "is not a unit normal within 2^20 units"},
         {"nan plane", [](BspFile &f) { f.planes[0].w = std::numeric_limits<float>::quiet_NaN(); }, "lump 2 (planes): record 0: a normal or distance that is not finite"},
         {"no face drawn", [](BspFile &f) { for (auto &face : f.faces) face.texture = 1; }, "lump 13 (faces): none of its 7 faces is drawn"},
         {"entity unclosed", [](BspFile &f) { f.entities += "{ \"classname\" \"x\""; }, "lump 0 (entities): at byte"},
