@@ -19,8 +19,9 @@ public:
           leaf_triangles_(settings.text("proxy") == "triangles"), tolerance_(settings.number("tolerance")),
           max_test_area_(settings.number("max-test-area"))
     {
-        // The unit holds at most max_tiles tiles; 64 bounds the records kept.
-        tiles_per_pass_ = std::size_t(std::min(unit_.max_tiles(), 64));
+        // The unit holds at most max_tiles tiles (4096 on occu's drivers): a
+        // frame's disjoint footprints go into as few passes as it allows.
+        tiles_per_pass_ = std::size_t(std::max(unit_.max_tiles(), 1));
     }
 
     void begin_frame(const Frame &frame) override

@@ -451,7 +451,7 @@ StrategyFamily coherent_hierarchical_culling_family()
     f.traversal.switch_off_share = 0.1;
     f.traversal.own_traversal = true;
     f.settings = {
-        integer_setting("batch", 64, 1, 64, Role::cost,
+        integer_setting("batch", 64, 1, 4096, Role::cost,
                         "previously invisible nodes tested together in one pass (one tile each; at most the unit's tiles)"),
         integer_setting("period", 16, 1, 1000, Role::cost,
                         "a previously visible leaf is re-tested every this many frames (from a random offset per node)", "1"),

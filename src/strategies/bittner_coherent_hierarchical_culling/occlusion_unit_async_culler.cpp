@@ -17,7 +17,7 @@ public:
         : threshold_(settings.number("tolerance")), shared_passes_(settings.text("passes") == "shared")
     {
         // The unit holds at most max_tiles tiles; a batch is one pass.
-        tiles_per_pass_ = std::size_t(std::clamp<long>(settings.integer("batch"), 1, std::min(unit_.max_tiles(), 64)));
+        tiles_per_pass_ = std::size_t(std::clamp<long>(settings.integer("batch"), 1, std::max(unit_.max_tiles(), 1)));
     }
 
     void begin_frame(const Frame &frame) override

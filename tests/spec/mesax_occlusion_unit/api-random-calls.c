@@ -74,7 +74,11 @@
 #define W 32
 #define H 32
 #define WORDS 64
-#define MAX_TILES 64
+/* The walk's tile and buffer counts run from -1 to MAX_TILES, past the
+ * spec's minimum of 64: whether 65 and 66 are errors depends on the
+ * implementation's limit, which the expectations use (occu's drivers have
+ * 4096); counts just past that limit are tried too (limit_probe). */
+#define MAX_TILES 66
 #define DEFAULT_CALLS 30000ul
 
 static unsigned long long rng = 0x2026112912345ull;
@@ -547,11 +551,46 @@ check_fbo_objects(unsigned i, const char *call)
 static void call_begin_query(unsigned i);
 static void call_end_query(unsigned i);
 
+/* ScissorsMESAX or OcclusionBuffersMESAX with one more than the limit,
+ * valid otherwise: INVALID_VALUE (or INVALID_OPERATION in a pass), nothing
+ * changed. */
+static void
+limit_probe(unsigned i, int max_tiles, bool scissors)
+{
+    static GLint *t;
+    static GLuint **p;
+    static GLsizei *s;
+    const int count = max_tiles + 1;
+    if (!t) {
+        t = malloc(sizeof(*t) * 4 * count);
+        p = malloc(sizeof(*p) * count);
+        s = malloc(sizeof(*s) * count);
+        if (!t || !p || !s)
+            piglit_report_result(PIGLIT_FAIL);
+        for (int k = 0; k < count; ++k) {
+            const GLint tile[4] = {k % 40, k % 30, 2, 2};
+            memcpy(&t[4 * k], tile, sizeof(tile));
+            p[k] = storage[k % MAX_TILES];
+            s[k] = OU_BRIEF_SIZE;
+        }
+    }
+    if (scissors)
+        ScissorsMESAX(count, t);
+    else
+        OcclusionBuffersMESAX(count, s, p);
+    expect(in_occlusion() ? GL_INVALID_OPERATION : GL_INVALID_VALUE,
+           scissors ? "ScissorsMESAX(limit + 1)" : "OcclusionBuffersMESAX(limit + 1)", i);
+}
+
 static void
 call_scissors(unsigned i, int max_tiles)
 {
     static GLint t[4 * 70];
-    const int count = (int)next((unsigned)max_tiles + 3) - 1;   /* -1 .. max + 1 */
+    if (next(50) == 0) {
+        limit_probe(i, max_tiles, true);
+        return;
+    }
+    const int count = (int)next(MAX_TILES + 2) - 1;   /* -1 .. MAX_TILES */
     bool negative = false;
     for (int k = 0; k < (count > 0 ? count : 0); ++k) {
         const unsigned shape = next(8);
@@ -587,7 +626,11 @@ call_buffers(unsigned i, int max_tiles)
 {
     static GLuint *p[70];
     static GLsizei s[70];
-    const int count = (int)next((unsigned)max_tiles + 3) - 1;
+    if (next(50) == 0) {
+        limit_probe(i, max_tiles, false);
+        return;
+    }
+    const int count = (int)next(MAX_TILES + 2) - 1;
     bool bad = false;
     for (int k = 0; k < (count > 0 ? count : 0); ++k) {
         p[k] = next(30) == 0 ? NULL : storage[k];
@@ -1307,8 +1350,6 @@ main(int argc, char **argv)
 
     GLint max_tiles = 0;
     glGetIntegerv(GL_MAX_OCCLUSION_TILES_MESAX, &max_tiles);
-    if (max_tiles > MAX_TILES)
-        max_tiles = MAX_TILES;
     list_base = glGenLists(LISTS);
     GenQueries(QUERIES, query_name);
     glEnable(GL_DEPTH_TEST);

@@ -8,7 +8,10 @@
  * sorted sets); and by four tiles on bin boundaries (the whole window
  * among them), which llvmpipe sums per bin instead of per 4x4 block, so
  * the whole-window record must also equal the same tile's record from a
- * pass where a 1x1 tile sends one bin back to the per-block path:
+ * pass where a 1x1 tile sends one bin back to the per-block path; and, with
+ * -tiles-4096, by 4096 tiles of 5 x 5 pixels at a stride of 4 from (-2, -3),
+ * overlapping 1 to 4 deep, about 289 over each 64 x 64 bin (llvmpipe's
+ * per-bin tile lists, in chunks of 64):
  *   rectangles  200 overlapping axis-aligned rectangles on whole pixels,
  *               each at its own depth: every configuration, softpipe
  *               included, must give identical records (no tolerance).
@@ -36,6 +39,7 @@
 #define TILES 64
 #define LIST_TILES 4
 #define ALIGNED_TILES 4
+#define MANY_TILES 4096
 #define LIST_WORDS (8 + 2 * 300000)   /* fragments, not pixels: triangles overlap */
 
 struct records {
@@ -43,6 +47,7 @@ struct records {
     GLuint verbose[LIST_TILES][LIST_WORDS];
     GLuint aligned[ALIGNED_TILES][OU_BRIEF_SIZE];   /* tiles on bin boundaries */
     GLuint mixed[2][OU_BRIEF_SIZE];                 /* the window and a 1x1 tile */
+    GLuint many[MANY_TILES][OU_BRIEF_SIZE];         /* 64 x 64 overlapping tiles */
 };
 
 struct results {
@@ -77,6 +82,33 @@ draw_rectangles(void)
     }
 }
 
+static bool tiles_4096;   /* -tiles-4096: the MANY_TILES pass too */
+
+/* A brief pass over MANY_TILES overlapping tiles; false on a GL error. */
+static bool
+many_tiles_pass(GLuint (*records)[OU_BRIEF_SIZE], void (*draw)(void))
+{
+    static GLint tiles[4 * MANY_TILES];
+    static GLuint *buffers[MANY_TILES];
+    static GLsizei sizes[MANY_TILES];
+    for (int k = 0; k < MANY_TILES; ++k) {
+        tiles[4 * k] = -2 + 4 * (k % 64);
+        tiles[4 * k + 1] = -3 + 4 * (k / 64);
+        tiles[4 * k + 2] = 5;
+        tiles[4 * k + 3] = 5;
+        ou_fill(records[k], OU_BRIEF_SIZE);
+        buffers[k] = records[k];
+        sizes[k] = OU_BRIEF_SIZE;
+    }
+    OcclusionBuffersMESAX(MANY_TILES, sizes, buffers);
+    ScissorsMESAX(MANY_TILES, tiles);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    draw();
+    const GLint overflowed = glRenderMode(GL_RENDER);
+    ScissorsMESAX(0, NULL);
+    return overflowed == 0 && piglit_check_gl_error(GL_NO_ERROR);
+}
+
 static bool
 measure_scene(struct records *out, void (*draw)(void))
 {
@@ -99,6 +131,7 @@ measure_scene(struct records *out, void (*draw)(void))
     ou_brief_pass(ALIGNED_TILES, aligned, out->aligned, draw);
     const GLint mixed[4 * 2] = {0, 0, SIZE, SIZE, 63, 64, 1, 1};
     ou_brief_pass(2, mixed, out->mixed, draw);
+    const bool many = !tiles_4096 || many_tiles_pass(out->many, draw);
 
     GLuint *buffers[LIST_TILES];
     GLsizei sizes[LIST_TILES];
@@ -116,7 +149,7 @@ measure_scene(struct records *out, void (*draw)(void))
     ScissorsMESAX(0, NULL);
     for (int i = 0; i < LIST_TILES; ++i)
         ou_sort_pairs(out->verbose[i] + 8, out->verbose[i][0]);
-    return overflowed == 0 && glGetError() == GL_NO_ERROR;
+    return many && overflowed == 0 && glGetError() == GL_NO_ERROR;
 }
 
 static void
@@ -207,6 +240,12 @@ same(const struct records *a, const struct records *b, const char *name)
         if (!ou_check_record(what, b->aligned[t], a->aligned[t], 0))
             return false;
     }
+    for (int t = 0; t < (tiles_4096 ? MANY_TILES : 0); ++t) {
+        char what[96];
+        snprintf(what, sizeof(what), "%s tile %d of %d", name, t, MANY_TILES);
+        if (!ou_check_record(what, b->many[t], a->many[t], 0))
+            return false;
+    }
     for (int t = 0; t < LIST_TILES; ++t) {
         const GLuint n = a->verbose[t][0];
         if (b->verbose[t][0] != n || memcmp(a->verbose[t] + 8, b->verbose[t] + 8, 2 * n * sizeof(GLuint))) {
@@ -231,6 +270,7 @@ nontrivial(const struct records *r)
 int main(int argc, char **argv)
 {
     static struct results softpipe, first, other;
+    tiles_4096 = ou_take_flag(&argc, argv, "-tiles-4096");
     if (!run_child("softpipe", NULL, &softpipe, argc, argv))
         piglit_report_result(PIGLIT_FAIL);
     subtest(nontrivial(&softpipe.scene[0]) && nontrivial(&softpipe.scene[1]), "scenes-are-nontrivial");

@@ -9,6 +9,11 @@
  *                                  read back, a pass entered with a buffer set
  *                                  by the other writes its record
  *   max-tiles-at-least-64          MAX_OCCLUSION_TILES_MESAX >= 64
+ *   max-tiles-4096-on-occu-drivers with -tiles-4096: llvmpipe and softpipe
+ *                                  report at least 4096 (their limit, not the
+ *                                  spec's: llvmpipe's per-bin tile lists keep
+ *                                  its cost per fragment independent of the
+ *                                  tile count)
  *   tile-count-initially-0         OCCLUSION_TILE_COUNT_MESAX == 0
  *   render-mode-initially-render
  *   max-tiles-get{boolean,float,double}v
@@ -99,6 +104,7 @@ entry_points_work(void)
 
 int main(int argc, char **argv)
 {
+    const bool tiles_4096 = ou_take_flag(&argc, argv, "-tiles-4096");
     ou_init_context(argc, argv, 16, 16);
 
     /* The initial state first: entry-points changes and restores it. */
@@ -107,6 +113,14 @@ int main(int argc, char **argv)
     if (!ok)
         printf("MAX_OCCLUSION_TILES_MESAX is %d\n", max_tiles);
     subtest(ok, "max-tiles-at-least-64");
+
+    if (tiles_4096 && ou_driver_is_patched()) {
+        ok = max_tiles >= 4096;
+        if (!ok)
+            printf("%s reports MAX_OCCLUSION_TILES_MESAX %d, expected at least 4096\n",
+                   (const char *)glGetString(GL_RENDERER), max_tiles);
+        subtest(ok, "max-tiles-4096-on-occu-drivers");
+    }
 
     const GLint count = get_integer(GL_OCCLUSION_TILE_COUNT_MESAX);
     ok = piglit_check_gl_error(GL_NO_ERROR) && count == 0;

@@ -1,6 +1,7 @@
 /*
- * GL_MESAX_occlusion_unit with 1 to MAX_OCCLUSION_TILES_MESAX tiles:
- * one column-wide tile per column, overlapping tiles, tiles larger than
+ * GL_MESAX_occlusion_unit with 1 to 64 tiles (the spec's minimum of
+ * MAX_OCCLUSION_TILES_MESAX; many-tiles-4096.c goes to occu's drivers'
+ * 4096): one column-wide tile per column, overlapping tiles, tiles larger than
  * the framebuffer (8192 x 8192) or reaching past INT_MAX, and empty tiles.
  * A fragment counts in every tile it lies in.
  *

@@ -96,6 +96,25 @@ ou_init_context(int argc, char **argv, int width, int height)
     glLoadIdentity();
 }
 
+/* Whether argv holds `flag`, which is taken out of it (piglit's own
+ * options are the rest). -tiles-4096 asks the subtests that need occu's
+ * part `tiles` (4096 tiles; tests/meson.build registers them in suite
+ * 'tiles', which tools/check-mesa-series.sh leaves out before that part). */
+static inline bool
+ou_take_flag(int *argc, char **argv, const char *flag)
+{
+    bool found = false;
+    int kept = 1;
+    for (int k = 1; k < *argc; ++k) {
+        if (strcmp(argv[k], flag) == 0)
+            found = true;
+        else
+            argv[kept++] = argv[k];
+    }
+    *argc = kept;
+    return found;
+}
+
 /* Resolves the extension's two entry points; false when one is missing. */
 static inline bool
 ou_resolve_entry_points(void)

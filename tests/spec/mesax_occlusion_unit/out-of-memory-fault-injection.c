@@ -33,6 +33,12 @@
  *       after it, without fault injection, is whole.
  *   no-memory-kept
  *       the heap in use after the failed passes is that after a whole one.
+ *   tile-state-out-of-memory (with -tiles-4096)
+ *       with allocations failing, ScissorsMESAX and OcclusionBuffersMESAX
+ *       with MAX_OCCLUSION_TILES_MESAX entries (more than the 2 set, so
+ *       the GL must grow its arrays) generate OUT_OF_MEMORY and leave the
+ *       tiles and buffers set as they were (spec issue 26); without fault
+ *       injection the same calls succeed.
  */
 #define _DEFAULT_SOURCE /* setenv, unsetenv */
 #include <malloc.h>
@@ -146,6 +152,79 @@ verbose_pass(const char *what)
     return header_exact(what) && list_exact(what) ? WHOLE : WRONG;
 }
 
+/* The tile and buffer state as verbose_pass sets it, or not. */
+static bool
+two_tiles_set(const char *what)
+{
+    GLint tile0[4] = {-1, -1, -1, -1}, tile1[4] = {-1, -1, -1, -1};
+    PFNGLGETINTEGERI_VPROC GetIntegeri_v = (PFNGLGETINTEGERI_VPROC)piglit_get_proc_address("glGetIntegeri_v");
+    GetIntegeri_v(GL_OCCLUSION_TILE_MESAX, 0, tile0);
+    GetIntegeri_v(GL_OCCLUSION_TILE_MESAX, 1, tile1);
+    GLint size1 = -1;
+    GetIntegeri_v(GL_OCCLUSION_BUFFER_SIZE_MESAX, 1, &size1);
+    const GLint tiles = ou_get_integer(GL_OCCLUSION_TILE_COUNT_MESAX);
+    const GLint buffers = ou_get_integer(GL_OCCLUSION_BUFFER_COUNT_MESAX);
+    const bool ok = tiles == 2 && buffers == 2 && tile0[2] == W && tile0[3] == H && tile1[0] == 96 &&
+                    tile1[2] == 16 && size1 == ARRAY_SIZE(list1);
+    if (!ok)
+        printf("%s: %d tiles, %d buffers, tile 0 (%d, %d, %d, %d), tile 1 (%d, %d, %d, %d), buffer 1's size %d\n",
+               what, tiles, buffers, tile0[0], tile0[1], tile0[2], tile0[3], tile1[0], tile1[1], tile1[2], tile1[3],
+               size1);
+    return ok;
+}
+
+static bool
+tile_state_out_of_memory(void)
+{
+    const GLint max_tiles = ou_get_integer(GL_MAX_OCCLUSION_TILES_MESAX);
+    GLint *tiles = malloc(sizeof(GLint) * 4 * max_tiles);
+    GLuint **buffers = malloc(sizeof(GLuint *) * max_tiles);
+    GLsizei *sizes = malloc(sizeof(GLsizei) * max_tiles);
+    for (int k = 0; k < max_tiles; ++k) {
+        const GLint t[4] = {k % W, k / W, 1, 1};
+        memcpy(&tiles[4 * k], t, sizeof(t));
+        buffers[k] = list0;
+        sizes[k] = OU_BRIEF_SIZE;
+    }
+    const GLint two[8] = {0, 0, W, H, 96, 96, 16, 16};
+    GLuint *two_buffers[2] = {list0, list1};
+    GLsizei two_sizes[2] = {ARRAY_SIZE(list0), ARRAY_SIZE(list1)};
+    ScissorsMESAX(2, two);
+    OcclusionBuffersMESAX(2, two_sizes, two_buffers);
+
+    /* A pass with every allocation failing is not begun, and arms the
+     * fault injection for the allocations after it. */
+    setenv(FAIL_AFTER, "0", 1);
+    glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
+    bool ok = ou_first_error() == GL_OUT_OF_MEMORY && ou_get_integer(GL_RENDER_MODE) == GL_RENDER;
+    unsetenv(FAIL_AFTER);
+    ScissorsMESAX(max_tiles, tiles);
+    const GLenum scissors_error = ou_first_error();
+    OcclusionBuffersMESAX(max_tiles, sizes, buffers);
+    const GLenum buffers_error = ou_first_error();
+    if (scissors_error != GL_OUT_OF_MEMORY || buffers_error != GL_OUT_OF_MEMORY) {
+        printf("%d tiles and buffers with allocations failing: errors 0x%x and 0x%x, expected OUT_OF_MEMORY\n",
+               max_tiles, scissors_error, buffers_error);
+        ok = false;
+    }
+    ok = two_tiles_set("after OUT_OF_MEMORY") && ok;
+
+    /* A pass without fault injection disarms it: the same calls succeed. */
+    verbose_pass("disarming the fault injection");
+    ScissorsMESAX(max_tiles, tiles);
+    OcclusionBuffersMESAX(max_tiles, sizes, buffers);
+    const bool set = piglit_check_gl_error(GL_NO_ERROR) && ou_get_integer(GL_OCCLUSION_TILE_COUNT_MESAX) == max_tiles &&
+                     ou_get_integer(GL_OCCLUSION_BUFFER_COUNT_MESAX) == max_tiles;
+    if (!set)
+        printf("%d tiles and buffers without fault injection were not set\n", max_tiles);
+    ScissorsMESAX(0, NULL);
+    OcclusionBuffersMESAX(0, NULL, NULL);
+    free(tiles);
+    free(buffers);
+    free(sizes);
+    return ok && set;
+}
+
 static size_t
 heap_in_use(void)
 {
@@ -157,6 +236,7 @@ int main(int argc, char **argv)
 {
     /* One arena, so that mallinfo2 sees the rasterizer threads' memory. */
     mallopt(M_ARENA_MAX, 1);
+    const bool tiles_4096 = ou_take_flag(&argc, argv, "-tiles-4096");
     ou_init(argc, argv, W, H);
     glDisable(GL_DEPTH_TEST);
 
@@ -196,5 +276,7 @@ int main(int argc, char **argv)
     subtest(lists_lost > 0, "lists-lost-reported");
     subtest(allowed, "every-outcome-allowed");
     subtest(heap_after <= heap_before + 4 * 1024, "no-memory-kept");
+    if (tiles_4096)
+        subtest(tile_state_out_of_memory(), "tile-state-out-of-memory");
     piglit_report_result(result);
 }
