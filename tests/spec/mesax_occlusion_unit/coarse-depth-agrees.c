@@ -285,6 +285,11 @@ scenes(struct transcript *t, bool rects_only, bool multisampled)
             glEnable(GL_DEPTH_TEST);
             glClearDepth(0.6 + 0.4 * rnd());
             glClearStencil(0);
+            /* Clear writes depth only where the depth write mask lets it
+             * (GL 4.6 compatibility, section 17.4.3), and the last pass
+             * of the scene before left it off: the new framebuffer's
+             * depth would otherwise be whatever its storage held. */
+            glDepthMask(GL_TRUE);
             glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
             draw_occluders(10);
             for (unsigned p = 0; p < PASSES; ++p) {
@@ -300,6 +305,7 @@ scenes(struct transcript *t, bool rects_only, bool multisampled)
                     glEnable(GL_SCISSOR_TEST);
                     glScissor(rndi(W), rndi(H), 20 + rndi(100), 20 + rndi(100));
                     glClearDepth(rnd());
+                    glDepthMask(GL_TRUE);   /* the pass left it off */
                     glClear(GL_DEPTH_BUFFER_BIT);
                     glDisable(GL_SCISSOR_TEST);
                 }

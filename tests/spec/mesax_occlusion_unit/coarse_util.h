@@ -11,7 +11,6 @@
 
 #define _DEFAULT_SOURCE 1   /* setenv, strsignal */
 #include <GL/osmesa.h>
-#include <malloc.h>
 #include <stdlib.h>
 #include <sys/select.h>
 #include <sys/wait.h>
@@ -95,13 +94,6 @@ coarse_run_child(const char *driver, const char *const *env, void (*child)(struc
         setenv("GALLIUM_DRIVER", driver, 1);
         unsetenv("LP_PERF");
         unsetenv("LP_NUM_THREADS");
-        /* Memory as malloc gives it, not filled as meson's
-         * MALLOC_PERTURB_ asks: with it, one 24-bit rectangle scene's
-         * records differ between softpipe and llvmpipe (coarse-depth-agrees,
-         * scene 1 pass 3 tile 1: NOHC 0 on softpipe, 63 on llvmpipe), with
-         * and without the coarse test and on the series without it: a
-         * discrepancy of the drivers' own, not this test's subject. */
-        mallopt(M_PERTURB, 0);
         for (int i = 0; env && env[i]; ++i)
             putenv((char *)env[i]);
         struct transcript t = {0};
