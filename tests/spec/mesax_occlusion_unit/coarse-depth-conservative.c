@@ -18,6 +18,13 @@
  *              that move a rectangle across the occluder both ways, with
  *              a stencil test and early fragment tests, brief and verbose)
  *              must report N > 0;
+ *   edges      (an occluder at 0.5 leaving the last columns and rows of
+ *              the window at the cleared 1.0, so that the 16x16 blocks the
+ *              framebuffer's right and top edges cut are visible only in
+ *              their last pixels; triangles inside one 16x16 block whose
+ *              depth crosses the occluder's inside the block, under LESS
+ *              and GREATER) must report N > 0 and keep every pixel that
+ *              GL_RENDER finds visible;
  *   disabled   (the same occluder, passes behind it with gl_FragDepth,
  *              a discard and the alpha test after the shader, polygon
  *              stipple, 4x multisampling, NOTEQUAL and ALWAYS, and the
@@ -76,6 +83,8 @@ build(const char *body, bool early)
 struct shape {
     bool rect;
     float x0, y0, x1, y1, z;   /* a rectangle at depth z, or a triangle's box and depths z .. z + 0.2 */
+    bool right_angle;          /* else a triangle (x0, y0, z), (x1, y0, z1), (x0, y1, z) */
+    float z1;
 };
 
 static void
@@ -86,9 +95,15 @@ draw_shape(const struct shape *s)
         return;
     }
     glBegin(GL_TRIANGLES);
-    glVertex3f(s->x0, s->y0, s->z);
-    glVertex3f(s->x1, s->y0 + 7.3f, s->z + 0.2f);
-    glVertex3f(s->x0 + 11.6f, s->y1, s->z + 0.1f);
+    if (s->right_angle) {
+        glVertex3f(s->x0, s->y0, s->z);
+        glVertex3f(s->x1, s->y0, s->z1);
+        glVertex3f(s->x0, s->y1, s->z);
+    } else {
+        glVertex3f(s->x0, s->y0, s->z);
+        glVertex3f(s->x1, s->y0 + 7.3f, s->z + 0.2f);
+        glVertex3f(s->x0 + 11.6f, s->y1, s->z + 0.1f);
+    }
     glEnd();
 }
 
@@ -127,7 +142,7 @@ pass(const char *what, const struct shape *s, bool verbose, GLuint covered, bool
     draw_shape(s);
     glRenderMode(GL_RENDER);
     ScissorsMESAX(0, NULL);
-    char name[160];
+    char name[256];
     snprintf(name, sizeof(name), "%s: GL error", what);
     const GLenum error = glGetError();
     check(error == GL_NO_ERROR, name, error, GL_NO_ERROR);
@@ -198,11 +213,11 @@ occluded(struct transcript *t)
         for (unsigned k = 0; k < ARRAY_SIZE(funcs); ++k) {
             glDepthFunc(funcs[k]);
             for (unsigned d = 0; d < ARRAY_SIZE(depths); ++d) {
-                const struct shape r = {true, 13, 9, 181, 141, depths[d]};
+                const struct shape r = {true, 13, 9, 181, 141, depths[d], false, 0};
                 snprintf(what, sizeof(what), "depth %s, %s, rectangle at z %.7f", coarse_formats[f].name,
                          func_names[k], depths[d]);
                 pass(what, &r, d == 1, 168 * 132, false);
-                const struct shape tri = {false, 5, 3, 140, 120, depths[d] - 0.1f};
+                const struct shape tri = {false, 5, 3, 140, 120, depths[d] - 0.1f, false, 0};
                 snprintf(what, sizeof(what), "depth %s, %s, triangle from z %.7f", coarse_formats[f].name,
                          func_names[k], depths[d] - 0.1f);
                 pass(what, &tri, false, 0, false);
@@ -213,7 +228,7 @@ occluded(struct transcript *t)
         /* Depth clamping: beyond far clamps to 1 (hidden everywhere),
          * beyond near to 0 (visible). */
         glEnable(GL_DEPTH_CLAMP);
-        const struct shape far = {true, 0, 0, W, H, 1.25f}, near = {true, 20, 20, 190, 130, -0.25f};
+        const struct shape far = {true, 0, 0, W, H, 1.25f, false, 0}, near = {true, 20, 20, 190, 130, -0.25f, false, 0};
         snprintf(what, sizeof(what), "depth %s, clamped beyond far", coarse_formats[f].name);
         pass(what, &far, false, W * H, false);
         snprintf(what, sizeof(what), "depth %s, clamped beyond near", coarse_formats[f].name);
@@ -227,11 +242,11 @@ occluded(struct transcript *t)
         glEnable(GL_POLYGON_OFFSET_FILL);
         const float units = 0.06f * 33554432.0f;
         glPolygonOffset(0, units);
-        const struct shape pushed = {true, 10, 10, 140, 140, 0.47f};
+        const struct shape pushed = {true, 10, 10, 140, 140, 0.47f, false, 0};
         snprintf(what, sizeof(what), "depth %s, offset behind the occluder", coarse_formats[f].name);
         pass(what, &pushed, false, 130 * 130, false);
         glPolygonOffset(0, -units);
-        const struct shape pulled = {true, 10, 10, 140, 140, 0.53f};
+        const struct shape pulled = {true, 10, 10, 140, 140, 0.53f, false, 0};
         snprintf(what, sizeof(what), "depth %s, offset in front of the occluder", coarse_formats[f].name);
         pass(what, &pulled, false, 130 * 130, false);
         const GLuint visible = samples_passed(&pulled);
@@ -243,7 +258,7 @@ occluded(struct transcript *t)
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(GL_EQUAL, 1, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-        const struct shape behind = {true, 0, 0, W, H, 0.75f};
+        const struct shape behind = {true, 0, 0, W, H, 0.75f, false, 0};
         snprintf(what, sizeof(what), "depth %s, stencil test", coarse_formats[f].name);
         pass(what, &behind, false, W * H, false);
         glDisable(GL_STENCIL_TEST);
@@ -251,6 +266,62 @@ occluded(struct transcript *t)
         snprintf(what, sizeof(what), "depth %s, early tests", coarse_formats[f].name);
         pass(what, &behind, true, W * H, false);
         UseProgram(0);
+    }
+    transcript_add(t, failures);
+}
+
+/* Blocks that one test per 16x16 block decides whole: the blocks cut by
+ * the framebuffer's edges (W and H end inside a 16x16 block: its bounds
+ * must hold every pixel the JIT reads there), and triangles inside one
+ * 16x16 block (the plane must be bounded over all of its pixels, not over
+ * one 4x4 block's). */
+static void
+edges(struct transcript *t)
+{
+    init();
+    const struct ou_fbo_functions fbo = ou_fbo_functions();
+    char what[128];
+    for (unsigned f = 0; f < ARRAY_SIZE(coarse_formats); ++f) {
+        coarse_make_fbo(&fbo, W, H, &coarse_formats[f], 0);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glDepthFunc(GL_LESS);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        /* Columns 200-202 and rows 148-149 stay at 1.0. */
+        ou_rect(0, 0, 200, 148, 0.5f);
+        glDepthMask(GL_FALSE);
+
+        /* At 0.75: visible in those columns, or rows, alone. */
+        const struct shape right = {true, 184, 0, W, 140, 0.75f, false, 0};
+        snprintf(what, sizeof(what), "depth %s, the right edge's blocks", coarse_formats[f].name);
+        pass(what, &right, false, (W - 184) * 140, false);
+        const struct shape top = {true, 0, 136, 190, H, 0.75f, false, 0};
+        snprintf(what, sizeof(what), "depth %s, the top edge's blocks", coarse_formats[f].name);
+        pass(what, &top, false, 190 * (H - 136), false);
+
+        /* Inside the 16x16 blocks at (16, 16), (96, 64) and (176, 128),
+         * over the occluder: depth from 0.6 down to 0.45 across 15 pixels
+         * under LESS, from 0.4 up to 0.55 under GREATER, so that only the
+         * block's right part passes. */
+        static const float corners[][2] = {{16, 16}, {96, 64}, {176, 128}};
+        for (unsigned k = 0; k < ARRAY_SIZE(corners); ++k) {
+            const float x = corners[k][0], y = corners[k][1];
+            const struct shape falling = {false, x + 0.5f, y + 0.5f, x + 15.5f, y + 15.5f, 0.6f, true, 0.45f};
+            snprintf(what, sizeof(what), "depth %s, LESS, a triangle inside the block at (%g, %g)",
+                     coarse_formats[f].name, x, y);
+            pass(what, &falling, false, 0, false);
+            glDepthFunc(GL_GREATER);
+            const struct shape rising = {false, x + 0.5f, y + 0.5f, x + 15.5f, y + 15.5f, 0.4f, true, 0.55f};
+            snprintf(what, sizeof(what), "depth %s, GREATER, a triangle inside the block at (%g, %g)",
+                     coarse_formats[f].name, x, y);
+            pass(what, &rising, false, 0, false);
+            glDepthFunc(GL_LESS);
+            const GLuint visible = samples_passed(&falling);
+            snprintf(what, sizeof(what), "depth %s, the triangle at (%g, %g) is partly visible",
+                     coarse_formats[f].name, x, y);
+            check(visible > 0 && visible < 120, what, visible, 1);
+        }
     }
     transcript_add(t, failures);
 }
@@ -264,7 +335,7 @@ disabled(struct transcript *t)
     const GLuint frag_depth = build("  gl_FragDepth = gl_FragCoord.z;\n", false);
     const GLuint discard = build("  if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard;\n", false);
     const struct ou_fbo_functions fbo = ou_fbo_functions();
-    const struct shape behind = {true, 0, 0, 150, H, 0.75f};   /* all over the occluder */
+    const struct shape behind = {true, 0, 0, 150, H, 0.75f, false, 0};   /* all over the occluder */
     char what[128];
     for (unsigned f = 0; f < ARRAY_SIZE(coarse_formats); ++f) {
         setup(&fbo, &coarse_formats[f], 0);
@@ -325,9 +396,9 @@ main(int argc, char **argv)
         const char *name;
         void (*run)(struct transcript *);
         bool rejects;
-    } classes[] = {{"occluded", occluded, true}, {"disabled", disabled, false}};
+    } classes[] = {{"occluded", occluded, true}, {"edges", edges, true}, {"disabled", disabled, false}};
 
-    for (unsigned c = 0; c < 2; ++c) {
+    for (unsigned c = 0; c < ARRAY_SIZE(classes); ++c) {
         char name[128];
         snprintf(name, sizeof(name), "softpipe-%s", classes[c].name);
         const bool ok = coarse_run_child("softpipe", NULL, classes[c].run, &t, err, sizeof(err), name) &&
@@ -339,7 +410,7 @@ main(int argc, char **argv)
 
     const char *threads[] = {"0", "1", "2", "8"};
     for (unsigned i = 0; i < 4; ++i) {
-        for (unsigned c = 0; c < 2; ++c) {
+        for (unsigned c = 0; c < ARRAY_SIZE(classes); ++c) {
             char name[128], thread_env[64];
             snprintf(thread_env, sizeof(thread_env), "LP_NUM_THREADS=%s", threads[i]);
             const char *env[] = {thread_env, "LP_PERF=ou_coarse_verify", NULL};
