@@ -57,34 +57,15 @@ rndi(unsigned n)
 static PFNGLUSEPROGRAMPROC UseProgram;
 static GLuint programs[F_COUNT];
 
-static GLuint
-build(const char *body, bool early)
-{
-    char source[1024];
-    snprintf(source, sizeof(source),
-             "#version 150 compatibility\n"
-             "#extension GL_ARB_shader_image_load_store : require\n"
-             "%s"
-             "out vec4 colour;\n"
-             "void main() {\n%s  colour = gl_Color;\n}\n",
-             early ? "layout(early_fragment_tests) in;\n" : "", body);
-    GLuint p = piglit_build_fragment_program(source);
-    if (!p) {
-        fprintf(stderr, "a fragment shader did not build\n");
-        _exit(2);
-    }
-    return p;
-}
-
 static void
 build_programs(void)
 {
     UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
     const char *discard = "  if (mod(floor(gl_FragCoord.x) + floor(gl_FragCoord.y), 3.0) == 0.0) discard;\n";
-    programs[F_FRAGDEPTH] = build("  gl_FragDepth = gl_FragCoord.z * 0.5 + 0.25;\n", false);
-    programs[F_DISCARD] = build(discard, false);
-    programs[F_EARLY] = build(discard, true);
-    programs[F_SHADER] = build("", false);
+    programs[F_FRAGDEPTH] = coarse_build_program("  gl_FragDepth = gl_FragCoord.z * 0.5 + 0.25;\n", false);
+    programs[F_DISCARD] = coarse_build_program(discard, false);
+    programs[F_EARLY] = coarse_build_program(discard, true);
+    programs[F_SHADER] = coarse_build_program("", false);
 }
 
 /* Tile sets: the window; 1x1 tiles on bin corners and the framebuffer's

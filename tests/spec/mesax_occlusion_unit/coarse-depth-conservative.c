@@ -61,25 +61,6 @@ check(bool ok, const char *what, unsigned got, unsigned expected)
     }
 }
 
-static GLuint
-build(const char *body, bool early)
-{
-    char source[1024];
-    snprintf(source, sizeof(source),
-             "#version 150 compatibility\n"
-             "#extension GL_ARB_shader_image_load_store : require\n"
-             "%s"
-             "out vec4 colour;\n"
-             "void main() {\n%s  colour = gl_Color;\n}\n",
-             early ? "layout(early_fragment_tests) in;\n" : "", body);
-    GLuint p = piglit_build_fragment_program(source);
-    if (!p) {
-        fprintf(stderr, "a fragment shader did not build\n");
-        _exit(2);
-    }
-    return p;
-}
-
 struct shape {
     bool rect;
     float x0, y0, x1, y1, z;   /* a rectangle at depth z, or a triangle's box and depths z .. z + 0.2 */
@@ -201,7 +182,7 @@ static void
 occluded(struct transcript *t)
 {
     init();
-    const GLuint early = build("  if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard;\n", true);
+    const GLuint early = coarse_build_program("  if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard;\n", true);
     const struct ou_fbo_functions fbo = ou_fbo_functions();
     static const GLenum funcs[] = {GL_LESS, GL_LEQUAL, GL_GREATER, GL_GEQUAL, GL_EQUAL, GL_NEVER};
     static const char *func_names[] = {"LESS", "LEQUAL", "GREATER", "GEQUAL", "EQUAL", "NEVER"};
@@ -332,8 +313,8 @@ disabled(struct transcript *t)
 {
     init();
     const bool llvmpipe = strstr((const char *)glGetString(GL_RENDERER), "llvmpipe") != NULL;
-    const GLuint frag_depth = build("  gl_FragDepth = gl_FragCoord.z;\n", false);
-    const GLuint discard = build("  if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard;\n", false);
+    const GLuint frag_depth = coarse_build_program("  gl_FragDepth = gl_FragCoord.z;\n", false);
+    const GLuint discard = coarse_build_program("  if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard;\n", false);
     const struct ou_fbo_functions fbo = ou_fbo_functions();
     const struct shape behind = {true, 0, 0, 150, H, 0.75f, false, 0};   /* all over the occluder */
     char what[128];

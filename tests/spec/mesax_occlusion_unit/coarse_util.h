@@ -219,6 +219,28 @@ coarse_same(const struct transcript *a, const struct transcript *b, const char *
 
 /* The "rejected N of M pass blocks" line of LP_PERF=ou_coarse_verify in a
  * child's stderr: N, or -1 when there is no such line. */
+/** A fragment program whose shader runs `body` before writing the colour,
+ * with early fragment tests declared when `early`; a child exits 2 if it
+ * does not build. */
+static inline GLuint
+coarse_build_program(const char *body, bool early)
+{
+    char source[1024];
+    snprintf(source, sizeof(source),
+             "#version 150 compatibility\n"
+             "#extension GL_ARB_shader_image_load_store : require\n"
+             "%s"
+             "out vec4 colour;\n"
+             "void main() {\n%s  colour = gl_Color;\n}\n",
+             early ? "layout(early_fragment_tests) in;\n" : "", body);
+    GLuint p = piglit_build_fragment_program(source);
+    if (!p) {
+        fprintf(stderr, "a fragment shader did not build\n");
+        _exit(2);
+    }
+    return p;
+}
+
 static inline long long
 coarse_rejected(const char *err, long long *blocks)
 {
