@@ -16,6 +16,7 @@ walkthrough=$1
 size=$2
 driver=${GALLIUM_DRIVER:-llvmpipe}
 . "$(dirname "$0")/expect-error.sh"
+. "$(dirname "$0")/walkthrough-summary.sh"
 
 pak=/usr/share/games/openarena/baseoa/pak6-patch088.pk3
 if [ ! -r "$pak" ]; then
@@ -23,8 +24,6 @@ if [ ! -r "$pak" ]; then
     exit 1
 fi
 
-# Column numbers of summary.csv, by name.
-column() { head -n 1 "$2" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
 
 strategies=vfc
 for family in skins hzb hom shadow planes; do
@@ -32,20 +31,10 @@ for family in skins hzb hom shadow planes; do
 done
 for level in oa_minia aggressor; do
     out=$dir/random-$level
-    if "$walkthrough" --scene "$pak:maps/$level.bsp" --route random:100:2026 --strategies "$strategies" \
-           --coherence off --switch-off 0 --size "$size" --driver "$driver" --report off --png-every 0 \
-           --out "$out" >"$out.out" 2>&1; then
-        status=0
-    else
-        status=$?
-    fi
+    walk "random:100:2026 of $level" "$out" --scene "$pak:maps/$level.bsp" --route random:100:2026 \
+        --strategies "$strategies" --coherence off --switch-off 0 --size "$size" --driver "$driver" \
+        --report off --png-every 0 || continue
     summary=$out/summary.csv
-    if [ $status -ne 0 ] || [ ! -f "$summary" ]; then
-        echo "FAIL (status $status): random:100:2026 of $level"
-        sed 's/^/    /' "$out.out"
-        failures=$((failures + 1))
-        continue
-    fi
     culled=$(column visible_leaves_culled "$summary")
     wrong=$(column wrong_pixels_per_frame "$summary")
     efficiency=$(column efficiency_percent "$summary")

@@ -17,6 +17,7 @@ set -u
 walkthrough=$1
 driver=${GALLIUM_DRIVER:-llvmpipe}
 . "$(dirname "$0")/expect-error.sh"
+. "$(dirname "$0")/walkthrough-summary.sh"
 
 pak=/usr/share/games/openarena/baseoa/pak6-patch088.pk3
 if [ ! -r "$pak" ]; then
@@ -24,25 +25,12 @@ if [ ! -r "$pak" ]; then
     exit 1
 fi
 
-# Column numbers of summary.csv, by name.
-column() { head -n 1 "$2" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
-
 for level in aggressor oa_minia; do
     out=$dir/spawn-$level
-    if "$walkthrough" --scene "$pak:maps/$level.bsp" --route spawn:1 \
-           --strategies vfc,bsp-pvs,bsp-pvs+ou-shared,bsp-pvs+om-ps --size 64 --driver "$driver" \
-           --report off --png-every 0 --out "$out" >"$out.out" 2>&1; then
-        status=0
-    else
-        status=$?
-    fi
+    walk "the spawn route of $level" "$out" --scene "$pak:maps/$level.bsp" --route spawn:1 \
+        --strategies vfc,bsp-pvs,bsp-pvs+ou-shared,bsp-pvs+om-ps --size 64 --driver "$driver" \
+        --report off --png-every 0 || continue
     summary=$out/summary.csv
-    if [ $status -ne 0 ] || [ ! -f "$summary" ]; then
-        echo "FAIL (status $status): the spawn route of $level"
-        sed 's/^/    /' "$out.out"
-        failures=$((failures + 1))
-        continue
-    fi
     culled=$(column visible_leaves_culled "$summary")
     wrong=$(column wrong_pixels_per_frame "$summary")
     efficiency=$(column efficiency_percent "$summary")
@@ -62,24 +50,19 @@ done
 
 # Random eyes in open leaves: report what the compiler's set loses.
 out=$dir/random
-if "$walkthrough" --scene "$pak:maps/oa_minia.bsp" --route random:20:7 --strategies vfc,bsp-pvs --size 64 \
-       --driver "$driver" --report off --png-every 0 --out "$out" >"$out.out" 2>&1; then
-    status=0
-else
-    status=$?
-fi
-summary=$out/summary.csv
-if [ $status -eq 0 ] && [ -f "$summary" ]; then
+if walk "random views of oa_minia" "$out" --scene "$pak:maps/oa_minia.bsp" --route random:20:7 \
+       --strategies vfc,bsp-pvs --size 64 --driver "$driver" --report off --png-every 0; then
+    summary=$out/summary.csv
     wrong=$(column wrong_pixels_per_frame "$summary")
     culled=$(column visible_leaves_culled "$summary")
     loss=$(awk -F, -v w="$wrong" -v c="$culled" '$1 == "bsp-pvs" && $w ~ /^[0-9.]+$/ { print $w " pixels a frame lost, " $c " visible leaves culled" }' "$summary")
-fi
-if [ $status -eq 0 ] && [ -n "${loss:-}" ]; then
-    echo "ok: 20 random views of oa_minia compared pixel for pixel: bsp-pvs $loss (the compiler's PVS)"
-else
-    echo "FAIL (status $status): random views of oa_minia"
-    sed 's/^/    /' "$out.out"
-    failures=$((failures + 1))
+    if [ -n "$loss" ]; then
+        echo "ok: 20 random views of oa_minia compared pixel for pixel: bsp-pvs $loss (the compiler's PVS)"
+    else
+        echo "FAIL: random views of oa_minia: no bsp-pvs row with lost pixels in $summary"
+        sed 's/^/    /' "$summary"
+        failures=$((failures + 1))
+    fi
 fi
 
 expect_error "needs a Quake III level's BSP tree" \
