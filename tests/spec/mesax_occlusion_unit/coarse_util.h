@@ -101,18 +101,8 @@ coarse_run_child(const char *driver, const char *const *env, void (*child)(struc
         /* Destroying the context prints ou_coarse_verify's report. */
         OSMesaDestroyContext(OSMesaGetCurrentContext());
         const GLuint count = (GLuint)t.n;
-        const char *p = (const char *)&count;
-        for (int part = 0; part < 2; ++part) {
-            for (size_t left = part ? t.n * sizeof(GLuint) : sizeof(count); left > 0;) {
-                ssize_t k = write(fd[1], p, left);
-                if (k <= 0)
-                    _exit(1);
-                p += k;
-                left -= (size_t)k;
-            }
-            p = (const char *)t.words;
-        }
-        _exit(0);
+        _exit(ou_write_all(fd[1], &count, sizeof(count)) &&
+              ou_write_all(fd[1], t.words, t.n * sizeof(GLuint)) ? 0 : 1);
     }
     close(fd[1]);
     close(efd[1]);

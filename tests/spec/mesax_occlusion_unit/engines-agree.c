@@ -184,15 +184,7 @@ run_child(const char *driver, const char *threads, struct results *out, int argc
         ou_init(argc, argv, SIZE, SIZE);
         static struct results r;
         measure(&r);
-        const char *p = (const char *)&r;
-        for (size_t left = sizeof(r); left > 0;) {
-            ssize_t n = write(fd[1], p, left);
-            if (n <= 0)
-                _exit(1);
-            p += n;
-            left -= (size_t)n;
-        }
-        _exit(0);
+        _exit(ou_write_all(fd[1], &r, sizeof(r)) ? 0 : 1);
     }
     close(fd[1]);
     char *p = (char *)out;

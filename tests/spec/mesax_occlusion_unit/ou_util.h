@@ -15,6 +15,7 @@
 #include <string.h>
 #include <threads.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "piglit_util.h"
 #include "GL/mesax_occlusion_unit.h"
@@ -27,6 +28,21 @@ enum { OU_NOHC, OU_PHC, OU_XMIN, OU_XMAX, OU_YMIN, OU_YMAX, OU_ZMIN, OU_ZMAX, OU
 
 /* The test's overall result; subtest() reports one subtest and folds it in. */
 static enum piglit_result result = PIGLIT_PASS;
+
+/* Writes all `size` bytes of `data` to `fd`, as a child reporting to its
+ * parent through a pipe does; false if the pipe closed or failed. */
+static inline bool
+ou_write_all(int fd, const void *data, size_t size)
+{
+    for (const char *p = data; size > 0;) {
+        ssize_t n = write(fd, p, size);
+        if (n <= 0)
+            return false;
+        p += n;
+        size -= (size_t)n;
+    }
+    return true;
+}
 
 static inline void
 subtest(bool ok, const char *name)
