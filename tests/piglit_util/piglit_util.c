@@ -135,7 +135,7 @@ bool piglit_probe_rect_rgba_ub(int x, int y, int w, int h, const unsigned char e
     return true;
 }
 
-GLuint piglit_build_fragment_program(const char *source)
+GLuint piglit_build_simple_program(const char *vertex_source, const char *fragment_source)
 {
     PFNGLCREATESHADERPROC CreateShader = (PFNGLCREATESHADERPROC)piglit_get_proc_address("glCreateShader");
     PFNGLSHADERSOURCEPROC ShaderSource = (PFNGLSHADERSOURCEPROC)piglit_get_proc_address("glShaderSource");
@@ -154,27 +154,41 @@ GLuint piglit_build_fragment_program(const char *source)
         printf("GL 2.0 shader entry points are missing\n");
         return 0;
     }
-    GLuint shader = CreateShader(GL_FRAGMENT_SHADER);
-    ShaderSource(shader, 1, &source, NULL);
-    CompileShader(shader);
-    GLint compiled = 0;
-    GetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
-    if (!compiled) {
-        char log[1024];
-        GetShaderInfoLog(shader, sizeof(log), NULL, log);
-        printf("fragment shader failed to compile: %s\n", log);
-        return 0;
-    }
+    const struct {
+        GLenum type;
+        const char *name;
+        const char *source;
+    } stages[2] = {{GL_VERTEX_SHADER, "vertex", vertex_source}, {GL_FRAGMENT_SHADER, "fragment", fragment_source}};
     GLuint program = CreateProgram();
-    AttachShader(program, shader);
+    for (int i = 0; i < 2; ++i) {
+        if (!stages[i].source)
+            continue;
+        GLuint shader = CreateShader(stages[i].type);
+        ShaderSource(shader, 1, &stages[i].source, NULL);
+        CompileShader(shader);
+        GLint compiled = 0;
+        GetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
+        if (!compiled) {
+            char log[1024];
+            GetShaderInfoLog(shader, sizeof(log), NULL, log);
+            printf("%s shader failed to compile: %s\n", stages[i].name, log);
+            return 0;
+        }
+        AttachShader(program, shader);
+    }
     LinkProgram(program);
     GLint linked = 0;
     GetProgramiv(program, GL_LINK_STATUS, &linked);
     if (!linked) {
         char log[1024];
         GetProgramInfoLog(program, sizeof(log), NULL, log);
-        printf("fragment program failed to link: %s\n", log);
+        printf("program failed to link: %s\n", log);
         return 0;
     }
     return program;
+}
+
+GLuint piglit_build_fragment_program(const char *source)
+{
+    return piglit_build_simple_program(NULL, source);
 }

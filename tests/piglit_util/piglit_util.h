@@ -54,6 +54,10 @@ void (*piglit_get_proc_address(const char *name))(void);
  * does not compile or link, or GL 2.0 is missing (the log is printed). */
 GLuint piglit_build_fragment_program(const char *source);
 
+/* A program of a GLSL vertex and fragment shader, either NULL for the
+ * fixed-function stage; 0 as for piglit_build_fragment_program. */
+GLuint piglit_build_simple_program(const char *vertex_source, const char *fragment_source);
+
 /* True when glGetError() is `expected`; prints what it got otherwise. */
 bool piglit_check_gl_error(GLenum expected);
 

@@ -26,6 +26,14 @@
  * both drivers' tests take NaN as 0 too (issue 18; "Dependencies on
  * ARB_depth_buffer_float and OpenGL 3.0"):
  *   float-buffer-nan-passes-less-than-one, float-buffer-nan-fails-greater-than-half
+ *
+ * An interpolated depth is not a number when the vertices' z is not one.
+ * Depth clipping discards such a primitive; under depth clamping
+ * (ARB_depth_clamp) it is drawn, and its depth is taken as 0 as a shader's
+ * is, in both buffers:
+ *   clamped-vertex-nan-passes-less-than-one, clamped-vertex-nan-fails-greater-than-half,
+ *   float-buffer-clamped-vertex-nan-passes-less-than-one,
+ *   float-buffer-clamped-vertex-nan-fails-greater-than-half
  */
 #include "ou_util.h"
 
@@ -80,13 +88,28 @@ check(const char *name, const char *depth_expression, GLuint zmin, GLuint zmax)
     return ok;
 }
 
+/* A vertex shader giving every vertex a clip-space z that is not a number
+ * (a NaN object-space z would poison x and y too, through the matrices). */
+static GLuint
+vertex_nan_program(void)
+{
+    return piglit_build_simple_program("#version 110\n"
+                                       "uniform float zero;\n"
+                                       "void main() {\n"
+                                       "  vec4 p = ftransform();\n"
+                                       "  gl_Position = vec4(p.xy, zero / zero, p.w);\n"
+                                       "}\n",
+                                       NULL);
+}
+
 /* A NaN-depth quad against a buffer cleared to `clear` under `func`: the
  * pass's NOHC and, in RENDER mode, GL_SAMPLES_PASSED must both be
- * `expected`. */
+ * `expected`. The NaN is the fragment shader's, or with `from_vertices`
+ * the vertices' z, under depth clamping. */
 static void
-check_test(const char *name, GLenum func, double clear, GLuint expected)
+check_test(const char *name, GLenum func, double clear, GLuint expected, bool from_vertices)
 {
-    const GLuint program = program_for("nan");
+    const GLuint program = from_vertices ? vertex_nan_program() : program_for("nan");
     PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
     PFNGLGETUNIFORMLOCATIONPROC GetUniformLocation =
         (PFNGLGETUNIFORMLOCATIONPROC)piglit_get_proc_address("glGetUniformLocation");
@@ -101,6 +124,8 @@ check_test(const char *name, GLenum func, double clear, GLuint expected)
         subtest(false, name);
         return;
     }
+    if (from_vertices)
+        glEnable(GL_DEPTH_CLAMP);
     glClearDepth(clear);
     glDepthMask(GL_TRUE);
     glClear(GL_DEPTH_BUFFER_BIT);
@@ -124,6 +149,7 @@ check_test(const char *name, GLenum func, double clear, GLuint expected)
     ou_rect(0, 0, S, S, 0.5f);
     glRenderMode(GL_RENDER);
     UseProgram(0);
+    glDisable(GL_DEPTH_CLAMP);
     const bool ok = record[OU_NOHC] == expected && samples == expected;
     if (!ok)
         printf("%s: NOHC %u, SAMPLES_PASSED %u, expected %u\n", name, record[OU_NOHC], samples, expected);
@@ -139,8 +165,10 @@ int main(int argc, char **argv)
     check("all-nan-records-zero", "nan", 0, 0);
     check("nan-beside-finite", "gl_FragCoord.x < 8.0 ? nan : 0.75", 0, ou_depth(0.75));
     check("finite-only-unchanged", "0.75", ou_depth(0.75), ou_depth(0.75));
-    check_test("nan-passes-less-than-one", GL_LESS, 1.0, S * S);
-    check_test("nan-fails-greater-than-half", GL_GREATER, 0.5, 0);
+    check_test("nan-passes-less-than-one", GL_LESS, 1.0, S * S, false);
+    check_test("nan-fails-greater-than-half", GL_GREATER, 0.5, 0, false);
+    check_test("clamped-vertex-nan-passes-less-than-one", GL_LESS, 1.0, S * S, true);
+    check_test("clamped-vertex-nan-fails-greater-than-half", GL_GREATER, 0.5, 0, true);
 
     struct ou_fbo_functions f = ou_fbo_functions();
     GLuint fbo, renderbuffers[2];
@@ -157,9 +185,13 @@ int main(int argc, char **argv)
         printf("a framebuffer object with a DEPTH_COMPONENT32F buffer is incomplete\n");
         subtest(false, "float-buffer-nan-passes-less-than-one");
         subtest(false, "float-buffer-nan-fails-greater-than-half");
+        subtest(false, "float-buffer-clamped-vertex-nan-passes-less-than-one");
+        subtest(false, "float-buffer-clamped-vertex-nan-fails-greater-than-half");
         piglit_report_result(result);
     }
-    check_test("float-buffer-nan-passes-less-than-one", GL_LESS, 1.0, S * S);
-    check_test("float-buffer-nan-fails-greater-than-half", GL_GREATER, 0.5, 0);
+    check_test("float-buffer-nan-passes-less-than-one", GL_LESS, 1.0, S * S, false);
+    check_test("float-buffer-nan-fails-greater-than-half", GL_GREATER, 0.5, 0, false);
+    check_test("float-buffer-clamped-vertex-nan-passes-less-than-one", GL_LESS, 1.0, S * S, true);
+    check_test("float-buffer-clamped-vertex-nan-fails-greater-than-half", GL_GREATER, 0.5, 0, true);
     piglit_report_result(result);
 }
