@@ -231,8 +231,9 @@ int main(int argc, char **argv)
         if (!csv)
             throw std::runtime_error("cannot write '" + csv_path + "'");
         csv << "camera,direction,tile,heading,nohc,phc,gl,exact,agreement,gl_ms,exact_ms\n";
-        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu cameras, step %g m, %dx%d, %s\n",
-                    scene.triangle_count(), hierarchy.leaf_count(), o.route.c_str(), route.size(), o.step, o.size,
+        std::printf("scene: %zu triangles, %zu leaves of at most %u; route %s, %zu cameras, step %g m, %dx%d, %s\n",
+                    scene.triangle_count(), hierarchy.leaf_count(), unsigned(hierarchy.max_leaf_triangles()),
+                    o.route.c_str(), route.size(), o.step, o.size,
                     o.size, ctx.renderer().c_str());
 
         glViewport(0, 0, o.size, o.size);

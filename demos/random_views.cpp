@@ -219,8 +219,9 @@ void run_scene(const Options &o, const SceneSetup &setup, long views, unsigned l
         else
             session.add(spec, o.common);
     }
-    std::printf("\nscene %s: %zu triangles, %zu leaves; %ld random views (seed %lu), %dx%d, fov %g..%g, %s\n",
-                scene_name.c_str(), scene.triangle_count(), setup.hierarchy().leaf_count(), views, seed, o.size,
+    std::printf("\nscene %s: %zu triangles, %zu leaves of at most %u; %ld random views (seed %lu), %dx%d, fov %g..%g, %s\n",
+                scene_name.c_str(), scene.triangle_count(), setup.hierarchy().leaf_count(),
+                unsigned(setup.hierarchy().max_leaf_triangles()), views, seed, o.size,
                 o.size, double(o.fov_min), double(o.fov_max), ctx.renderer().c_str());
     for (const std::string &s : left_out)
         std::printf("left out: %s\n", s.c_str());

@@ -276,8 +276,9 @@ int main(int argc, char **argv)
             session.add(spec, o.common);
         std::filesystem::create_directories(o.out);
         FramesCsv csv(o.out + "/frames.csv", o.route, setup.scene().triangle_count());
-        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s; allocator %s\n",
-                    setup.scene().triangle_count(), setup.hierarchy().leaf_count(), o.route.c_str(), route.size(),
+        std::printf("scene: %zu triangles, %zu leaves of at most %u; route %s, %zu frames, %dx%d, %s; allocator %s\n",
+                    setup.scene().triangle_count(), setup.hierarchy().leaf_count(),
+                    unsigned(setup.hierarchy().max_leaf_triangles()), o.route.c_str(), route.size(),
                     o.size, o.size, ctx.renderer().c_str(), allocator_policy_name(o.allocator));
         session.walk(route, "frames", [&](const SessionStrategy &s, const StrategyFrame &f) {
             if (o.png_every > 0 && f.index % std::size_t(o.png_every) == 0)
