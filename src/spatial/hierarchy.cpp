@@ -241,16 +241,17 @@ std::uint32_t size_nearest_leaf_count_target(const std::vector<std::pair<std::ui
 {
     // Why a leaf count and not a size: a leaf is one draw call, one proxy
     // and one test for the query strategies (Bartz et al. 1998, section 3:
-    // the unit's cost is per tested box), and one box to rasterize or
-    // project for the CPU maps, while smaller leaves are tighter boxes
-    // that cull more. On occu's scenes the fastest size for ou-shared, chc,
-    // om-ps and hzb gave every scene of very different triangle counts
-    // roughly 500 to 1,100 leaves (docs/real-scenes.md, "The hierarchy's
-    // leaf size"): the city at 1024 (about 780), the levels at 256 (458 to
-    // 851), the engine at 512 (about 900), the house at 128 to 512. The
-    // sizes are powers of two, so the counts they give a scene are about a
-    // factor of two apart: 800, the middle of that band by ratio, puts one
-    // size in it for nearly every scene.
+    // the unit's cost is per tested box), while smaller leaves are tighter
+    // boxes that cull more. A first sweep of the leaf size gave the fastest
+    // sizes roughly 500 to 1,100 leaves on scenes of very different
+    // triangle counts (docs/real-scenes.md, "The hierarchy's leaf size"):
+    // the city at 1024 (824), the levels at 256 (458 to 851), the engine
+    // at 512 (905), the house at 128 to 512. The sizes are powers of two,
+    // so the counts they give a scene are about a factor of two apart:
+    // 800, the middle of that band by ratio, puts one size in it for
+    // nearly every scene. Measured against 256 it suits the query
+    // strategies, not the CPU maps, which gain from tighter boxes at a
+    // small cost per box (same section): hence not the default.
     std::uint32_t best = auto_leaf_triangles_max;
     double best_distance = INFINITY;
     for (const auto &[size, leaves] : counts) {
