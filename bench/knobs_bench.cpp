@@ -20,8 +20,8 @@
 //   cost, numeric: default/4, default/2, default, 2 default, 4 default, kept
 //     within the range (integers rounded), and the value that turns it off;
 //   cost, on/off: off and on;
-//   batch: 8, 16, 32 (walkthrough's), 64, 128; leaf size: 64, 128, 256
-//     (walkthrough's), 512, 1024.
+//   batch: 8, 16, 32 (walkthrough's), 64, 128; leaf size: 64, 128, 256,
+//     512, 1024 and auto (the size chosen per scene, spatial/hierarchy.h).
 // Choices and paths (databases) are not swept: listed as left out, with why.
 //
 // Scenes: the city (default) or any others --scenes names (a level, a
@@ -43,6 +43,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -59,7 +60,9 @@ namespace {
 
 using namespace occu;
 
-constexpr int default_batch = 32, default_leaf = 256;
+constexpr int default_batch = 32;
+// The walkthrough's leaf size (auto_leaf_triangles for auto).
+constexpr int default_leaf = int(HierarchyOptions{}.max_leaf_triangles);
 const char *const batch_knob = "batch (traversal)";
 const char *const leaf_knob = "leaf-triangles (hierarchy)";
 
@@ -266,13 +269,13 @@ Sweep plan(const Options &o)
         }
         // The common knobs: the traversal's batch and the hierarchy's leaf size.
         auto common = [&](const char *knob, const std::string &key, std::vector<std::string> values, int current,
-                          long lo, long hi, int Variant::*field) {
+                          const std::function<int(const std::string &)> &parse, int Variant::*field) {
             if (!wanted(key))
                 return;
             if (o.knobs.count(key))
                 values = o.knobs.at(key);
             for (const std::string &value : values) {
-                const int x = int(integer_option("--knob " + key, value, lo, hi));
+                const int x = parse(value);
                 if (x == current) {
                     row(knob, value, "cost", true, def);
                     continue;
@@ -282,8 +285,10 @@ Sweep plan(const Options &o)
                 row(knob, value, "cost", false, variant_index(sweep, v));
             }
         };
-        common(batch_knob, "batch", {"8", "16", "32", "64", "128"}, default_batch, 1, 4096, &Variant::batch);
-        common(leaf_knob, "leaf-triangles", {"64", "128", "256", "512", "1024"}, default_leaf, 1, 1 << 20,
+        common(batch_knob, "batch", {"8", "16", "32", "64", "128"}, default_batch,
+               [](const std::string &v) { return int(integer_option("--knob batch", v, 1, 4096)); }, &Variant::batch);
+        common(leaf_knob, "leaf-triangles", {"64", "128", "256", "512", "1024", "auto"}, default_leaf,
+               [](const std::string &v) { return int(leaf_triangles_option("--knob leaf-triangles", v)); },
                &Variant::leaf);
     }
     for (const auto &[knob, values] : o.knobs)
@@ -351,6 +356,14 @@ Options parse(int argc, char **argv)
     return o;
 }
 
+// A leaf size as the reports print it: the size, or auto and the size it
+// chose for the scene of `setup`.
+std::string leaf_text(int leaf, const SceneSetup &setup)
+{
+    const std::string chosen = std::to_string(setup.hierarchy().max_leaf_triangles());
+    return leaf == int(auto_leaf_triangles) ? "auto (" + chosen + ")" : chosen;
+}
+
 // One measurement session over a route: the variants of `leaf` triangles
 // per leaf, frame by frame, as walkthrough runs them.
 void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup &setup, Sweep &sweep,
@@ -381,8 +394,9 @@ void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup 
             v.refused = e.what();
         }
     }
-    std::printf("route %s, leaves of %d triangles (%zu leaves): %zu variants, %zu frames\n", o.runs[route_index].label.c_str(), leaf,
-                setup.hierarchy().leaf_count(), variant_of.size(), route.size());
+    std::printf("route %s, leaves of %s triangles (%zu leaves): %zu variants, %zu frames\n",
+                o.runs[route_index].label.c_str(), leaf_text(leaf, setup).c_str(), setup.hierarchy().leaf_count(),
+                variant_of.size(), route.size());
     std::fflush(stdout);
     session.walk(route, "frames");
     for (std::size_t k = 0; k < variant_of.size(); ++k) {
@@ -621,6 +635,19 @@ int main(int argc, char **argv)
         // The CSV: per row and route, then the means over the routes.
         const std::string path = o.out + "/knobs.csv";
         std::ofstream csv(path);
+        // The leaf size a variant was built with on a route's scene (auto:
+        // the size it chose), or over all routes the sizes of their scenes,
+        // "/" between them where the scenes' sizes differ.
+        auto built_leaf = [&](const Variant &v, std::optional<std::size_t> route) {
+            std::set<std::uint32_t> sizes;
+            for (std::size_t r = 0; r < o.runs.size(); ++r)
+                if (!route || r == *route)
+                    sizes.insert(setups[o.runs[r].scene].at(v.leaf).hierarchy().max_leaf_triangles());
+            std::string text;
+            for (std::uint32_t size : sizes)
+                text += (text.empty() ? "" : "/") + std::to_string(size);
+            return text;
+        };
         csv << "strategy,setting,value,is_default,role,spec,leaf_triangles,batch,route,frames,mean_ms,median_ms,vs_vfc,"
                "x_floor,efficiency_percent,wrong_pixels_per_frame,wrong_pixels_max_route_total,visible_leaves_culled,"
                "triangles\n";
@@ -629,7 +656,7 @@ int main(int argc, char **argv)
             const Figures f = figures(v, route), vfc = figures(sweep.variants[0], route),
                           ideal = figures(sweep.variants[1], route);
             csv << strategy << ',' << setting << ',' << value << ',' << (is_default ? "yes" : "no") << ',' << role << ','
-                << v.spec << ',' << v.leaf << ',' << v.batch << ',' << (route ? o.runs[*route].label : "all") << ','
+                << v.spec << ',' << built_leaf(v, route) << ',' << v.batch << ',' << (route ? o.runs[*route].label : "all") << ','
                 << o.frames << ',' << f.ms << ',' << f.median << ',' << fixed(vfc.ms / f.ms, 3) << ','
                 << fixed(f.ms / ideal.ms, 3) << ',' << fixed(f.efficiency, 2) << ',' << fixed(f.wrong, 2) << ','
                 << f.max_wrong << ',' << f.visible_culled << ',' << f.triangles << '\n';
@@ -671,7 +698,7 @@ int main(int argc, char **argv)
         for (const Row &row : sweep.rows)
             if (row.role == "cost" && figures(sweep.variants[row.variant], std::nullopt).max_wrong > 0)
                 changed.insert(sweep.variants[row.variant].spec + " (leaves of " +
-                               std::to_string(sweep.variants[row.variant].leaf) + ", batch " +
+                               leaf_triangles_text(std::uint32_t(sweep.variants[row.variant].leaf)) + ", batch " +
                                std::to_string(sweep.variants[row.variant].batch) + ")");
         for (const std::string &c : changed)
             std::printf("note: a cost knob changed pixels: %s\n", c.c_str());
@@ -719,7 +746,7 @@ int main(int argc, char **argv)
                 const Variant &v = sweep.variants[ids[i]];
                 std::string n = v.spec;
                 if (v.leaf != default_leaf)
-                    n += " leaf-triangles=" + std::to_string(v.leaf);
+                    n += " leaf-triangles=" + leaf_triangles_text(std::uint32_t(v.leaf));
                 if (v.batch != default_batch)
                     n += " batch=" + std::to_string(v.batch);
                 return "`" + n + "`";

@@ -102,7 +102,7 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-real-scenes [--scenes SCENE,...] [--strategies NAME,...] [--set KEY=VALUE]...\n"
                  "                              [--spawn-views K] [--orbit-frames N] [--random-views N] [--seed S]\n"
-                 "                              [--size PIXELS] [--driver llvmpipe|softpipe] [--leaf-triangles N]\n"
+                 "                              [--size PIXELS] [--driver llvmpipe|softpipe] [--leaf-triangles N|auto]\n"
                  "                              [--batch N] [--switch-off F] [--coherence on|off] [--allocator keep|system]\n"
                  "                              [--load-levels LEVEL,...] [--repeat N] [--databases DIR]\n"
                  "                              [--make-databases required|all] [--out DIR]\n"
@@ -134,7 +134,7 @@ Options parse(int argc, char **argv)
         else if (a == "--seed") o.seed = (unsigned long)integer_option(a, v, 0, 1L << 40);
         else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
         else if (a == "--driver") o.driver = v;
-        else if (a == "--leaf-triangles") o.leaf_triangles = std::uint32_t(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
         else if (a == "--coherence") o.coherence = switch_option(a, v);
@@ -276,7 +276,7 @@ Run run_route(const Options &o, const SceneSetup &setup, const std::string &rout
             session.add("vfc", o.common, "vfc again");
     }
     std::printf("\n%s (%zu triangles, %zu leaves of at most %u), route %s: %zu frames, %zu strategies, %dx%d, %s\n",
-                run.scene.c_str(), run.triangles, run.leaves, unsigned(o.leaf_triangles),
+                run.scene.c_str(), run.triangles, run.leaves, unsigned(setup.hierarchy().max_leaf_triangles()),
                 route_name.c_str(), route.size(), session.strategies().size(), o.size, o.size, ctx.renderer().c_str());
     for (const std::string &l : run.left_out)
         std::printf("left out: %s\n", l.c_str());

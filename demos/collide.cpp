@@ -42,7 +42,7 @@ struct Options {
     int size = 384;
     std::string driver = "llvmpipe";
     int city_copies = 1;
-    int leaf_triangles = 256;
+    std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
     bool forward = true, backward = false;
     int png_every = 25;
     std::string out = "collide-out";
@@ -58,7 +58,7 @@ struct Options {
                  "                    [--route dense|street|medium|open|orbit|overhead|random:N:SEED|spawn[:K]|FILE]\n"
                  "                    [--frames N] [--step METRES] [--direction forward|backward|both]\n"
                  "                    [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
-                 "                    [--leaf-triangles N] [--png-every N] [--out DIR]\n"
+                 "                    [--leaf-triangles N|auto] [--png-every N] [--out DIR]\n"
                  "At every camera of the route, checks a step of --step metres (beyond the cameras' near plane)\n"
                  "along the view direction, or back from it, with the Occlusion Unit (Bartz et al. 1998, section\n"
                  "5: the step's far face drawn in one GL_BRIEF_OCCLUSION_MESAX pass over figure 7's 3x3 tiles;\n"
@@ -85,7 +85,7 @@ Options parse(int argc, char **argv)
         else if (a == "--size") o.size = int(integer_option(a, v, 3, 8192));
         else if (a == "--driver") o.driver = v;
         else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
-        else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
         else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 1000000));
         else if (a == "--out") o.out = v;
         else if (a == "--direction") {
@@ -206,7 +206,7 @@ int main(int argc, char **argv)
     const Options o = parse(argc, argv);
     try {
         gl::select_driver(gl::parse_driver(o.driver));
-        const SceneSetup setup({o.scene, o.city_copies, std::uint32_t(o.leaf_triangles)});
+        const SceneSetup setup({o.scene, o.city_copies, o.leaf_triangles});
         const Scene &scene = setup.scene();
         const Hierarchy &hierarchy = setup.hierarchy();
         const std::vector<Camera> route = setup.route(o.route, o.frames);
@@ -231,8 +231,9 @@ int main(int argc, char **argv)
         if (!csv)
             throw std::runtime_error("cannot write '" + csv_path + "'");
         csv << "camera,direction,tile,heading,nohc,phc,gl,exact,agreement,gl_ms,exact_ms\n";
-        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu cameras, step %g m, %dx%d, %s\n",
-                    scene.triangle_count(), hierarchy.leaf_count(), o.route.c_str(), route.size(), o.step, o.size,
+        std::printf("scene: %zu triangles, %zu leaves of at most %u; route %s, %zu cameras, step %g m, %dx%d, %s\n",
+                    scene.triangle_count(), hierarchy.leaf_count(), unsigned(hierarchy.max_leaf_triangles()),
+                    o.route.c_str(), route.size(), o.step, o.size,
                     o.size, ctx.renderer().c_str());
 
         glViewport(0, 0, o.size, o.size);

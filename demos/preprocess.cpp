@@ -3,7 +3,7 @@
 // are in src/strategies/poon_wang_opacity_maps/view_preprocessing.h).
 //
 //   occu-preprocess build (--out FILE | --cache DIR) [--scene city|field|FILE] [--city-copies N]
-//                   [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D]
+//                   [--leaf-triangles N|auto] [--grid NX,NY,NZ] [--directions D]
 //                   [--eye-height H] [--max-occluders N] [--resolution R] [--map-divisor K]
 //                   [--selection marginal|static] [--pixels-per-occluder P]
 //                   [--shard I/N] [--driver llvmpipe|softpipe]
@@ -11,7 +11,7 @@
 //   occu-preprocess views --out ROUTE [--every K] DATABASE
 //   occu-preprocess skins --out FILE [--scene city|field|FILE] [--city-copies N] [--voxel-size V]
 //                   [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]
-//   occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N]
+//   occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N|auto]
 //                   [--epsilon E] [--pixel K] [--max-edge M] [--cell-top T] [--clearance C] [--initial-extent X]
 //                   [--test occlusion-unit|readback|both] [--cells FIRST-LAST]
 //                   [--route R [--frames N]] [--shard I/N] [--driver llvmpipe|softpipe]
@@ -100,7 +100,7 @@ namespace {
 {
     std::fprintf(error.empty() ? stdout : stderr,
                  "%s%susage: occu-preprocess build (--out FILE | --cache DIR) [--scene city|field|FILE] [--city-copies N]\n"
-                 "                       [--leaf-triangles N] [--grid NX,NY,NZ] [--directions D] [--eye-height H]\n"
+                 "                       [--leaf-triangles N|auto] [--grid NX,NY,NZ] [--directions D] [--eye-height H]\n"
                  "                       [--max-occluders N] [--resolution R] [--map-divisor K]\n"
                  "                       [--selection marginal|static] [--pixels-per-occluder P]\n"
                  "                       [--shard I/N] [--driver llvmpipe|softpipe]\n"
@@ -108,7 +108,7 @@ namespace {
                  "       occu-preprocess views --out ROUTE [--every K] DATABASE\n"
                  "       occu-preprocess skins --out FILE [--scene city|field|FILE] [--city-copies N] [--voxel-size V]\n"
                  "                       [--max-boxes N] [--min-volume M] [--start densest|first] [--shard I/N]\n"
-                 "       occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N] [--epsilon E]\n"
+                 "       occu-preprocess view-cells --out FILE [--city-copies N] [--leaf-triangles N|auto] [--epsilon E]\n"
                  "                       [--pixel K] [--max-edge M] [--cell-top T] [--clearance C] [--initial-extent X]\n"
                  "                       [--test occlusion-unit|readback|both] [--cells FIRST-LAST]\n"
                  "                       [--route R [--frames N]] [--shard I/N] [--driver llvmpipe|softpipe]\n",
@@ -118,7 +118,8 @@ namespace {
 
 struct Options {
     std::string out, cache, scene, driver = "llvmpipe";
-    int city_copies = 1, leaf_triangles = 256, directions = 8, shard = 1, shards = 1;
+    int city_copies = 1, directions = 8, shard = 1, shards = 1;
+    std::uint32_t leaf_triangles = occu::HierarchyOptions{}.max_leaf_triangles;
     glm::ivec3 grid{8, 1, 8};
     float eye_height = 1.7f;
     occu::PreprocessOptions pre;
@@ -210,7 +211,7 @@ int build(const Options &o)
 {
     using namespace occu;
     gl::select_driver(gl::parse_driver(o.driver));
-    const SceneSetup setup({o.scene, o.city_copies, std::uint32_t(o.leaf_triangles)});
+    const SceneSetup setup({o.scene, o.city_copies, o.leaf_triangles});
     const Scene &scene = setup.scene();
     const Hierarchy &hierarchy = setup.hierarchy();
     const Camera lens = street_level_lens(scene.bounds, 1.0f);
@@ -344,7 +345,7 @@ int view_cells(const Options &o)
                                  "section 4.1), which only the generated city provides: '" + o.scene +
                                  "' is a loaded scene whose meshes do not say which are solid");
     gl::select_driver(gl::parse_driver(o.driver));
-    const SceneSetup setup({"city", o.city_copies, std::uint32_t(o.leaf_triangles)});
+    const SceneSetup setup({"city", o.city_copies, o.leaf_triangles});
     const Scene &scene = setup.scene();
     const Hierarchy &hierarchy = setup.hierarchy();
     const auto cells_start = std::chrono::steady_clock::now();
@@ -503,7 +504,7 @@ int main(int argc, char **argv)
             else if (a == "--scene") o.scene = v;
             else if (a == "--driver") o.driver = v;
             else if (a == "--city-copies") o.city_copies = int(occu::integer_option(a, v, 1, 64));
-            else if (a == "--leaf-triangles") o.leaf_triangles = int(occu::integer_option(a, v, 1, 1 << 20));
+            else if (a == "--leaf-triangles") o.leaf_triangles = occu::leaf_triangles_option(a, v);
             else if (a == "--directions") o.directions = int(occu::integer_option(a, v, 1, 360));
             else if (a == "--max-occluders") o.pre.max_occluders = std::size_t(occu::integer_option(a, v, 1, 1 << 20));
             else if (a == "--pixels-per-occluder")

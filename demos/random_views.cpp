@@ -55,7 +55,7 @@ struct Options {
     int size = 128;
     std::vector<std::string> strategies;   // empty: every conservative strategy (default_strategies)
     std::string driver = "llvmpipe";
-    int leaf_triangles = 256;
+    std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
     int batch = 32;
     bool coherence = false;
     double switch_off = 0.0;
@@ -74,7 +74,7 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-random-views [--scene city|field|FILE[,...]]... [--views N] [--seed S]\n"
                  "                         [--size PIXELS] [--strategies NAME[:key=value...],...]\n"
-                 "                         [--driver llvmpipe|softpipe] [--fov MIN,MAX] [--leaf-triangles N]\n"
+                 "                         [--driver llvmpipe|softpipe] [--fov MIN,MAX] [--leaf-triangles N|auto]\n"
                  "                         [--batch N] [--coherence on|off] [--switch-off F] [--set key=value]...\n"
                  "                         [--allocator keep|system]\n"
                  "                         [--databases DIR] [--make-databases required|all] [--out DIR]\n"
@@ -124,7 +124,7 @@ Options parse(int argc, char **argv)
                 usage("--strategies is empty");
         }
         else if (a == "--driver") o.driver = v;
-        else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
         else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--coherence") o.coherence = switch_option(a, v);
@@ -219,8 +219,9 @@ void run_scene(const Options &o, const SceneSetup &setup, long views, unsigned l
         else
             session.add(spec, o.common);
     }
-    std::printf("\nscene %s: %zu triangles, %zu leaves; %ld random views (seed %lu), %dx%d, fov %g..%g, %s\n",
-                scene_name.c_str(), scene.triangle_count(), setup.hierarchy().leaf_count(), views, seed, o.size,
+    std::printf("\nscene %s: %zu triangles, %zu leaves of at most %u; %ld random views (seed %lu), %dx%d, fov %g..%g, %s\n",
+                scene_name.c_str(), scene.triangle_count(), setup.hierarchy().leaf_count(),
+                unsigned(setup.hierarchy().max_leaf_triangles()), views, seed, o.size,
                 o.size, double(o.fov_min), double(o.fov_max), ctx.renderer().c_str());
     for (const std::string &s : left_out)
         std::printf("left out: %s\n", s.c_str());
@@ -282,7 +283,7 @@ int main(int argc, char **argv)
         // Every scene is read before any is rendered: an unreadable one is named at once.
         std::vector<SceneSetup> scenes;
         for (const std::string &s : o.scenes)
-            scenes.emplace_back(SceneChoice(s, 1, std::uint32_t(o.leaf_triangles)));
+            scenes.emplace_back(SceneChoice(s, 1, o.leaf_triangles));
         std::filesystem::create_directories(o.out);
         const std::string views_path = o.out + "/views.csv", summary_path = o.out + "/summary.csv";
         std::ofstream csv(views_path), summary(summary_path);

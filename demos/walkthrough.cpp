@@ -47,7 +47,7 @@ struct Options {
     std::string driver = "llvmpipe";
     int city_copies = 1;
     int patch_segments = Quake3Options{}.patch_segments;
-    int leaf_triangles = 256;
+    std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
     int batch = 32;
     int png_every = 20;
     bool oracle = true;
@@ -71,7 +71,7 @@ struct Options {
                  "                   [--strategies NAME[:key=value...],...] [--set key=value]...\n"
                  "                   [--occluder-db FILE (= --set database=FILE)]\n"
                  "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
-                 "                   [--patch-segments N] [--leaf-triangles N] [--batch N] [--coherence on|off]\n"
+                 "                   [--patch-segments N] [--leaf-triangles N|auto] [--batch N] [--coherence on|off]\n"
                  "                   [--switch-off F] [--allocator keep|system]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
                  "                   [--video STRATEGY,...] [--databases DIR] [--make-databases required|all]\n"
@@ -123,7 +123,7 @@ Options parse(int argc, char **argv)
         else if (a == "--driver") o.driver = v;
         else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
         else if (a == "--patch-segments") o.patch_segments = int(integer_option(a, v, 1, 64));
-        else if (a == "--leaf-triangles") o.leaf_triangles = int(integer_option(a, v, 1, 1 << 20));
+        else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
         else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
         else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 100000));
@@ -257,7 +257,7 @@ int main(int argc, char **argv)
     const Options o = parse(argc, argv);
     try {
         gl::select_driver(gl::parse_driver(o.driver));
-        SceneChoice choice(o.scene, o.city_copies, std::uint32_t(o.leaf_triangles));
+        SceneChoice choice(o.scene, o.city_copies, o.leaf_triangles);
         choice.quake3.patch_segments = o.patch_segments;
         const SceneSetup setup(choice);
         const std::vector<Camera> route = setup.route(o.route, o.frames);
@@ -276,8 +276,9 @@ int main(int argc, char **argv)
             session.add(spec, o.common);
         std::filesystem::create_directories(o.out);
         FramesCsv csv(o.out + "/frames.csv", o.route, setup.scene().triangle_count());
-        std::printf("scene: %zu triangles, %zu leaves; route %s, %zu frames, %dx%d, %s; allocator %s\n",
-                    setup.scene().triangle_count(), setup.hierarchy().leaf_count(), o.route.c_str(), route.size(),
+        std::printf("scene: %zu triangles, %zu leaves of at most %u; route %s, %zu frames, %dx%d, %s; allocator %s\n",
+                    setup.scene().triangle_count(), setup.hierarchy().leaf_count(),
+                    unsigned(setup.hierarchy().max_leaf_triangles()), o.route.c_str(), route.size(),
                     o.size, o.size, ctx.renderer().c_str(), allocator_policy_name(o.allocator));
         session.walk(route, "frames", [&](const SessionStrategy &s, const StrategyFrame &f) {
             if (o.png_every > 0 && f.index % std::size_t(o.png_every) == 0)

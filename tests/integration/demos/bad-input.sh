@@ -32,6 +32,7 @@ pak=/usr/share/games/openarena/baseoa/pak6-patch088.pk3
 
 expect_error "zbuffer-magic" "$walkthrough" --strategies vfc,zbuffer-magic
 expect_error "--frames" "$walkthrough" --frames -3
+expect_error "--leaf-triangles wants auto or an integer" "$walkthrough" --leaf-triangles automatic
 expect_error "tolerance" "$walkthrough" --strategies ou:tolerance=1.5
 expect_error "tolerance" "$walkthrough" --strategies ou --set tolerance=nan
 expect_error "'threshold'" "$walkthrough" --strategies ou:threshold=0.1
