@@ -1,7 +1,9 @@
 #include "raster/depth_rasterizer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -56,6 +58,55 @@ double plane_distance(const glm::dvec4 &v, int plane)
     }
 }
 
+// The polygon's depth over a depth pixel, as the loops evaluate it:
+// min(za X + (zb Y + zc), zcap), the farthest over the pixel's samples
+// (first and last: the samples' offsets in a depth pixel), never past the
+// farthest vertex (a linear function over a convex polygon peaks at a
+// vertex).
+void depth_plane(const glm::vec2 *window, const float *depth, int n, double first, double last, double extent,
+                 bool per_pixel_depth, raster::PolygonSetup &s)
+{
+    float farthest = depth[0];
+    for (int i = 1; i < n; ++i)
+        farthest = std::max(farthest, depth[i]);
+    s.zcap = float(double(farthest) + depth_margin);
+    if (!per_pixel_depth) {
+        s.za = s.zb = 0.0f;
+        s.zc = s.zcap;
+    } else {
+        // The plane through vertex 0 and the pair spanning the largest
+        // triangle with it, then lifted so that no vertex lies above it
+        // (rounding makes a quad's four points not quite coplanar).
+        int best = 1;
+        double best_area = 0.0;
+        const glm::dvec2 o(window[0]);
+        for (int j = 1; j + 1 < n; ++j) {
+            const glm::dvec2 u = glm::dvec2(window[j]) - o, v = glm::dvec2(window[j + 1]) - o;
+            const double twice = u.x * v.y - u.y * v.x;
+            if (twice > best_area) {
+                best_area = twice;
+                best = j;
+            }
+        }
+        const glm::dvec2 u = glm::dvec2(window[best]) - o, v = glm::dvec2(window[best + 1]) - o;
+        const double du = double(depth[best]) - depth[0], dv = double(depth[best + 1]) - depth[0];
+        const double za = (du * v.y - dv * u.y) / best_area, zb = (dv * u.x - du * v.x) / best_area;
+        double zc = double(depth[0]) - za * o.x - zb * o.y;
+        double lift = 0.0;
+        for (int i = 0; i < n; ++i)
+            lift = std::max(lift, double(depth[i]) - (za * window[i].x + zb * window[i].y + zc));
+        zc += lift + za * (za > 0.0 ? last : first) + zb * (zb > 0.0 ? last : first);
+        zc += depth_margin + float_error * ((std::abs(za) + std::abs(zb)) * extent + std::abs(zc));
+        s.za = float(za);
+        s.zb = float(zb);
+        s.zc = float(zc);
+        if (!std::isfinite(s.za) || !std::isfinite(s.zb) || !std::isfinite(s.zc)) {
+            s.za = s.zb = 0.0f;   // a sliver with no usable plane: its farthest vertex
+            s.zc = s.zcap;
+        }
+    }
+}
+
 }  // namespace
 
 bool DepthRasterizer::avx2_supported()
@@ -80,6 +131,9 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
         throw std::invalid_argument("depth rasterizer: frame " + std::to_string(frame_width) + " x " +
                                     std::to_string(frame_height) + " with divisor " + std::to_string(options.divisor) +
                                     " (each must be at least 1)");
+    if (options.merge_partial_coverage && options.divisor > 8)
+        throw std::invalid_argument("depth rasterizer: merging partial coverage needs a divisor of 8 or less (" +
+                                    std::to_string(options.divisor) + " given: a mask holds at most 64 samples)");
     options_ = options;
     view_projection_ = view_projection;
     frame_width_ = frame_width;
@@ -94,15 +148,25 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
     farthest_bound_.assign(tiles, 1.0f);
     dirty_.assign(tiles, 0);
     any_dirty_ = false;
+    if (options.merge_partial_coverage) {
+        partial_mask_.assign(tiles * tile_pixels, 0);
+        partial_depth_.assign(tiles * tile_pixels, 0.0f);
+        const int samples = options.divisor * options.divisor;
+        full_mask_ = samples == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << samples) - 1;
+    }
     stats_ = {};
 }
 
 void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::uint32_t *indices,
-                                       std::size_t triangle_count)
+                                       std::size_t triangle_count, const glm::vec3 *across)
 {
+    if (!options_.merge_partial_coverage)
+        across = nullptr;
     // One triangle alone (skins_culler draws some so) is quicker one at a
     // time than in a batch of eight lanes with seven idle.
-    if (isa_ == Isa::avx2 && triangle_count >= 2) {
+    // The AVX2 screen drops triangles that cover no depth pixel wholly,
+    // which merging partial coverage needs.
+    if (isa_ == Isa::avx2 && triangle_count >= 2 && !options_.merge_partial_coverage) {
         render_triangles_avx2(positions, indices, triangle_count);
         return;
     }
@@ -110,7 +174,7 @@ void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::ui
     for (std::size_t t = 0; t < triangle_count; ++t) {
         for (int i = 0; i < 3; ++i)
             clip[i] = clip_position(view_projection_, positions[indices[3 * t + std::size_t(i)]]);
-        polygon(clip, 3);
+        polygon(clip, 3, across ? across + 3 * t : nullptr);
     }
 }
 
@@ -185,7 +249,7 @@ void DepthRasterizer::render_box(const Aabb &box)
     }
 }
 
-void DepthRasterizer::polygon(const glm::vec4 *clip, int count)
+void DepthRasterizer::polygon(const glm::vec4 *clip, int count, const glm::vec3 *across)
 {
     ++stats_.polygons;
     // Outside one clip plane with every vertex (the far plane included):
@@ -224,7 +288,7 @@ void DepthRasterizer::polygon(const glm::vec4 *clip, int count)
             window[i] = {(clip[i].x * inv + 1.0f) * sx, (clip[i].y * inv + 1.0f) * sy};
             depth[i] = clip[i].z * inv * 0.5f + 0.5f;
         }
-        rasterize(window, depth, count);
+        rasterize(window, depth, count, across);
         return;
     }
 
@@ -264,14 +328,12 @@ void DepthRasterizer::polygon(const glm::vec4 *clip, int count)
     rasterize(window, depth, n);
 }
 
-void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int n)
+void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int n, const glm::vec3 *across)
 {
     glm::vec2 lo = window[0], hi = window[0];
-    float farthest = depth[0];
     for (int i = 1; i < n; ++i) {
         lo = glm::min(lo, window[i]);
         hi = glm::max(hi, window[i]);
-        farthest = std::max(farthest, depth[i]);
     }
 
     // Depth pixel X holds samples at X + (i + 0.5) / k, i < k: the frame
@@ -286,7 +348,8 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     s.y0 = std::max(0, int(std::ceil(double(lo.y) - first)));
     s.x1 = std::min(width_, int(std::floor(double(hi.x) - last)) + 1);
     s.y1 = std::min(height_, int(std::floor(double(hi.y) - last)) + 1);
-    if (s.x0 >= s.x1 || s.y0 >= s.y1)
+    const bool whole_pixels = s.x0 < s.x1 && s.y0 < s.y1;
+    if (!whole_pixels && !options_.merge_partial_coverage)
         return;
 
     // Front faces wind counter-clockwise in window coordinates (y up).
@@ -317,57 +380,248 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
         s.ec[e] = float(folded - margin);
     }
 
-    // Depth: the farthest over the samples, never past the farthest vertex
-    // (a linear function over a convex polygon peaks at a vertex).
-    s.zcap = float(double(farthest) + depth_margin);
-    if (!options_.per_pixel_depth) {
-        s.za = s.zb = 0.0f;
-        s.zc = s.zcap;
-    } else {
-        // The plane through vertex 0 and the pair spanning the largest
-        // triangle with it, then lifted so that no vertex lies above it
-        // (rounding makes a quad's four points not quite coplanar).
-        int best = 1;
-        double best_area = 0.0;
-        const glm::dvec2 o(window[0]);
-        for (int j = 1; j + 1 < n; ++j) {
-            const glm::dvec2 u = glm::dvec2(window[j]) - o, v = glm::dvec2(window[j + 1]) - o;
-            const double twice = u.x * v.y - u.y * v.x;
-            if (twice > best_area) {
-                best_area = twice;
-                best = j;
+    depth_plane(window, depth, n, first, last, extent, options_.per_pixel_depth, s);
+
+    if (whole_pixels) {
+        const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
+        if (isa_ == Isa::avx2)
+            raster::fill_avx2(s, buffer);
+        else
+            raster::fill_scalar(s, buffer);
+        any_dirty_ = true;
+    }
+    if (options_.merge_partial_coverage)
+        merge_partial(window, depth, n, s, across);
+}
+
+void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
+                                    const glm::vec3 *across)
+{
+    const int k = options_.divisor;
+    const double first = 0.5 / k, last = (k - 0.5) / k;
+    const double extent = guard * std::max(width_, height_) + tile_size;
+
+    // The edges as rasterize sets them up, with the same margins, but
+    // tested at each sample rather than folded to a pixel's worst one:
+    // held where a u + b v + held_c >= 0, the edge function at least the
+    // margin.
+    double ea[max_edges], eb[max_edges], held_c[max_edges], margin[max_edges];
+    for (int e = 0; e < n; ++e) {
+        const glm::dvec2 p(window[e]), q(window[e + 1 == n ? 0 : e + 1]);
+        const double a = p.y - q.y, b = q.x - p.x, c = -(a * p.x + b * p.y);
+        margin[e] = (std::abs(a) + std::abs(b)) * (edge_margin / k) +
+                    float_error * ((std::abs(a) + std::abs(b)) * extent + std::abs(c));
+        ea[e] = a;
+        eb[e] = b;
+        held_c[e] = c - margin[e];
+    }
+
+    // The triangle across each edge, where the caller named one GL draws
+    // whole (between the near and far planes, inside the guard band) and
+    // both face the eye by more than twice the margin: a sample within
+    // the margin of the shared edge, inside the other edges of both, is
+    // drawn by one of the two. Its two other edges, and its depth plane.
+    struct Across {
+        bool usable = false;
+        double ea[2], eb[2], held_c[2];
+        raster::PolygonSetup depth;
+    } neighbour[3];
+    bool any_neighbour = false;
+    if (across && n == 3) {
+        const float sx = 0.5f * float(frame_width_) / float(k), sy = 0.5f * float(frame_height_) / float(k);
+        for (int e = 0; e < 3; ++e) {
+            const glm::vec3 &corner = across[e];
+            if (!std::isfinite(corner.x + corner.y + corner.z))
+                continue;
+            const glm::vec4 c = clip_position(view_projection_, corner);
+            const float g = float(guard) * c.w;
+            if (!(c.w > 0.0f && c.z > -c.w && c.z < c.w && std::abs(c.x) <= g && std::abs(c.y) <= g))
+                continue;
+            const float inv = 1.0f / c.w;
+            const glm::vec2 r{(c.x * inv + 1.0f) * sx, (c.y * inv + 1.0f) * sy};
+            const float r_depth = c.z * inv * 0.5f + 0.5f;
+            // Room to spare: the third corners of both triangles lie at
+            // least twice the margin from the shared edge, on either side.
+            const double length = std::hypot(ea[e], eb[e]);
+            const glm::dvec2 own(window[(e + 2) % 3]);
+            const double raw_c = held_c[e] + margin[e];
+            const double own_side = ea[e] * own.x + eb[e] * own.y + raw_c;
+            const double other_side = -(ea[e] * double(r.x) + eb[e] * double(r.y) + raw_c);
+            const double room = 2.0 * margin[e] + 2.0 * length * (edge_margin / k);
+            if (!(own_side > room && other_side > room))
+                continue;
+            // The triangle across, counter-clockwise: q, p, r for the edge
+            // p -> q; its edges p -> r and r -> q.
+            const glm::vec2 p = window[e], q = window[(e + 1) % 3];
+            const glm::vec2 tri[3] = {q, p, r};
+            const float tri_depth[3] = {depth[(e + 1) % 3], depth[e], r_depth};
+            Across &x = neighbour[e];
+            for (int j = 0; j < 2; ++j) {
+                const glm::dvec2 from(tri[j + 1]), to(tri[(j + 2) % 3]);
+                const double a = from.y - to.y, b = to.x - from.x, cc = -(a * from.x + b * from.y);
+                const double m = (std::abs(a) + std::abs(b)) * (edge_margin / k) +
+                                 float_error * ((std::abs(a) + std::abs(b)) * extent + std::abs(cc));
+                x.ea[j] = a;
+                x.eb[j] = b;
+                x.held_c[j] = cc - m;
             }
-        }
-        const glm::dvec2 u = glm::dvec2(window[best]) - o, v = glm::dvec2(window[best + 1]) - o;
-        const double du = double(depth[best]) - depth[0], dv = double(depth[best + 1]) - depth[0];
-        const double za = (du * v.y - dv * u.y) / best_area, zb = (dv * u.x - du * v.x) / best_area;
-        double zc = double(depth[0]) - za * o.x - zb * o.y;
-        double lift = 0.0;
-        for (int i = 0; i < n; ++i)
-            lift = std::max(lift, double(depth[i]) - (za * window[i].x + zb * window[i].y + zc));
-        zc += lift + za * (za > 0.0 ? last : first) + zb * (zb > 0.0 ? last : first);
-        zc += depth_margin + float_error * ((std::abs(za) + std::abs(zb)) * extent + std::abs(zc));
-        s.za = float(za);
-        s.zb = float(zb);
-        s.zc = float(zc);
-        if (!std::isfinite(s.za) || !std::isfinite(s.zb) || !std::isfinite(s.zc)) {
-            s.za = s.zb = 0.0f;   // a sliver with no usable plane: its farthest vertex
-            s.zc = s.zcap;
+            depth_plane(tri, tri_depth, 3, first, last, extent, options_.per_pixel_depth, x.depth);
+            x.usable = true;
+            any_neighbour = true;
         }
     }
 
-    const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
-    if (isa_ == Isa::avx2)
-        raster::fill_avx2(s, buffer);
-    else
-        raster::fill_scalar(s, buffer);
-    any_dirty_ = true;
+    // The depth pixels holding a sample the polygon may reach, one more
+    // each way where a sample beyond a shared edge may count.
+    glm::vec2 lo = window[0], hi = window[0];
+    for (int i = 1; i < n; ++i) {
+        lo = glm::min(lo, window[i]);
+        hi = glm::max(hi, window[i]);
+    }
+    const int grow = any_neighbour ? 1 : 0;
+    const int x0 = std::max(0, int(std::ceil(double(lo.x) - last)) - grow);
+    const int y0 = std::max(0, int(std::ceil(double(lo.y) - last)) - grow);
+    const int x1 = std::min(width_, int(std::floor(double(hi.x) - first)) + 1 + grow);
+    const int y1 = std::min(height_, int(std::floor(double(hi.y) - first)) + 1 + grow);
+    if (x0 >= x1 || y0 >= y1)
+        return;
+
+    // The edge constants below which no sample is held at all: the margin
+    // beyond a shared edge, inside it elsewhere.
+    double reach_c[max_edges];
+    for (int e = 0; e < n; ++e)
+        reach_c[e] = held_c[e] + (e < 3 && neighbour[e].usable ? 2.0 * margin[e] : 0.0);
+    double offset[8];
+    for (int i = 0; i < k; ++i)
+        offset[i] = (i + 0.5) / k;
+
+    // Row by row, only the pixels some sample of which the polygon may
+    // hold and not all of which it holds: those it holds wholly the fill
+    // took. Each edge function's largest and least value over a pixel's
+    // samples is linear in the pixel's column, so both sets are spans,
+    // found here one pixel wider (the reach) and narrower (the whole
+    // pixels) than the double arithmetic says; the samples decide.
+    bool wrote = false;
+    const auto clamp_column = [&](double x) { return std::max(double(x0 - 2), std::min(double(x1 + 1), x)); };
+    for (int y = y0; y < y1; ++y) {
+        double reach_lo = x0, reach_hi = x1 - 1, whole_lo = x0, whole_hi = x1 - 1;
+        bool reached = true, whole = true;
+        for (int e = 0; e < n && reached; ++e) {
+            const double largest = ea[e] * (ea[e] > 0.0 ? last : first) + eb[e] * (y + (eb[e] > 0.0 ? last : first)) +
+                                   reach_c[e];
+            const double least = ea[e] * (ea[e] > 0.0 ? first : last) + eb[e] * (y + (eb[e] > 0.0 ? first : last)) +
+                                 held_c[e];
+            if (ea[e] > 0.0) {
+                reach_lo = std::max(reach_lo, std::ceil(clamp_column(-largest / ea[e])) - 1.0);
+                whole_lo = std::max(whole_lo, std::ceil(clamp_column(-least / ea[e])) + 1.0);
+            } else if (ea[e] < 0.0) {
+                reach_hi = std::min(reach_hi, std::floor(clamp_column(largest / -ea[e])) + 1.0);
+                whole_hi = std::min(whole_hi, std::floor(clamp_column(least / -ea[e])) - 1.0);
+            } else {
+                reached = largest >= 0.0;
+                whole = whole && least >= 0.0;
+            }
+            if (!(reach_lo <= reach_hi))
+                reached = false;   // NaN included
+        }
+        if (!reached)
+            continue;
+        if (!(whole && whole_lo <= whole_hi))
+            whole_lo = reach_hi + 1, whole_hi = reach_hi;   // no whole pixel: the reach is all partial
+        const int spans[2][2] = {{int(reach_lo), int(std::min(whole_lo, reach_hi + 1))},
+                                 {int(std::max(whole_hi + 1, reach_lo)), int(reach_hi) + 1}};
+        const float depth_term = s.zb * float(y) + s.zc;
+        const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
+        for (int span = 0; span < 2; ++span)
+            for (int x = spans[span][0]; x < spans[span][1]; ++x) {
+                if (span == 1 && x < spans[0][1])
+                    continue;   // both spans reach this pixel: taken once
+                const std::size_t tile = row_tiles + std::size_t(x / tile_size);
+                const std::size_t index =
+                    tile * tile_pixels + std::size_t(y % tile_size) * tile_size + std::size_t(x % tile_size);
+                // The fill's depth: the farthest over all the pixel's
+                // samples, so over those the polygon holds. A pixel
+                // already nearer gains nothing, whatever the samples.
+                float z = std::min(s.za * float(x) + depth_term, s.zcap);
+                if (!(z < tiles_[index]))
+                    continue;
+                std::uint64_t mask = 0, bit = 1;
+                bool used[3] = {false, false, false};
+                for (int j = 0; j < k; ++j)
+                    for (int i = 0; i < k; ++i, bit <<= 1) {
+                        const double u = x + offset[i], v = y + offset[j];
+                        double value[max_edges];
+                        int failed = -1, failures = 0;
+                        for (int e = 0; e < n; ++e) {
+                            value[e] = ea[e] * u + eb[e] * v;
+                            if (value[e] + held_c[e] < 0.0) {
+                                failed = e;
+                                ++failures;
+                            }
+                        }
+                        if (failures == 0) {
+                            mask |= bit;
+                            continue;
+                        }
+                        // Within the margin beyond one shared edge only,
+                        // and inside the triangle across.
+                        if (failures > 1 || failed > 2 || !neighbour[failed].usable ||
+                            value[failed] + reach_c[failed] < 0.0)
+                            continue;
+                        const Across &other = neighbour[failed];
+                        if (other.ea[0] * u + other.eb[0] * v + other.held_c[0] >= 0.0 &&
+                            other.ea[1] * u + other.eb[1] * v + other.held_c[1] >= 0.0) {
+                            mask |= bit;
+                            used[failed] = true;
+                        }
+                    }
+                if (!mask)
+                    continue;
+                // And the depth of the triangle across an edge some
+                // sample needed.
+                for (int e = 0; e < 3; ++e)
+                    if (used[e]) {
+                        const raster::PolygonSetup &d = neighbour[e].depth;
+                        z = std::max(z, std::min(d.za * float(x) + (d.zb * float(y) + d.zc), d.zcap));
+                    }
+                if (!(z < tiles_[index]))
+                    continue;
+                if (add_partial(index, mask, z)) {
+                    dirty_[tile] = 1;
+                    wrote = true;
+                }
+            }
+    }
+    any_dirty_ = any_dirty_ || wrote;
+}
+
+bool DepthRasterizer::add_partial(std::size_t index, std::uint64_t mask, float z)
+{
+    const bool open = partial_mask_[index] != 0;
+    const std::uint64_t joined = partial_mask_[index] | mask;
+    const float farthest = open ? std::max(partial_depth_[index], z) : z;
+    if (joined != full_mask_) {
+        partial_mask_[index] = joined;
+        partial_depth_[index] = farthest;
+        return false;
+    }
+    // Every sample is held no farther than `farthest`; the layer starts
+    // again empty, whether or not it was nearer.
+    partial_mask_[index] = 0;
+    partial_depth_[index] = 0.0f;
+    if (!(farthest < tiles_[index]))
+        return false;
+    tiles_[index] = farthest;
+    return true;
 }
 
 void DepthRasterizer::merge_nearest(const DepthRasterizer &other)
 {
     if (other.width_ != width_ || other.height_ != height_ || other.tiles_.size() != tiles_.size())
         throw std::invalid_argument("depth rasterizer: merging a buffer of another size");
+    if (other.options_.merge_partial_coverage != options_.merge_partial_coverage ||
+        other.options_.divisor != options_.divisor)
+        throw std::invalid_argument("depth rasterizer: merging a buffer with another coverage rule or divisor");
     if (&other == this)
         return;   // nothing is nearer than itself
     for (std::size_t t = 0; t < dirty_.size(); ++t) {
@@ -386,6 +640,17 @@ void DepthRasterizer::merge_nearest(const DepthRasterizer &other)
             any_dirty_ = true;
         }
         farthest_bound_[t] = std::min(farthest_bound_[t], other.farthest_bound_[t]);
+        if (!options_.merge_partial_coverage)
+            continue;
+        // Samples held in either buffer are held no farther than the
+        // farther of the two layers' depths.
+        for (int i = 0; i < tile_pixels; ++i) {
+            const std::size_t index = t * tile_pixels + std::size_t(i);
+            if (other.partial_mask_[index] && add_partial(index, other.partial_mask_[index], other.partial_depth_[index])) {
+                dirty_[t] = 1;
+                any_dirty_ = true;
+            }
+        }
     }
     stats_.polygons += other.stats_.polygons;
     stats_.rasterized += other.stats_.rasterized;
@@ -550,6 +815,53 @@ void DepthRasterizer::read(std::vector<float> &out) const
             std::copy(from, from + count, row + x0);
         }
     }
+}
+
+}  // namespace occu
+
+namespace occu {
+
+std::vector<glm::vec3> shared_edge_opposites(const std::vector<glm::vec3> &triangles)
+{
+    // Each directed edge as its corners' bits, sorted, so that an edge and
+    // its reverse are found by binary search.
+    struct Edge {
+        std::array<std::uint32_t, 6> key;
+        std::uint32_t corner;   // the corner the edge starts at: 3 t + e
+        bool operator<(const Edge &o) const { return key < o.key; }
+    };
+    const auto bits = [](const glm::vec3 &p, std::uint32_t *out) { std::memcpy(out, &p.x, 3 * sizeof(float)); };
+    const std::size_t count = triangles.size() / 3;
+    std::vector<Edge> edges;
+    edges.reserve(3 * count);
+    for (std::size_t t = 0; t < count; ++t)
+        for (int e = 0; e < 3; ++e) {
+            const glm::vec3 &a = triangles[3 * t + std::size_t(e)], &b = triangles[3 * t + std::size_t((e + 1) % 3)];
+            if (!std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z))
+                continue;
+            Edge edge;
+            bits(a, edge.key.data());
+            bits(b, edge.key.data() + 3);
+            edge.corner = std::uint32_t(3 * t + std::size_t(e));
+            edges.push_back(edge);
+        }
+    std::sort(edges.begin(), edges.end());
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::vector<glm::vec3> opposite(3 * count, glm::vec3(nan));
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        const Edge &edge = edges[i];
+        if ((i > 0 && edges[i - 1].key == edge.key) || (i + 1 < edges.size() && edges[i + 1].key == edge.key))
+            continue;   // the edge itself twice
+        Edge reverse;
+        std::copy(edge.key.begin() + 3, edge.key.end(), reverse.key.begin());
+        std::copy(edge.key.begin(), edge.key.begin() + 3, reverse.key.begin() + 3);
+        const auto [from, to] = std::equal_range(edges.begin(), edges.end(), reverse);
+        if (to - from != 1)
+            continue;   // none, or more than one triangle across
+        const std::uint32_t t = from->corner / 3, e = from->corner % 3;
+        opposite[edge.corner] = triangles[3 * t + (e + 2) % 3];
+    }
+    return opposite;
 }
 
 }  // namespace occu

@@ -33,6 +33,29 @@
 // or one depth per polygon, its farthest vertex: the paper's "optimal
 // choice" for speed, more conservative where a polygon spans much depth.
 //
+// Optionally (Options::merge_partial_coverage) polygons also fuse within
+// a depth pixel, as in Masked Occlusion Culling (Hasselgren, Andersson and
+// Akenine-Moeller 2016): each depth pixel keeps, beside its depth, a mask
+// of the k x k samples that polygons not covering it wholly hold (by the
+// same margins) and the farthest of those polygons' depths over the pixel.
+// When the mask fills, every sample is held by a polygon no farther than
+// that depth, so the pixel takes it (the nearer of it and its own). Two
+// triangles sharing an edge then cover the pixels along it, which neither
+// covers alone: without it a mesh of many triangles leaves a seam of empty
+// depth pixels along every edge, and an occludee across a seam is never
+// hidden. A sample within the edge margin of an edge is held by neither
+// triangle's own test; where the caller names the triangle across that
+// edge (render_triangles' `across`), the sample is held all the same,
+// with the farther of the two triangles' depths: GL's rasterization is
+// watertight, so it draws such a sample with one of the two, whichever
+// side of its own snapped edge the sample lies (when both face the eye
+// with room to spare, lie between the near and far planes, and hold the
+// sample inside their other edges by the margin). Without it a seam
+// through a sample's margin leaves that depth pixel empty, and an
+// occludee across it shown. Triangles go through the one-at-a-time setup
+// in this mode, and the partial layer is walked in scalar code only, so
+// the two paths' buffers stay equal.
+//
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
 // the caller); both evaluate the same float expressions in the same order,
 // with no fused multiply-add, so their buffers are equal bit for bit. The
@@ -53,6 +76,10 @@
 
 namespace occu {
 
+namespace raster {
+struct PolygonSetup;
+}
+
 class DepthRasterizer {
 public:
     enum class Isa { scalar, avx2 };
@@ -62,6 +89,9 @@ public:
     struct Options {
         int divisor = 2;                 // frame pixels per depth pixel, each way
         bool per_pixel_depth = true;     // false: one farthest depth per polygon
+        // Fuse partial coverage within a depth pixel (above); needs
+        // divisor <= 8 (a mask of at most 64 samples).
+        bool merge_partial_coverage = false;
     };
 
     // Throws std::invalid_argument for Isa::avx2 on a CPU without it.
@@ -69,20 +99,28 @@ public:
 
     // Starts a frame: sizes the buffer for a frame of frame_width x
     // frame_height pixels (storage is kept between frames) and clears it.
-    // Throws std::invalid_argument for a size or divisor below 1.
+    // Throws std::invalid_argument for a size or divisor below 1, or a
+    // divisor above 8 with merge_partial_coverage.
     void begin(const glm::mat4 &view_projection, int frame_width, int frame_height, const Options &options);
 
     // Triangles: three indices into `positions` each. Quads: four, a
-    // planar convex polygon, counter-clockwise from its front.
-    void render_triangles(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t triangle_count);
+    // planar convex polygon, counter-clockwise from its front. With merged
+    // partial coverage, `across` (3 per triangle, or null) may name for
+    // edge e of triangle t (its vertex e to vertex e + 1) the third vertex
+    // of the triangle GL draws across that edge (shared_edge_opposites),
+    // or hold NaN where there is none.
+    void render_triangles(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t triangle_count,
+                          const glm::vec3 *across = nullptr);
     void render_quads(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t quad_count);
     // The faces of `box` that face the eye, as quads (Leone, section 5).
     void render_box(const Aabb &box);
 
     // Keeps, pixel by pixel, the nearer of this buffer and `other` (begun
     // for the same frame and options): occluders rasterized on another
-    // thread into a buffer of its own join this one. Throws
-    // std::invalid_argument when the sizes differ.
+    // thread into a buffer of its own join this one; with merged partial
+    // coverage the two masks join too (a pixel whose joint mask fills
+    // takes the farther of the two depths). Throws std::invalid_argument
+    // when the sizes or the coverage rule differ.
     void merge_nearest(const DepthRasterizer &other);
 
     // Whether every depth pixel under `frame_rect` (frame pixels, clamped
@@ -122,8 +160,13 @@ public:
 
 private:
     void render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t triangle_count);
-    void polygon(const glm::vec4 *clip, int count);
-    void rasterize(const glm::vec2 *window, const float *depth, int count);
+    void polygon(const glm::vec4 *clip, int count, const glm::vec3 *across = nullptr);
+    void rasterize(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across = nullptr);
+    void merge_partial(const glm::vec2 *window, const float *depth, int count, const raster::PolygonSetup &setup,
+                       const glm::vec3 *across);
+    // Adds sample mask `mask` held no farther than z to the pixel at
+    // `index` (tile layout); returns whether its depth changed.
+    bool add_partial(std::size_t index, std::uint64_t mask, float z);
     void update_tile_maxima() const;
 
     Isa isa_;
@@ -137,7 +180,20 @@ private:
     std::vector<float> farthest_bound_;          // per tile, no nearer than its farthest depth (raster::TileBuffer)
     mutable std::vector<std::uint8_t> dirty_;    // tile written since its maximum was taken
     mutable bool any_dirty_ = false;
+    // merge_partial_coverage: per depth pixel (the tiles' layout), the
+    // samples held by polygons not covering it wholly, and their farthest
+    // depth; empty otherwise.
+    std::vector<std::uint64_t> partial_mask_;
+    std::vector<float> partial_depth_;
+    std::uint64_t full_mask_ = 0;
     Stats stats_;
 };
+
+// For each edge of each triangle (triangles[t][e] to triangles[t][e + 1]),
+// the third corner of the one triangle that has the same edge the other
+// way round, its corners equal bit for bit (GL transforms equal positions
+// alike, so the two share the edge exactly); NaN where no triangle or more
+// than one does, or where the edge itself is not unique. 3 per triangle.
+std::vector<glm::vec3> shared_edge_opposites(const std::vector<glm::vec3> &triangles);
 
 }  // namespace occu

@@ -77,7 +77,9 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     variants.push_back({"ou-shared", 32, true});
     variants.push_back({"om-ps", 16, true});
     // The scene's own triangles beside the skins, for every family that takes them.
-    for (const char *triangles : {"skins:occluder-triangles=512", "hzb:occluder-triangles=512", "hom:occluder-triangles=512"})
+    for (const char *triangles : {"skins:occluder-triangles=512", "hzb:occluder-triangles=512", "hom:occluder-triangles=512",
+                                  "skins:occluder-triangles=512:coverage=merged",
+                                  "hzb:occluder-triangles=512:coverage=merged"})
         variants.push_back({triangles});
     for (const char *probed : {"ou", "hp", "om-fh", "pc-fh", "skins-drawn", "chc"})
         variants.push_back({probed, 16, false, true});
@@ -131,8 +133,13 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
                                   "skins/16", "skins-drawn/16", "hzb/16", "hom/16", "shadow/16", "planes/16",
                                   "pc-mos/16", "ou:max-test-area=1/1", "chc/16",
                                   "skins:occluder-triangles=512/16", "hzb:occluder-triangles=512/16",
-                                  "hom:occluder-triangles=512/16"})
+                                  "hom:occluder-triangles=512/16", "skins:occluder-triangles=512:coverage=merged/16",
+                                  "hzb:occluder-triangles=512:coverage=merged/16"})
         EXPECT_LT(drawn[occluding], drawn["vfc/16"]) << occluding << " culled no more than vfc";
+    for (const char *family : {"skins", "hzb"})
+        EXPECT_LE(drawn[std::string(family) + ":occluder-triangles=512:coverage=merged/16"],
+                  drawn[std::string(family) + ":occluder-triangles=512/16"])
+            << family << ": merged coverage should cull at least what whole depth pixels do";
     EXPECT_LT(drawn["ou:max-test-area=1/16"], drawn_none / 2) << "ou culled too little for the comparison to mean anything";
     EXPECT_LE(drawn["ou:proxy=triangles:max-test-area=1/16"], drawn["ou:max-test-area=1/16"])
         << "triangles as proxies should cull at least what boxes do";

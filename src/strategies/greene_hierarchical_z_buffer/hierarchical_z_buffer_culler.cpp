@@ -27,6 +27,7 @@ public:
     {
         options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
+        options_.merge_partial_coverage = merges_partial_coverage(settings, options_.divisor);
         if (!last_frame_)
             skins_.emplace(context.scene, settings);
     }
@@ -144,6 +145,7 @@ StrategyFamily hierarchical_z_buffer_family()
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
     f.settings.push_back(occluder_triangles_setting());
+    f.settings.push_back(coverage_setting());
     f.databases = {skin_database_need()};
     f.databases[0].read_by = [](const Settings &s) { return s.text("source") == "skins"; };
     f.presets = {

@@ -149,6 +149,17 @@ SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
         for (std::size_t t = 0; t + 2 < scene.meshes[m].indices.size(); t += 3)
             triangles_.emplace_back(std::uint32_t(m), std::uint32_t(t));
     }
+    // With merged coverage, the triangle across each edge (GL draws a
+    // sample on a shared edge with one of the two), among the occluder
+    // triangles of every mesh: equal positions are transformed alike.
+    if (settings.knows("coverage") && settings.text("coverage") == "merged") {
+        std::vector<glm::vec3> corners;
+        corners.reserve(3 * triangles_.size());
+        for (const auto &[m, first] : triangles_)
+            for (int v = 0; v < 3; ++v)
+                corners.push_back(scene.meshes[m].positions[scene.meshes[m].indices[first + std::uint32_t(v)]]);
+        across_ = shared_edge_opposites(corners);
+    }
 }
 
 SettingSpec occluder_triangles_setting()
@@ -157,6 +168,23 @@ SettingSpec occluder_triangles_setting()
                            "the scene's own triangles rasterized per frame beside the skins, the largest on screen "
                            "first (for thin walls and open meshes, which have no volume for skins)",
                            "0");
+}
+
+SettingSpec coverage_setting()
+{
+    return choice_setting("coverage", {"whole", "merged"},
+                          "depth pixels an occluder polygon covers wholly, or also samples of a pixel that "
+                          "several polygons cover together (Masked Occlusion Culling's merge; map divisor 8 or less)");
+}
+
+bool merges_partial_coverage(const Settings &settings, int divisor)
+{
+    if (!settings.knows("coverage") || settings.text("coverage") != "merged")
+        return false;
+    if (divisor > 8)
+        throw std::invalid_argument("coverage=merged needs a depth buffer of at most 8 x 8 frame pixels a pixel "
+                                    "(map-divisor " + std::to_string(divisor) + " given)");
+    return true;
 }
 
 std::vector<SettingSpec> skin_settings()
@@ -297,7 +325,8 @@ std::size_t SkinOccluders::render_triangles(const Frame &frame, DepthRasterizer 
     std::sort(chosen_triangles_.begin(), chosen_triangles_.end());
     for (const auto &c : chosen_triangles_) {
         const Mesh &mesh = scene.meshes[triangles_[c.second].first];
-        raster.render_triangles(mesh.positions.data(), mesh.indices.data() + triangles_[c.second].second, 1);
+        raster.render_triangles(mesh.positions.data(), mesh.indices.data() + triangles_[c.second].second, 1,
+                                across_.empty() ? nullptr : across_.data() + 3 * std::size_t(c.second));
     }
     return chosen_triangles_.size();
 }

@@ -97,6 +97,7 @@ private:
     const Scene *scene_ = nullptr;
     std::size_t triangle_budget_ = 0;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> triangles_;
+    std::vector<glm::vec3> across_;   // coverage=merged: 3 per triangle (shared_edge_opposites)
     std::vector<std::pair<float, std::uint32_t>> chosen_triangles_;
     std::vector<std::uint32_t> drawn_indices_;
 };
@@ -109,6 +110,17 @@ std::vector<SettingSpec> skin_settings();
 // (SkinOccluders::render_all): occluder-triangles, the scene's own largest
 // triangles added per frame (0: skins alone).
 SettingSpec occluder_triangles_setting();
+
+// The coverage rule of those strategies' depth buffer (coverage): `whole`,
+// a polygon writes only the depth pixels it covers wholly (occluders fuse
+// in the buffer, Leone section 3); `merged`, partial coverage of a depth
+// pixel's samples also fuses across polygons, as in Masked Occlusion
+// Culling (raster/depth_rasterizer.h), so that a mesh's triangles leave no
+// seam of empty pixels along their shared edges.
+SettingSpec coverage_setting();
+// Whether `settings` ask for merged coverage; throws std::invalid_argument
+// naming the setting where the rasterizer's divisor is above 8.
+bool merges_partial_coverage(const Settings &settings, int divisor);
 
 // The skin database those strategies read (skin-database): made with the
 // settings' skin-voxel, for the scene's meshes (culling/databases.h makes it).

@@ -19,6 +19,7 @@ public:
     {
         options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
+        options_.merge_partial_coverage = merges_partial_coverage(settings, options_.divisor);
         if (settings.text("occluders") != "drawn")
             skins_.emplace(context.scene, settings);
     }
@@ -98,6 +99,7 @@ StrategyFamily occluder_skins_family()
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
     f.settings.push_back(occluder_triangles_setting());
+    f.settings.push_back(coverage_setting());
     f.databases = {skin_database_need()};
     f.databases[0].read_by = [](const Settings &s) { return s.text("occluders") != "drawn"; };
     f.presets = {
