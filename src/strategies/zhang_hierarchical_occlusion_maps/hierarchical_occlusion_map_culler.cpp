@@ -34,6 +34,9 @@ public:
         divisor_ = int(settings.integer("map-divisor"));
         options_.divisor = 1;
         options_.per_pixel_depth = false;
+        // One sample a pixel: merging closes only the seams along shared
+        // edges that pass within the edge margin of a pixel's centre.
+        options_.merge_partial_coverage = merges_partial_coverage(settings, options_.divisor);
     }
 
     void begin_frame(const Frame &frame) override
@@ -142,6 +145,7 @@ StrategyFamily hierarchical_occlusion_map_family()
     for (SettingSpec &s : skin_settings())
         f.settings.push_back(std::move(s));
     f.settings.push_back(occluder_triangles_setting());
+    f.settings.push_back(coverage_setting());
     f.databases = {skin_database_need()};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalOcclusionMapCuller>(context, settings);
