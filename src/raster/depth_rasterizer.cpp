@@ -421,55 +421,60 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // both face the eye by more than twice the margin: a sample within
     // the margin of the shared edge, inside the other edges of both, is
     // drawn by one of the two. Its two other edges, and its depth plane.
+    // Set up on first need: most triangles of a detailed mesh have no
+    // sample in the margin of an edge.
     struct Across {
-        bool usable = false;
+        int state = 0;   // 0: not yet looked at; 1: usable; -1: not
         double ea[2], eb[2], held_c[2];
         raster::PolygonSetup depth;
     } neighbour[3];
-    bool any_neighbour = false;
-    if (across && n == 3) {
-        const float sx = 0.5f * float(frame_width_) / float(k), sy = 0.5f * float(frame_height_) / float(k);
+    bool candidate[3] = {false, false, false}, any_candidate = false;
+    if (across && n == 3)
         for (int e = 0; e < 3; ++e) {
-            const glm::vec3 &corner = across[e];
-            if (!std::isfinite(corner.x + corner.y + corner.z))
-                continue;
-            const glm::vec4 c = clip_position(view_projection_, corner);
-            const float g = float(guard) * c.w;
-            if (!(c.w > 0.0f && c.z > -c.w && c.z < c.w && std::abs(c.x) <= g && std::abs(c.y) <= g))
-                continue;
-            const float inv = 1.0f / c.w;
-            const glm::vec2 r{(c.x * inv + 1.0f) * sx, (c.y * inv + 1.0f) * sy};
-            const float r_depth = c.z * inv * 0.5f + 0.5f;
-            // Room to spare: the third corners of both triangles lie at
-            // least twice the margin from the shared edge, on either side.
-            const double length = std::hypot(ea[e], eb[e]);
-            const glm::dvec2 own(window[(e + 2) % 3]);
-            const double raw_c = held_c[e] + margin[e];
-            const double own_side = ea[e] * own.x + eb[e] * own.y + raw_c;
-            const double other_side = -(ea[e] * double(r.x) + eb[e] * double(r.y) + raw_c);
-            const double room = 2.0 * margin[e] + 2.0 * length * (edge_margin / k);
-            if (!(own_side > room && other_side > room))
-                continue;
-            // The triangle across, counter-clockwise: q, p, r for the edge
-            // p -> q; its edges p -> r and r -> q.
-            const glm::vec2 p = window[e], q = window[(e + 1) % 3];
-            const glm::vec2 tri[3] = {q, p, r};
-            const float tri_depth[3] = {depth[(e + 1) % 3], depth[e], r_depth};
-            Across &x = neighbour[e];
-            for (int j = 0; j < 2; ++j) {
-                const glm::dvec2 from(tri[j + 1]), to(tri[(j + 2) % 3]);
-                const double a = from.y - to.y, b = to.x - from.x, cc = -(a * from.x + b * from.y);
-                const double m = (std::abs(a) + std::abs(b)) * (edge_margin / k) +
-                                 float_error * ((std::abs(a) + std::abs(b)) * extent + std::abs(cc));
-                x.ea[j] = a;
-                x.eb[j] = b;
-                x.held_c[j] = cc - m;
-            }
-            depth_plane(tri, tri_depth, 3, first, last, extent, options_.per_pixel_depth, x.depth);
-            x.usable = true;
-            any_neighbour = true;
+            candidate[e] = std::isfinite(across[e].x + across[e].y + across[e].z);
+            any_candidate = any_candidate || candidate[e];
         }
-    }
+    const auto usable = [&](int e) {
+        Across &x = neighbour[e];
+        if (x.state != 0)
+            return x.state > 0;
+        x.state = -1;
+        const glm::vec4 c = clip_position(view_projection_, across[e]);
+        const float g = float(guard) * c.w;
+        if (!(c.w > 0.0f && c.z > -c.w && c.z < c.w && std::abs(c.x) <= g && std::abs(c.y) <= g))
+            return false;
+        const float sx = 0.5f * float(frame_width_) / float(k), sy = 0.5f * float(frame_height_) / float(k);
+        const float inv = 1.0f / c.w;
+        const glm::vec2 r{(c.x * inv + 1.0f) * sx, (c.y * inv + 1.0f) * sy};
+        const float r_depth = c.z * inv * 0.5f + 0.5f;
+        // Room to spare: the third corners of both triangles lie at least
+        // twice the margin from the shared edge, on either side.
+        const double length = std::hypot(ea[e], eb[e]);
+        const glm::dvec2 own(window[(e + 2) % 3]);
+        const double raw_c = held_c[e] + margin[e];
+        const double own_side = ea[e] * own.x + eb[e] * own.y + raw_c;
+        const double other_side = -(ea[e] * double(r.x) + eb[e] * double(r.y) + raw_c);
+        const double room = 2.0 * margin[e] + 2.0 * length * (edge_margin / k);
+        if (!(own_side > room && other_side > room))
+            return false;
+        // The triangle across, counter-clockwise: q, p, r for the edge
+        // p -> q; its edges p -> r and r -> q.
+        const glm::vec2 p = window[e], q = window[(e + 1) % 3];
+        const glm::vec2 tri[3] = {q, p, r};
+        const float tri_depth[3] = {depth[(e + 1) % 3], depth[e], r_depth};
+        for (int j = 0; j < 2; ++j) {
+            const glm::dvec2 from(tri[j + 1]), to(tri[(j + 2) % 3]);
+            const double ta = from.y - to.y, tb = to.x - from.x, tc = -(ta * from.x + tb * from.y);
+            const double m = (std::abs(ta) + std::abs(tb)) * (edge_margin / k) +
+                             float_error * ((std::abs(ta) + std::abs(tb)) * extent + std::abs(tc));
+            x.ea[j] = ta;
+            x.eb[j] = tb;
+            x.held_c[j] = tc - m;
+        }
+        depth_plane(tri, tri_depth, 3, first, last, extent, options_.per_pixel_depth, x.depth);
+        x.state = 1;
+        return true;
+    };
 
     // The depth pixels holding a sample the polygon may reach, one more
     // each way where a sample beyond a shared edge may count.
@@ -478,7 +483,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         lo = glm::min(lo, window[i]);
         hi = glm::max(hi, window[i]);
     }
-    const int grow = any_neighbour ? 1 : 0;
+    const int grow = any_candidate ? 1 : 0;
     const int x0 = std::max(0, int(std::ceil(double(lo.x) - last)) - grow);
     const int y0 = std::max(0, int(std::ceil(double(lo.y) - last)) - grow);
     const int x1 = std::min(width_, int(std::floor(double(hi.x) - first)) + 1 + grow);
@@ -490,7 +495,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // beyond a shared edge, inside it elsewhere.
     double reach_c[max_edges];
     for (int e = 0; e < n; ++e)
-        reach_c[e] = held_c[e] + (e < 3 && neighbour[e].usable ? 2.0 * margin[e] : 0.0);
+        reach_c[e] = held_c[e] + (e < 3 && candidate[e] ? 2.0 * margin[e] : 0.0);
     double offset[8];
     for (int i = 0; i < k; ++i)
         offset[i] = (i + 0.5) / k;
@@ -565,8 +570,8 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
                         }
                         // Within the margin beyond one shared edge only,
                         // and inside the triangle across.
-                        if (failures > 1 || failed > 2 || !neighbour[failed].usable ||
-                            value[failed] + reach_c[failed] < 0.0)
+                        if (failures > 1 || failed > 2 || !candidate[failed] ||
+                            value[failed] + reach_c[failed] < 0.0 || !usable(failed))
                             continue;
                         const Across &other = neighbour[failed];
                         if (other.ea[0] * u + other.eb[0] * v + other.held_c[0] >= 0.0 &&

@@ -24,6 +24,7 @@ std::vector<SettingSpec> specs()
 {
     std::vector<SettingSpec> s = skin_settings();
     s.push_back(occluder_triangles_setting());
+    s.push_back(coverage_setting());
     return s;
 }
 
@@ -119,18 +120,22 @@ struct Counts {
 };
 
 // Every box of `boxes` tested as the skins culler tests a leaf.
-Counts check(const Scene &scene, const Camera &camera, const std::vector<Aabb> &boxes, long budget)
+// With merged coverage (coverage=merged) as that setting asks.
+Counts check(const Scene &scene, const Camera &camera, const std::vector<Aabb> &boxes, long budget,
+             bool merged = false)
 {
     const std::vector<SettingSpec> s = specs();
     Settings settings("test", &s);
     settings.set("occluder-triangles", std::to_string(budget));
+    settings.set("coverage", merged ? "merged" : "whole");
     SkinOccluders occluders(scene, settings);
     const int size = 96;
     const Frame frame(camera, size, size);
     Counts counts;
     for (int divisor : {1, 2}) {
         DepthRasterizer raster;
-        raster.begin(frame.view_projection, size, size, {divisor, true});
+        raster.begin(frame.view_projection, size, size,
+                     {divisor, true, merges_partial_coverage(settings, divisor)});
         occluders.render_all(frame, raster, 0);
         for (const Aabb &box : boxes) {
             const auto f = frame.footprint(box);
@@ -251,4 +256,51 @@ TEST(TriangleOccluders, RandomTrianglesNeverHideASeenBox)
         }
     }
     EXPECT_GT(occluded, 0) << "some box is hidden by the heap";
+}
+
+// A wall of many small triangles sharing their vertices, gently rumpled,
+// as a level's patches and a building's tessellated walls are: whole depth
+// pixels leave a seam along every shared edge, so it hides little; merged
+// coverage fuses the triangles (and the samples along their shared edges)
+// and hides what stands behind it, never a box the eye sees.
+TEST(TriangleOccluders, ATessellatedWallHidesWithMergedCoverageWhatItsSeamsHideNot)
+{
+    Mesh wall;
+    const int columns = 24, rows = 12;
+    for (int j = 0; j <= rows; ++j)
+        for (int i = 0; i <= columns; ++i) {
+            const float bump = 0.05f * float((i * 7 + j * 3) % 5) - 0.1f;
+            wall.positions.push_back({-6.0f + 12.0f * float(i) / columns, -1.0f + 7.0f * float(j) / rows, -10.0f + bump});
+            wall.normals.push_back({0, 0, 1});
+        }
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+            const auto at = [&](int x, int y) { return std::uint32_t(y * (columns + 1) + x); };
+            wall.indices.insert(wall.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            wall.indices.insert(wall.indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    const Scene scene = one_mesh(wall);
+    const auto boxes = grid_of_boxes({-5, 0, -30}, {5, 5, -12}, 7, 0.6f);
+    const Counts whole = check(scene, looking_down_minus_z(), boxes, 100000);
+    const Counts merged = check(scene, looking_down_minus_z(), boxes, 100000, true);
+    EXPECT_EQ(whole.seen_occluded, 0);
+    EXPECT_EQ(merged.seen_occluded, 0);
+    EXPECT_GT(merged.occluded, 2 * whole.occluded + 20) << "whole pixels hide " << whole.occluded;
+}
+
+TEST(TriangleOccluders, MergedCoverageRefusesADivisorAboveEight)
+{
+    const std::vector<SettingSpec> s = specs();
+    Settings settings("hzb", &s);
+    EXPECT_FALSE(merges_partial_coverage(settings, 64)) << "whole pixels, the default, take any divisor";
+    settings.set("coverage", "merged");
+    EXPECT_TRUE(merges_partial_coverage(settings, 8));
+    try {
+        merges_partial_coverage(settings, 9);
+        ADD_FAILURE() << "map-divisor 9 accepted";
+    } catch (const std::invalid_argument &e) {
+        EXPECT_NE(std::string(e.what()).find("coverage=merged"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("map-divisor 9"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(settings.set("coverage", "partial"), std::invalid_argument);
 }
