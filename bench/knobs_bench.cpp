@@ -19,10 +19,12 @@
 //     integers 1, 4, 16, 64; numbers from max/100 (two digits) up to max;
 //   cost, numeric: default/4, default/2, default, 2 default, 4 default, kept
 //     within the range (integers rounded), and the value that turns it off;
-//   cost, on/off: off and on;
+//   cost, on/off: off and on; cost, a choice (coverage=whole|merged):
+//     every choice;
 //   batch: 8, 16, 32 (walkthrough's), 64, 128; leaf size: 64, 128, 256,
 //     512, 1024 and auto (the size chosen per scene, spatial/hierarchy.h).
-// Choices and paths (databases) are not swept: listed as left out, with why.
+// Other choices and paths (databases) are not swept: listed as left out,
+// with why.
 //
 // Scenes: the city (default) or any others --scenes names (a level, a
 // building read from a file: docs/real-scenes.md), every route on every
@@ -116,7 +118,7 @@ bool sweeps(const SettingSpec &s)
 {
     return s.role != SettingSpec::Role::choice &&
            (s.kind == SettingSpec::Kind::integer || s.kind == SettingSpec::Kind::number ||
-            s.kind == SettingSpec::Kind::on_off);
+            s.kind == SettingSpec::Kind::on_off || s.kind == SettingSpec::Kind::choice);
 }
 
 // A family is worth sweeping when it has a knob of its own.
@@ -161,6 +163,8 @@ std::vector<std::string> derived_values(const SettingSpec &s, const std::string 
     };
     if (s.kind == SettingSpec::Kind::on_off)
         return {"off", "on"};
+    if (s.kind == SettingSpec::Kind::choice)
+        return s.choices;
     if (s.role == SettingSpec::Role::approximation) {
         add(0.0);
         double x = integer ? 1.0 : two_digits(s.max / 100.0);

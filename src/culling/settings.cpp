@@ -173,12 +173,13 @@ SettingSpec number_setting(std::string name, double default_value, double min, d
     return s;
 }
 
-SettingSpec choice_setting(std::string name, std::vector<std::string> choices, std::string help)
+SettingSpec choice_setting(std::string name, std::vector<std::string> choices, std::string help,
+                           SettingSpec::Role role)
 {
     SettingSpec s;
     s.name = std::move(name);
     s.kind = SettingSpec::Kind::choice;
-    s.role = SettingSpec::Role::choice;
+    s.role = role;
     s.default_value = choices.front();
     s.choices = std::move(choices);
     s.help = std::move(help);

@@ -69,7 +69,10 @@ SettingSpec integer_setting(std::string name, long default_value, long min, long
                             std::string help, std::string off = "");
 SettingSpec number_setting(std::string name, double default_value, double min, double max, SettingSpec::Role role,
                            std::string help, std::string off = "");
-SettingSpec choice_setting(std::string name, std::vector<std::string> choices, std::string help);
+// A choice whose role is cost (the cheaper first) trades time for culling,
+// and occu-bench-knobs sweeps it; the others are not knobs.
+SettingSpec choice_setting(std::string name, std::vector<std::string> choices, std::string help,
+                           SettingSpec::Role role = SettingSpec::Role::choice);
 SettingSpec on_off_setting(std::string name, bool default_value, SettingSpec::Role role, std::string help);
 SettingSpec path_setting(std::string name, std::string help);
 

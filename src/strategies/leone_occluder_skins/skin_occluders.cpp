@@ -174,7 +174,8 @@ SettingSpec coverage_setting()
 {
     return choice_setting("coverage", {"whole", "merged"},
                           "depth pixels an occluder polygon covers wholly, or also samples of a pixel that "
-                          "several polygons cover together (Masked Occlusion Culling's merge; map divisor 8 or less)");
+                          "several polygons cover together (Masked Occlusion Culling's merge; map divisor 8 or less)",
+                          SettingSpec::Role::cost);
 }
 
 bool merges_partial_coverage(const Settings &settings, int divisor)
