@@ -7,7 +7,11 @@
 // Intel's Masked Occlusion Culling renders as occluders when it takes
 // every kept leaf) is rasterized into a buffer for a SIZE x SIZE frame
 // (default 512) at divisors 1 and 2, and the route's skins (Leone et al.)
-// as a second load. Each (route, divisor, path) is the best of 5 rounds
+// as a second load; and the leaf triangles again with merged partial
+// coverage (load leaf-triangles-merged: samples fused across triangles and
+// along their shared edges, Masked Occlusion Culling's rule; the
+// triangles across found once per mesh, outside the timing), at divisors
+// 1 and 2. Each (route, load, divisor, path) is the best of 5 rounds
 // over all its frames, the paths alternating round by round, because the
 // machine is shared. Prints CSV:
 //   route,load,divisor,isa,polygons,ms_per_frame,million_polygons_per_second
@@ -19,6 +23,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -61,8 +66,21 @@ int main(int argc, char **argv)
         struct Batch {
             const occu::Mesh *mesh;
             std::vector<std::uint32_t> indices;
+            std::vector<glm::vec3> across;   // shared_edge_opposites, 3 per triangle
         };
         std::vector<std::vector<Batch>> loads(cameras.size());
+        // Per mesh, the triangle across each edge of each of its triangles.
+        std::map<std::uint32_t, std::vector<glm::vec3>> opposites;
+        const auto across = [&](std::uint32_t m) -> const std::vector<glm::vec3> & {
+            auto it = opposites.find(m);
+            if (it == opposites.end()) {
+                std::vector<glm::vec3> corners;
+                for (std::uint32_t i : scene.meshes[m].indices)
+                    corners.push_back(scene.meshes[m].positions[i]);
+                it = opposites.emplace(m, occu::shared_edge_opposites(corners)).first;
+            }
+            return it->second;
+        };
         std::uint64_t triangles = 0;
         for (std::size_t f = 0; f < cameras.size(); ++f) {
             const occu::Frustum frustum(cameras[f].view_projection());
@@ -72,17 +90,24 @@ int main(int argc, char **argv)
                     const occu::TriangleRef &t = hierarchy.triangles()[i];
                     const occu::Mesh *mesh = &scene.meshes[t.mesh];
                     if (loads[f].empty() || loads[f].back().mesh != mesh)
-                        loads[f].push_back({mesh, {}});
+                        loads[f].push_back({mesh, {}, {}});
                     auto &idx = loads[f].back().indices;
                     idx.insert(idx.end(), mesh->indices.begin() + t.first_index,
                                mesh->indices.begin() + t.first_index + 3);
+                    const std::vector<glm::vec3> &opposite = across(t.mesh);
+                    loads[f].back().across.insert(loads[f].back().across.end(),
+                                                  opposite.begin() + std::ptrdiff_t(t.first_index),
+                                                  opposite.begin() + std::ptrdiff_t(t.first_index) + 3);
                     ++triangles;
                 }
             }
         }
-        for (const char *load : {"leaf-triangles", "skins"}) {
+        for (const char *load : {"leaf-triangles", "skins", "leaf-triangles-merged"}) {
             const bool leaf_triangles = load[0] == 'l';
+            const bool merged = std::string(load) == "leaf-triangles-merged";
             for (int divisor : {1, 2, 64}) {
+                if (merged && divisor > 8)
+                    continue;   // a mask holds 8 x 8 samples at most
                 std::vector<double> best(isas.size(), 1e30);
                 std::uint64_t polygons = 0;
                 for (int round = 0; round < 5; ++round)
@@ -91,11 +116,11 @@ int main(int argc, char **argv)
                         const auto t0 = Clock::now();
                         for (std::size_t f = 0; f < cameras.size(); ++f) {
                             const occu::Frame frame(cameras[f], size, size);
-                            r.begin(frame.view_projection, size, size, {divisor, true});
+                            r.begin(frame.view_projection, size, size, {divisor, true, merged});
                             if (leaf_triangles)
                                 for (const Batch &b : loads[f])
                                     r.render_triangles(b.mesh->positions.data(), b.indices.data(),
-                                                       b.indices.size() / 3);
+                                                       b.indices.size() / 3, merged ? b.across.data() : nullptr);
                             else
                                 skins.render(frame, r, 0);
                             polygons += r.stats().polygons;

@@ -351,6 +351,21 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     const bool whole_pixels = s.x0 < s.x1 && s.y0 < s.y1;
     if (!whole_pixels && !options_.merge_partial_coverage)
         return;
+    if (options_.merge_partial_coverage) {
+        // Drawn nearest first, a mesh's later triangles mostly lie behind
+        // what is already there: where every depth pixel the polygon (or a
+        // sample beyond its shared edges) may reach is nearer than its
+        // nearest vertex, it adds nothing, and its setup is skipped.
+        float nearest = depth[0];
+        for (int i = 1; i < n; ++i)
+            nearest = std::min(nearest, depth[i]);
+        const int x0 = std::max(0, int(std::floor(double(lo.x))) - 1);
+        const int y0 = std::max(0, int(std::floor(double(lo.y))) - 1);
+        const int x1 = std::min(width_, int(std::floor(double(hi.x))) + 2);
+        const int y1 = std::min(height_, int(std::floor(double(hi.y))) + 2);
+        if (x0 >= x1 || y0 >= y1 || all_nearer(x0, y0, x1, y1, float(double(nearest) - depth_margin)))
+            return;
+    }
 
     // Front faces wind counter-clockwise in window coordinates (y up).
     double area = 0.0;
@@ -660,6 +675,27 @@ void DepthRasterizer::merge_nearest(const DepthRasterizer &other)
     stats_.polygons += other.stats_.polygons;
     stats_.rasterized += other.stats_.rasterized;
     stats_.clipped += other.stats_.clipped;
+}
+
+bool DepthRasterizer::all_nearer(int x0, int y0, int x1, int y1, float z) const
+{
+    // Tile by tile, each tile's maximum brought up to date where written;
+    // the tiles' padding beyond the buffer holds 1, never nearer.
+    for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
+        for (int tx = x0 / tile_size; tx <= (x1 - 1) / tile_size; ++tx) {
+            const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
+            if (dirty_[t]) {
+                const float *tile = tiles_.data() + t * tile_pixels;
+                float m = tile[0];
+                for (int i = 1; i < tile_pixels; ++i)
+                    m = std::max(m, tile[i]);
+                tile_max_[t] = m;
+                dirty_[t] = 0;
+            }
+            if (!(tile_max_[t] < z))
+                return false;
+        }
+    return true;
 }
 
 void DepthRasterizer::update_tile_maxima() const

@@ -168,6 +168,10 @@ private:
     // `index` (tile layout); returns whether its depth changed.
     bool add_partial(std::size_t index, std::uint64_t mask, float z);
     void update_tile_maxima() const;
+    // Whether every depth pixel of [x0, x1) x [y0, y1) (buffer pixels,
+    // inside the buffer, not empty) is nearer than z, by the tiles'
+    // maxima; brings those tiles' maxima up to date.
+    bool all_nearer(int x0, int y0, int x1, int y1, float z) const;
 
     Isa isa_;
     Options options_;
