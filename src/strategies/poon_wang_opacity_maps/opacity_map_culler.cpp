@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -32,6 +33,7 @@ public:
     OpacityMapCuller(const StrategyContext &context, const Settings &settings)
         : hierarchy_(context.hierarchy), renderer_(context.renderer), ids_(context.renderer),
           occluders_(std::size_t(settings.integer("occluders"))),
+          triangle_budget_(std::size_t(settings.integer("occluder-triangle-budget"))),
           tolerance_(std::uint32_t(settings.integer("tolerance"))), coverage_ratio_(settings.number("coverage-ratio")),
           divisor_(int(settings.integer("map-divisor"))), pixelwise_(settings.text("compare") == "pixels")
     {
@@ -111,24 +113,38 @@ public:
 private:
     std::vector<std::uint32_t> choose_occluders(const Frame &frame, Selection selection)
     {
+        // With a budget in triangles, every candidate in order, then cut.
+        const std::size_t limit = triangle_budget_ ? std::numeric_limits<std::size_t>::max() : occluders_;
+        std::vector<std::uint32_t> chosen;
         switch (selection) {
         case Selection::projected_size:
-            return occluders_by_projected_size(hierarchy_, frame.camera, frame.frustum, occluders_);
+            chosen = occluders_by_projected_size(hierarchy_, frame.camera, frame.frustum, limit);
+            break;
         case Selection::first_hit:
             // The ID buffer at the maps' resolution: a first-hit count needs no more.
-            return occluders_by_first_hit(ids_, hierarchy_, frame.camera, frame.frustum, map_width_, map_height_,
-                                          occluders_);
-        case Selection::minimum_occluder_set: break;
+            chosen = occluders_by_first_hit(ids_, hierarchy_, frame.camera, frame.frustum, map_width_, map_height_,
+                                            limit);
+            break;
+        case Selection::minimum_occluder_set: {
+            const auto &nodes = hierarchy_.nodes();
+            for (std::uint32_t n : database_->occluders_for(frame.camera)) {
+                if (chosen.size() >= limit)
+                    break;
+                if (n < nodes.size() && nodes[n].leaf() &&
+                    frame.frustum.classify(nodes[n].bounds) != Frustum::Side::outside)
+                    chosen.push_back(n);
+            }
+            break;
         }
-        std::vector<std::uint32_t> chosen;
-        const auto &nodes = hierarchy_.nodes();
-        for (std::uint32_t n : database_->occluders_for(frame.camera)) {
-            if (chosen.size() >= occluders_)
-                break;
-            if (n < nodes.size() && nodes[n].leaf() && frame.frustum.classify(nodes[n].bounds) != Frustum::Side::outside)
-                chosen.push_back(n);
         }
-        return chosen;
+        if (!triangle_budget_)
+            return chosen;
+        if (leaf_triangles_.empty()) {
+            leaf_triangles_.resize(hierarchy_.nodes().size());
+            for (std::size_t n = 0; n < leaf_triangles_.size(); ++n)
+                leaf_triangles_[n] = hierarchy_.nodes()[n].occluder_triangles;
+        }
+        return first_leaves_within_triangles(chosen, leaf_triangles_, triangle_budget_);
     }
 
     // The occluders' window depth at full resolution, drawn into the
@@ -199,6 +215,8 @@ private:
     std::optional<OccluderDatabase> database_;
     Selection selection_ = Selection::projected_size;
     std::size_t occluders_;
+    std::size_t triangle_budget_;                 // 0: occluders_ leaves
+    std::vector<std::uint32_t> leaf_triangles_;   // per node, its occluder triangles (the budget's count)
     std::uint32_t tolerance_;
     double coverage_ratio_;
     int divisor_;
@@ -270,6 +288,10 @@ StrategyFamily opacity_map_family()
                        "occluders by projected size, first hit, or from a minimum-occluder-set database"),
         choice_setting("compare", {"maps", "pixels"}, "overlap and depth tests on the maps (OM + SDM) or per pixel (PC)"),
         integer_setting("occluders", 64, 1, 1 << 20, Role::cost, "leaves rendered as occluders each frame"),
+        integer_setting("occluder-triangle-budget", 0, 0, 1 << 24, Role::cost,
+                        "instead of `occluders` leaves, the best leaves up to this many triangles in all, so that "
+                        "smaller leaves do not shrink the occluders' share of the scene",
+                        "0"),
         integer_setting("tolerance", 0, 0, 1 << 20, Role::approximation,
                         "approximate overlap test: map pixels of holes ignored"),
         number_setting("coverage-ratio", 0.2, 0.0, 1.0, Role::cost,

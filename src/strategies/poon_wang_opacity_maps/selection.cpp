@@ -48,4 +48,19 @@ std::vector<std::uint32_t> occluders_by_first_hit(IdBuffer &ids, const Hierarchy
     return best(candidates, limit);
 }
 
+std::vector<std::uint32_t> first_leaves_within_triangles(const std::vector<std::uint32_t> &best_first,
+                                                         const std::vector<std::uint32_t> &triangles,
+                                                         std::size_t budget)
+{
+    std::vector<std::uint32_t> out;
+    std::size_t taken = 0;
+    for (std::uint32_t n : best_first) {
+        if (taken >= budget && !out.empty())
+            break;
+        out.push_back(n);
+        taken += n < triangles.size() ? triangles[n] : 0;
+    }
+    return out;
+}
+
 }  // namespace occu

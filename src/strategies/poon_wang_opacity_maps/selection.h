@@ -21,6 +21,16 @@ namespace occu {
 std::vector<std::uint32_t> occluders_by_projected_size(const Hierarchy &hierarchy, const Camera &camera,
                                                        const Frustum &frustum, std::size_t limit);
 
+// A budget in triangles rather than leaves: the first leaves of
+// `best_first` (the best first) while the triangles taken so far are fewer
+// than `budget`, counted by `triangles` (indexed by node); the leaf that
+// reaches the budget is taken, and at least one leaf when there is one.
+// So the share of the scene drawn as occluders stays the same when the
+// hierarchy's leaves are made smaller or larger.
+std::vector<std::uint32_t> first_leaves_within_triangles(const std::vector<std::uint32_t> &best_first,
+                                                         const std::vector<std::uint32_t> &triangles,
+                                                         std::size_t budget);
+
 // Renders an ID buffer of width x height with `ids`.
 std::vector<std::uint32_t> occluders_by_first_hit(IdBuffer &ids, const Hierarchy &hierarchy, const Camera &camera,
                                                   const Frustum &frustum, int width, int height, std::size_t limit);
