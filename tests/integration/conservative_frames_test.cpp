@@ -76,6 +76,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     variants.push_back({"hp:proxy=triangles", 16});
     variants.push_back({"ou-shared", 32, true});
     variants.push_back({"om-ps", 16, true});
+    variants.push_back({"om-ps:occluder-triangle-budget=2048", 16});
     // The scene's own triangles beside the skins, for every family that takes them.
     for (const char *triangles : {"skins:occluder-triangles=512", "hzb:occluder-triangles=512", "hom:occluder-triangles=512",
                                   "skins:occluder-triangles=512:coverage=merged",
@@ -134,6 +135,7 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
                                   "pc-mos/16", "ou:max-test-area=1/1", "chc/16",
                                   "skins:occluder-triangles=512/16", "hzb:occluder-triangles=512/16",
                                   "hom:occluder-triangles=512/16", "skins:occluder-triangles=512:coverage=merged/16",
+                                  "om-ps:occluder-triangle-budget=2048/16",
                                   "hzb:occluder-triangles=512:coverage=merged/16"})
         EXPECT_LT(drawn[occluding], drawn["vfc/16"]) << occluding << " culled no more than vfc";
     for (const char *family : {"skins", "hzb"})
