@@ -769,71 +769,114 @@ bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
         update_tile_maxima();
     for (const auto &face : aabb_faces) {
         glm::dvec2 p[4];
-        double z[4], area = 0.0;
-        glm::dvec2 lo(1e300), hi(-1e300);
+        double z[4];
         for (int i = 0; i < 4; ++i) {
             p[i] = window[face[i]];
             z[i] = corner_depth[face[i]];
-            lo = glm::min(lo, p[i]);
-            hi = glm::max(hi, p[i]);
         }
-        for (int i = 0; i < 4; ++i)
-            area += p[i].x * p[(i + 1) % 4].y - p[(i + 1) % 4].x * p[i].y;
-        if (!(area > 0.0))
-            continue;   // faces away: the faces that face the eye cover the box's silhouette
-        // Every depth pixel whose square the face reaches, grown by the
-        // edge margin.
-        const double grow = edge_margin / k;
-        const int x0 = std::max(0, int(std::floor(lo.x - grow))), y0 = std::max(0, int(std::floor(lo.y - grow)));
-        const int x1 = std::min(width_, int(std::floor(hi.x + grow)) + 1);
-        const int y1 = std::min(height_, int(std::floor(hi.y + grow)) + 1);
-        if (x0 >= x1 || y0 >= y1)
-            continue;
-        // Outward edges: the largest E over a pixel's square, at the corner
-        // on the edge's inside, >= -margin.
-        double ea[4], eb[4], ec[4];
-        for (int e = 0; e < 4; ++e) {
-            const glm::dvec2 &a = p[e], &b = p[(e + 1) % 4];
-            ea[e] = a.y - b.y;
-            eb[e] = b.x - a.x;
-            ec[e] = -(ea[e] * a.x + eb[e] * a.y) + std::max(ea[e], 0.0) + std::max(eb[e], 0.0) +
-                    (std::abs(ea[e]) + std::abs(eb[e])) * grow;
-        }
-        // The face's plane, its smallest value over a pixel's square.
-        const glm::dvec2 u = p[1] - p[0], v = p[2] - p[0];
-        const double twice = u.x * v.y - u.y * v.x;
-        double za = 0.0, zb = 0.0, zc = floor_z;
-        if (twice > 0.0) {
-            const double du = z[1] - z[0], dv = z[2] - z[0];
-            za = (du * v.y - dv * u.y) / twice;
-            zb = (dv * u.x - du * v.x) / twice;
-            zc = z[0] - za * p[0].x - zb * p[0].y + std::min(za, 0.0) + std::min(zb, 0.0) - depth_margin;
-        }
-        // Tile by tile: a tile whose farthest depth is nearer than the
-        // face's nearest over the tile settles all its pixels at once.
-        for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
-            for (int tx = x0 / tile_size; tx <= (x1 - 1) / tile_size; ++tx) {
-                const int tx0 = std::max(x0, tx * tile_size), tx1 = std::min(x1, (tx + 1) * tile_size);
-                const int ty0 = std::max(y0, ty * tile_size), ty1 = std::min(y1, (ty + 1) * tile_size);
-                const double tile_nearest =
-                    std::max(floor_z, za * (za < 0.0 ? tx1 - 1 : tx0) + zb * (zb < 0.0 ? ty1 - 1 : ty0) + zc);
-                const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
-                if (double(tile_max_[t]) < tile_nearest)
-                    continue;
-                const float *tile = tiles_.data() + t * tile_pixels;
-                for (int y = ty0; y < ty1; ++y)
-                    for (int x = tx0; x < tx1; ++x) {
-                        bool inside = true;
-                        for (int e = 0; e < 4 && inside; ++e)
-                            inside = ea[e] * x + eb[e] * y + ec[e] >= 0.0;
-                        if (!inside)
-                            continue;
-                        const double nearest = std::max(floor_z, za * x + zb * y + zc);
-                        if (!(double(tile[(y % tile_size) * tile_size + x % tile_size]) < nearest))
-                            return false;
-                    }
-            }
+        // A face facing away is skipped: the faces that face the eye cover
+        // the box's silhouette.
+        if (!polygon_behind(p, z, 4, floor_z))
+            return false;
     }
+    return true;
+}
+
+bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::uint32_t *indices,
+                                         std::size_t count) const
+{
+    const double k = options_.divisor;
+    const double sx = 0.5 * double(frame_width_) / k, sy = 0.5 * double(frame_height_) / k;
+    const glm::dmat4 m(view_projection_);
+    if (any_dirty_)
+        update_tile_maxima();
+    for (std::size_t t = 0; t < count; ++t) {
+        glm::dvec2 p[3];
+        double z[3];
+        unsigned out_all = 63;   // beyond one side of the frustum with every corner: GL draws none of it
+        for (int i = 0; i < 3; ++i) {
+            const glm::dvec4 c = m * glm::dvec4(glm::dvec3(positions[indices[3 * t + std::size_t(i)]]), 1.0);
+            if (!std::isfinite(c.x + c.y + c.z + c.w) || !(c.w > 0.0) || c.z < -c.w)
+                return false;   // across the near plane, around the eye, or unknown: not shown hidden
+            out_all &= unsigned(c.x > c.w) << 0 | unsigned(c.x < -c.w) << 1 | unsigned(c.y > c.w) << 2 |
+                       unsigned(c.y < -c.w) << 3 | unsigned(c.z > c.w) << 4;
+            p[i] = {(c.x / c.w + 1.0) * sx, (c.y / c.w + 1.0) * sy};
+            z[i] = c.z / c.w * 0.5 + 0.5;
+        }
+        if (out_all)
+            continue;
+        // Never nearer than its nearest corner, less the depth margin.
+        const double floor_z = std::min({z[0], z[1], z[2]}) - depth_margin;
+        if (!polygon_behind(p, z, 3, floor_z))
+            return false;
+    }
+    return true;
+}
+
+bool DepthRasterizer::polygon_behind(const glm::dvec2 *p, const double *z, int n, double floor_z) const
+{
+    double area = 0.0;
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (int i = 0; i < n; ++i) {
+        area += p[i].x * p[(i + 1) % n].y - p[(i + 1) % n].x * p[i].y;
+        lo = glm::min(lo, p[i]);
+        hi = glm::max(hi, p[i]);
+    }
+    if (!(area > 0.0))
+        return true;   // faces away: GL culls it
+    // Every depth pixel whose square the polygon reaches, grown by the
+    // edge margin.
+    const double k = options_.divisor;
+    const double grow = edge_margin / k;
+    const int x0 = std::max(0, int(std::floor(lo.x - grow))), y0 = std::max(0, int(std::floor(lo.y - grow)));
+    const int x1 = std::min(width_, int(std::floor(hi.x + grow)) + 1);
+    const int y1 = std::min(height_, int(std::floor(hi.y + grow)) + 1);
+    if (x0 >= x1 || y0 >= y1)
+        return true;
+    // Outward edges: the largest E over a pixel's square, at the corner on
+    // the edge's inside, >= -margin.
+    double ea[4], eb[4], ec[4];
+    for (int e = 0; e < n; ++e) {
+        const glm::dvec2 &a = p[e], &b = p[(e + 1) % n];
+        ea[e] = a.y - b.y;
+        eb[e] = b.x - a.x;
+        ec[e] = -(ea[e] * a.x + eb[e] * a.y) + std::max(ea[e], 0.0) + std::max(eb[e], 0.0) +
+                (std::abs(ea[e]) + std::abs(eb[e])) * grow;
+    }
+    // The polygon's plane, its smallest value over a pixel's square.
+    const glm::dvec2 u = p[1] - p[0], v = p[2] - p[0];
+    const double twice = u.x * v.y - u.y * v.x;
+    double za = 0.0, zb = 0.0, zc = floor_z;
+    if (twice > 0.0) {
+        const double du = z[1] - z[0], dv = z[2] - z[0];
+        za = (du * v.y - dv * u.y) / twice;
+        zb = (dv * u.x - du * v.x) / twice;
+        zc = z[0] - za * p[0].x - zb * p[0].y + std::min(za, 0.0) + std::min(zb, 0.0) - depth_margin;
+    }
+    // Tile by tile: a tile whose farthest depth is nearer than the
+    // polygon's nearest over the tile settles all its pixels at once.
+    for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
+        for (int tx = x0 / tile_size; tx <= (x1 - 1) / tile_size; ++tx) {
+            const int tx0 = std::max(x0, tx * tile_size), tx1 = std::min(x1, (tx + 1) * tile_size);
+            const int ty0 = std::max(y0, ty * tile_size), ty1 = std::min(y1, (ty + 1) * tile_size);
+            const double tile_nearest =
+                std::max(floor_z, za * (za < 0.0 ? tx1 - 1 : tx0) + zb * (zb < 0.0 ? ty1 - 1 : ty0) + zc);
+            const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
+            if (double(tile_max_[t]) < tile_nearest)
+                continue;
+            const float *tile = tiles_.data() + t * tile_pixels;
+            for (int y = ty0; y < ty1; ++y)
+                for (int x = tx0; x < tx1; ++x) {
+                    bool inside = true;
+                    for (int e = 0; e < n && inside; ++e)
+                        inside = ea[e] * x + eb[e] * y + ec[e] >= 0.0;
+                    if (!inside)
+                        continue;
+                    const double nearest = std::max(floor_z, za * x + zb * y + zc);
+                    if (!(double(tile[(y % tile_size) * tile_size + x % tile_size]) < nearest))
+                        return false;
+                }
+        }
     return true;
 }
 

@@ -142,6 +142,13 @@ public:
     // The second step alone, for a caller that has tested the rectangle
     // already (or an equivalent, such as a Z-pyramid of this buffer).
     bool faces_occluded(const Aabb &box, float z_near) const;
+    // Whether every triangle (three indices into `positions` each) that
+    // faces the eye is hidden as faces_occluded hides a box's faces: every
+    // depth pixel whose square it reaches nearer than its nearest depth
+    // there (and than its nearest corner). Tighter than the box of the
+    // triangles: a leaf tested by what it draws. False when a triangle
+    // reaches in front of the near plane.
+    bool triangles_occluded(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t count) const;
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -172,6 +179,11 @@ private:
     // inside the buffer, not empty) is nearer than z, by the tiles'
     // maxima; brings those tiles' maxima up to date.
     bool all_nearer(int x0, int y0, int x1, int y1, float z) const;
+    // Whether every depth pixel whose square the convex polygon p (window
+    // coordinates of the buffer, n <= 4 corners counter-clockwise, window
+    // depths z) reaches is nearer than the polygon there, and than floor_z;
+    // true for a polygon facing away.
+    bool polygon_behind(const glm::dvec2 *p, const double *z, int n, double floor_z) const;
 
     Isa isa_;
     Options options_;

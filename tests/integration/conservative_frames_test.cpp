@@ -80,7 +80,8 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
     // The scene's own triangles beside the skins, for every family that takes them.
     for (const char *triangles : {"skins:occluder-triangles=512", "hzb:occluder-triangles=512", "hom:occluder-triangles=512",
                                   "skins:occluder-triangles=512:coverage=merged",
-                                  "hzb:occluder-triangles=512:coverage=merged"})
+                                  "hzb:occluder-triangles=512:coverage=merged",
+                                  "skins:occluder-triangles=512:coverage=merged:occludee=triangles"})
         variants.push_back({triangles});
     for (const char *probed : {"ou", "hp", "om-fh", "pc-fh", "skins-drawn", "chc"})
         variants.push_back({probed, 16, false, true});
@@ -136,12 +137,16 @@ TEST(ConservativeCulling, EveryConservativeStrategyEqualsUnculledFrames)
                                   "skins:occluder-triangles=512/16", "hzb:occluder-triangles=512/16",
                                   "hom:occluder-triangles=512/16", "skins:occluder-triangles=512:coverage=merged/16",
                                   "om-ps:occluder-triangle-budget=2048/16",
+                                  "skins:occluder-triangles=512:coverage=merged:occludee=triangles/16",
                                   "hzb:occluder-triangles=512:coverage=merged/16"})
         EXPECT_LT(drawn[occluding], drawn["vfc/16"]) << occluding << " culled no more than vfc";
     for (const char *family : {"skins", "hzb"})
         EXPECT_LE(drawn[std::string(family) + ":occluder-triangles=512:coverage=merged/16"],
                   drawn[std::string(family) + ":occluder-triangles=512/16"])
             << family << ": merged coverage should cull at least what whole depth pixels do";
+    EXPECT_LE(drawn["skins:occluder-triangles=512:coverage=merged:occludee=triangles/16"],
+              drawn["skins:occluder-triangles=512:coverage=merged/16"])
+        << "a leaf tested by its triangles, where its box fails, is culled at least as often";
     EXPECT_LT(drawn["ou:max-test-area=1/16"], drawn_none / 2) << "ou culled too little for the comparison to mean anything";
     EXPECT_LE(drawn["ou:proxy=triangles:max-test-area=1/16"], drawn["ou:max-test-area=1/16"])
         << "triangles as proxies should cull at least what boxes do";

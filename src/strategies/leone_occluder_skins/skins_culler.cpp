@@ -15,7 +15,8 @@ class OccluderSkinCuller final : public Culler {
 public:
     OccluderSkinCuller(const StrategyContext &context, const Settings &settings)
         : scene_(context.scene), hierarchy_(context.hierarchy), drawn_(settings.text("occluders") != "skins"),
-          limit_(std::size_t(settings.integer("max-occluders"))), box_test_(settings.text("occludee") == "box")
+          limit_(std::size_t(settings.integer("max-occluders"))), box_test_(settings.text("occludee") != "rect"),
+          triangle_test_(settings.text("occludee") == "triangles")
     {
         options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
@@ -44,7 +45,23 @@ public:
             const float z = footprint->window_z_near - 1e-6f;
             if (box_test_ && t.leaf ? raster_.occluded(t.box, footprint->rect, z) : raster_.occluded(footprint->rect, z))
                 t.result = Visibility::occluded;
+            else if (triangle_test_ && t.leaf && triangles_occluded(t.node))
+                t.result = Visibility::occluded;
         }
+    }
+
+    // Every triangle of the leaf, see-through ones included (GL draws
+    // them), hidden pixel by pixel: what the leaf draws, tighter than its box.
+    bool triangles_occluded(std::uint32_t node) const
+    {
+        const HierarchyNode &n = hierarchy_.nodes()[node];
+        const auto &triangles = hierarchy_.triangles();
+        for (std::uint32_t i = n.first_triangle; i < n.first_triangle + n.triangle_count; ++i) {
+            const Mesh &mesh = scene_.meshes[triangles[i].mesh];
+            if (!raster_.triangles_occluded(mesh.positions.data(), mesh.indices.data() + triangles[i].first_index, 1))
+                return false;
+        }
+        return true;
     }
 
     void rendered(std::uint32_t node) override
@@ -68,6 +85,7 @@ private:
     bool drawn_;
     std::size_t limit_;
     bool box_test_;
+    bool triangle_test_;
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
     std::optional<SkinOccluders> skins_;
@@ -89,9 +107,10 @@ StrategyFamily occluder_skins_family()
         choice_setting("occluders", {"skins", "drawn", "both"},
                        "the meshes' occluder skins, the triangles of the leaves drawn so far this frame, or both"),
         choice_setting("depth", {"pixel", "polygon"}, "depth per pixel, or one farthest depth per polygon"),
-        choice_setting("occludee", {"box", "rect"},
+        choice_setting("occludee", {"box", "rect", "triangles"},
                        "a leaf is its screen rectangle at its nearest depth and, where that fails, its box's faces "
-                       "pixel by pixel; or the rectangle alone (section 6)"),
+                       "pixel by pixel; or the rectangle alone (section 6); or, where the box fails too, its own "
+                       "triangles pixel by pixel (what it draws, tighter than its box)"),
         integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per depth pixel, each way"),
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),

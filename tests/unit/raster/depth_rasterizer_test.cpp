@@ -312,6 +312,63 @@ TEST_P(DepthRasterizerAgainstGl, MergedCoverageCoversOnlyWhatGlCoversAndClosesSe
     }
 }
 
+// A triangle the triangle test calls hidden shows no fragment in GL at
+// full resolution behind the same occluders; and the test settles more
+// triangles than the box test of each triangle's bounds.
+TEST_P(DepthRasterizerAgainstGl, TriangleTestHidesOnlyTrianglesGlHides)
+{
+    const int divisor = GetParam();
+    gl::OffscreenContext ctx(frame_size, frame_size);
+    const Camera camera = test_camera();
+    const glm::mat4 vp = camera.view_projection();
+    std::mt19937 rng(91u + unsigned(divisor));
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    DepthRasterizer r;
+    int by_box = 0, by_triangles = 0;
+    for (int scene = 0; scene < 30; ++scene) {
+        const Polygons p = random_polygons(rng, 40);
+        rasterize(r, p, vp, {divisor, true, scene % 2 == 1});
+        gl_depth(p, camera);   // the occluders' depth stays in GL's depth buffer
+        glDepthMask(GL_FALSE);
+        for (int t = 0; t < 60; ++t) {
+            // A small triangle behind or among the occluders, either winding,
+            // some reaching in front of the near plane.
+            const glm::vec3 c{unit(rng) * 8 - 4, unit(rng) * 8 - 4, 0.5f - unit(rng) * 13};
+            glm::vec3 v[3];
+            for (glm::vec3 &x : v)
+                x = c + glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f} * (0.2f + unit(rng) * 3.0f);
+            const std::uint32_t indices[3] = {0, 1, 2};
+            const bool hidden = r.triangles_occluded(v, indices, 1);
+            Aabb bounds = Aabb::of(v[0], v[0]);
+            bounds.expand(v[1]);
+            bounds.expand(v[2]);
+            const auto footprint = box_footprint(vp, camera.position, bounds, frame_size, frame_size);
+            const bool box = footprint && r.occluded(bounds, footprint->rect, footprint->window_z_near - 1e-6f);
+            by_box += box;
+            by_triangles += hidden && !box;   // the tighter test's own gain
+            if (!hidden)
+                continue;
+            glClearColor(0, 0, 0, 0);
+            glClear(GL_COLOR_BUFFER_BIT);
+            glColor3f(1, 1, 1);
+            glBegin(GL_TRIANGLES);
+            for (const glm::vec3 &x : v)
+                glVertex3f(x.x, x.y, x.z);
+            glEnd();
+            std::vector<std::uint8_t> pixels(std::size_t(frame_size) * frame_size * 4);
+            glReadPixels(0, 0, frame_size, frame_size, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+            long shown = 0;
+            for (std::size_t i = 0; i < pixels.size(); i += 4)
+                shown += pixels[i] != 0;
+            ASSERT_EQ(shown, 0) << "scene " << scene << " triangle " << t << " called hidden shows " << shown
+                                << " pixels";
+        }
+        glDepthMask(GL_TRUE);
+    }
+    EXPECT_GT(by_box, 20) << "the scenes hide some triangles' boxes";
+    EXPECT_GT(by_triangles, 20) << "the triangle test settles triangles their boxes do not";
+}
+
 INSTANTIATE_TEST_SUITE_P(Divisors, DepthRasterizerAgainstGl, ::testing::Values(1, 2, 3, 4),
                          [](const auto &info) { return "divisor_" + std::to_string(info.param); });
 
