@@ -124,6 +124,10 @@ StrategyFamily occluder_skins_family()
     f.presets = {
         {"skins-drawn", "occluders=drawn"},
         {"skins-both", "occluders=both"},
+        // For scenes whose meshes have no volume for skins (levels, thin
+        // walls): the scene's own largest triangles, fused as Masked
+        // Occlusion Culling fuses them, and leaves tested by what they draw.
+        {"skins-triangles", "occluder-triangles=1024:coverage=merged:occludee=triangles"},
     };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<OccluderSkinCuller>(context, settings);
