@@ -33,6 +33,10 @@ constexpr double edge_margin = 1.0 / 16.0;
 // is sixteen such steps.
 constexpr double depth_margin = 1.0 / (1 << 20);
 
+// Relative float error of a matrix-vector product, GL's (model-view, then
+// projection) or ours: a few roundings of the sum of its terms' magnitudes.
+constexpr double product_error = 8.0 * std::numeric_limits<float>::epsilon();
+
 // Relative float error of an edge or depth function evaluated over the
 // buffer: a few roundings of the largest term.
 constexpr double float_error = 4.0 * std::numeric_limits<float>::epsilon();
@@ -174,7 +178,13 @@ void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::ui
     for (std::size_t t = 0; t < triangle_count; ++t) {
         for (int i = 0; i < 3; ++i)
             clip[i] = clip_position(view_projection_, positions[indices[3 * t + std::size_t(i)]]);
-        polygon(clip, 3, across ? across + 3 * t : nullptr);
+        if (!options_.merge_partial_coverage) {
+            polygon(clip, 3);
+            continue;
+        }
+        const glm::vec3 corners[3] = {positions[indices[3 * t]], positions[indices[3 * t + 1]],
+                                      positions[indices[3 * t + 2]]};
+        polygon(clip, 3, across ? across + 3 * t : nullptr, transform_error(corners, 3));
     }
 }
 
@@ -227,9 +237,12 @@ void DepthRasterizer::render_quads(const glm::vec3 *positions, const std::uint32
 {
     glm::vec4 clip[4];
     for (std::size_t q = 0; q < quad_count; ++q) {
-        for (int i = 0; i < 4; ++i)
-            clip[i] = clip_position(view_projection_, positions[indices[4 * q + std::size_t(i)]]);
-        polygon(clip, 4);
+        glm::vec3 corners[4];
+        for (int i = 0; i < 4; ++i) {
+            corners[i] = positions[indices[4 * q + std::size_t(i)]];
+            clip[i] = clip_position(view_projection_, corners[i]);
+        }
+        polygon(clip, 4, nullptr, options_.merge_partial_coverage ? transform_error(corners, 4) : TransformError{});
     }
 }
 
@@ -239,17 +252,21 @@ void DepthRasterizer::render_box(const Aabb &box)
     // culling after projection keeps the faces that face the eye (section
     // 5's N . L < 0).
     glm::vec4 corners[8];
-    for (int i = 0; i < 8; ++i)
-        corners[i] = clip_position(view_projection_, box.corner(i));
+    glm::vec3 points[8];
+    for (int i = 0; i < 8; ++i) {
+        points[i] = box.corner(i);
+        corners[i] = clip_position(view_projection_, points[i]);
+    }
+    const TransformError error = options_.merge_partial_coverage ? transform_error(points, 8) : TransformError{};
     glm::vec4 quad[4];
     for (const auto &face : aabb_faces) {
         for (int i = 0; i < 4; ++i)
             quad[i] = corners[face[i]];
-        polygon(quad, 4);
+        polygon(quad, 4, nullptr, error);
     }
 }
 
-void DepthRasterizer::polygon(const glm::vec4 *clip, int count, const glm::vec3 *across)
+void DepthRasterizer::polygon(const glm::vec4 *clip, int count, const glm::vec3 *across, TransformError error)
 {
     ++stats_.polygons;
     // Outside one clip plane with every vertex (the far plane included):
@@ -288,7 +305,7 @@ void DepthRasterizer::polygon(const glm::vec4 *clip, int count, const glm::vec3 
             window[i] = {(clip[i].x * inv + 1.0f) * sx, (clip[i].y * inv + 1.0f) * sy};
             depth[i] = clip[i].z * inv * 0.5f + 0.5f;
         }
-        rasterize(window, depth, count, across);
+        rasterize(window, depth, count, across, error);
         return;
     }
 
@@ -325,10 +342,11 @@ void DepthRasterizer::polygon(const glm::vec4 *clip, int count, const glm::vec3 
         window[i] = {float((a[i].x * inv + 1.0) * double(sx)), float((a[i].y * inv + 1.0) * double(sy))};
         depth[i] = float(a[i].z * inv * 0.5 + 0.5);
     }
-    rasterize(window, depth, n);
+    rasterize(window, depth, n, nullptr, error);
 }
 
-void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int n, const glm::vec3 *across)
+void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int n, const glm::vec3 *across,
+                                TransformError error)
 {
     glm::vec2 lo = window[0], hi = window[0];
     for (int i = 1; i < n; ++i) {
@@ -406,12 +424,38 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
         any_dirty_ = true;
     }
     if (options_.merge_partial_coverage)
-        merge_partial(window, depth, n, s, across);
+        merge_partial(window, depth, n, s, across, error);
+}
+
+DepthRasterizer::TransformError DepthRasterizer::transform_error(const glm::vec3 *points, int count) const
+{
+    const glm::dmat4 m(view_projection_);
+    const double sx = 0.5 * double(frame_width_) / options_.divisor, sy = 0.5 * double(frame_height_) / options_.divisor;
+    TransformError e{0.0, 0.0};
+    for (int i = 0; i < count; ++i) {
+        const glm::dvec3 p(points[i]);
+        glm::dvec4 c = m * glm::dvec4(p, 1.0), bound;
+        for (int r = 0; r < 4; ++r)
+            bound[r] = product_error * (std::abs(m[0][r] * p.x) + std::abs(m[1][r] * p.y) + std::abs(m[2][r] * p.z) +
+                                        std::abs(m[3][r]));
+        if (!(c.w > bound.w)) {
+            // w itself uncertain: nothing known of where GL puts it.
+            e.window = e.depth = std::numeric_limits<double>::infinity();
+            return e;
+        }
+        const double w = c.w - bound.w;
+        e.window = std::max({e.window, sx * (bound.x + std::abs(c.x / c.w) * bound.w) / w,
+                             sy * (bound.y + std::abs(c.y / c.w) * bound.w) / w});
+        e.depth = std::max(e.depth, 0.5 * (bound.z + std::abs(c.z / c.w) * bound.w) / w);
+    }
+    return e;
 }
 
 void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
-                                    const glm::vec3 *across)
+                                    const glm::vec3 *across, TransformError error)
 {
+    if (!(error.window < 1.0 && error.depth < 1e-2))
+        return;   // GL may put the polygon a pixel away: its samples say nothing
     const int k = options_.divisor;
     const double first = 0.5 / k, last = (k - 0.5) / k;
     const double extent = guard * std::max(width_, height_) + tile_size;
@@ -424,7 +468,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     for (int e = 0; e < n; ++e) {
         const glm::dvec2 p(window[e]), q(window[e + 1 == n ? 0 : e + 1]);
         const double a = p.y - q.y, b = q.x - p.x, c = -(a * p.x + b * p.y);
-        margin[e] = (std::abs(a) + std::abs(b)) * (edge_margin / k) +
+        margin[e] = (std::abs(a) + std::abs(b)) * (edge_margin / k + error.window) +
                     float_error * ((std::abs(a) + std::abs(b)) * extent + std::abs(c));
         ea[e] = a;
         eb[e] = b;
@@ -441,6 +485,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     struct Across {
         int state = 0;   // 0: not yet looked at; 1: usable; -1: not
         double ea[2], eb[2], held_c[2];
+        double depth_error;   // the transform's, of both triangles' corners
         raster::PolygonSetup depth;
     } neighbour[3];
     bool candidate[3] = {false, false, false}, any_candidate = false;
@@ -454,6 +499,12 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         if (x.state != 0)
             return x.state > 0;
         x.state = -1;
+        const TransformError far = transform_error(&across[e], 1);
+        if (!(far.window <= error.window && far.depth <= error.depth) &&
+            !(far.window < 1.0 && far.depth < 1e-2))
+            return false;
+        const double extra = std::max(far.window, error.window);
+        x.depth_error = std::max(far.depth, error.depth);
         const glm::vec4 c = clip_position(view_projection_, across[e]);
         const float g = float(guard) * c.w;
         if (!(c.w > 0.0f && c.z > -c.w && c.z < c.w && std::abs(c.x) <= g && std::abs(c.y) <= g))
@@ -469,7 +520,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         const double raw_c = held_c[e] + margin[e];
         const double own_side = ea[e] * own.x + eb[e] * own.y + raw_c;
         const double other_side = -(ea[e] * double(r.x) + eb[e] * double(r.y) + raw_c);
-        const double room = 2.0 * margin[e] + 2.0 * length * (edge_margin / k);
+        const double room = 2.0 * margin[e] + 2.0 * length * (edge_margin / k + extra);
         if (!(own_side > room && other_side > room))
             return false;
         // The triangle across, counter-clockwise: q, p, r for the edge
@@ -480,7 +531,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         for (int j = 0; j < 2; ++j) {
             const glm::dvec2 from(tri[j + 1]), to(tri[(j + 2) % 3]);
             const double ta = from.y - to.y, tb = to.x - from.x, tc = -(ta * from.x + tb * from.y);
-            const double m = (std::abs(ta) + std::abs(tb)) * (edge_margin / k) +
+            const double m = (std::abs(ta) + std::abs(tb)) * (edge_margin / k + extra) +
                              float_error * ((std::abs(ta) + std::abs(tb)) * extent + std::abs(tc));
             x.ea[j] = ta;
             x.eb[j] = tb;
@@ -562,7 +613,8 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
                 // The fill's depth: the farthest over all the pixel's
                 // samples, so over those the polygon holds. A pixel
                 // already nearer gains nothing, whatever the samples.
-                float z = std::min(s.za * float(x) + depth_term, s.zcap);
+                float z = std::nextafter(float(double(std::min(s.za * float(x) + depth_term, s.zcap)) + error.depth),
+                                         2.0f);
                 if (!(z < tiles_[index]))
                     continue;
                 std::uint64_t mask = 0, bit = 1;
@@ -602,7 +654,10 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
                 for (int e = 0; e < 3; ++e)
                     if (used[e]) {
                         const raster::PolygonSetup &d = neighbour[e].depth;
-                        z = std::max(z, std::min(d.za * float(x) + (d.zb * float(y) + d.zc), d.zcap));
+                        z = std::max(z, std::nextafter(float(double(std::min(d.za * float(x) + (d.zb * float(y) + d.zc),
+                                                                             d.zcap)) +
+                                                             neighbour[e].depth_error),
+                                                       2.0f));
                     }
                 if (!(z < tiles_[index]))
                     continue;
@@ -805,15 +860,24 @@ bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::
         }
         if (out_all)
             continue;
-        // Never nearer than its nearest corner, less the depth margin.
+        // Never nearer than its nearest corner, less the depth margin and
+        // what GL's transform may move it by.
+        const glm::vec3 corners[3] = {positions[indices[3 * t]], positions[indices[3 * t + 1]],
+                                      positions[indices[3 * t + 2]]};
+        const TransformError error = transform_error(corners, 3);
+        if (!(error.window < 1e6 && error.depth < 1.0))
+            return false;
+        for (double &zi : z)
+            zi -= error.depth;
         const double floor_z = std::min({z[0], z[1], z[2]}) - depth_margin;
-        if (!polygon_behind(p, z, 3, floor_z))
+        if (!polygon_behind(p, z, 3, floor_z, error.window))
             return false;
     }
     return true;
 }
 
-bool DepthRasterizer::polygon_behind(const glm::dvec2 *p, const double *z, int n, double floor_z) const
+bool DepthRasterizer::polygon_behind(const glm::dvec2 *p, const double *z, int n, double floor_z,
+                                     double grow_more) const
 {
     double area = 0.0;
     glm::dvec2 lo(1e300), hi(-1e300);
@@ -827,10 +891,12 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *p, const double *z, int n
     // Every depth pixel whose square the polygon reaches, grown by the
     // edge margin.
     const double k = options_.divisor;
-    const double grow = edge_margin / k;
-    const int x0 = std::max(0, int(std::floor(lo.x - grow))), y0 = std::max(0, int(std::floor(lo.y - grow)));
-    const int x1 = std::min(width_, int(std::floor(hi.x + grow)) + 1);
-    const int y1 = std::min(height_, int(std::floor(hi.y + grow)) + 1);
+    const double grow = edge_margin / k + grow_more;
+    const double x_lo = std::max(-1.0, std::floor(lo.x - grow)), y_lo = std::max(-1.0, std::floor(lo.y - grow));
+    const double x_hi = std::min(double(width_), std::floor(hi.x + grow)), y_hi = std::min(double(height_), std::floor(hi.y + grow));
+    const int x0 = std::max(0, int(x_lo)), y0 = std::max(0, int(y_lo));
+    const int x1 = std::min(width_, int(x_hi) + 1);
+    const int y1 = std::min(height_, int(y_hi) + 1);
     if (x0 >= x1 || y0 >= y1)
         return true;
     // Outward edges: the largest E over a pixel's square, at the corner on

@@ -52,8 +52,11 @@
 // with room to spare, lie between the near and far planes, and hold the
 // sample inside their other edges by the margin). Without it a seam
 // through a sample's margin leaves that depth pixel empty, and an
-// occludee across it shown. Triangles go through the one-at-a-time setup
-// in this mode, and the partial layer is walked in scalar code only, so
+// occludee across it shown. Far from the origin GL's float transform may
+// move a vertex by more than the edge margin (pixels at 1e6 m): merged
+// coverage and the triangle test widen their margins by a bound of that
+// error (TransformError), and give up where it reaches a pixel. Triangles
+// go through the one-at-a-time setup in this mode, and the partial layer is walked in scalar code only, so
 // the two paths' buffers stay equal.
 //
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
@@ -167,10 +170,21 @@ public:
 
 private:
     void render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t triangle_count);
-    void polygon(const glm::vec4 *clip, int count, const glm::vec3 *across = nullptr);
-    void rasterize(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across = nullptr);
+    // How far GL's float transform of a point may put it from where we
+    // compute it, in buffer pixels and window depth: far from the origin
+    // (a scene at 1e6 m) a vertex rounds by pixels, far above the edge
+    // margin. Bounded by the float error of the matrix products,
+    // eps-multiples of the sum of the products' absolute terms.
+    struct TransformError {
+        double window, depth;   // {} is none
+    };
+    TransformError transform_error(const glm::vec3 *points, int count) const;
+
+    void polygon(const glm::vec4 *clip, int count, const glm::vec3 *across = nullptr, TransformError error = {});
+    void rasterize(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across = nullptr,
+                   TransformError error = {});
     void merge_partial(const glm::vec2 *window, const float *depth, int count, const raster::PolygonSetup &setup,
-                       const glm::vec3 *across);
+                       const glm::vec3 *across, TransformError error);
     // Adds sample mask `mask` held no farther than z to the pixel at
     // `index` (tile layout); returns whether its depth changed.
     bool add_partial(std::size_t index, std::uint64_t mask, float z);
@@ -183,7 +197,7 @@ private:
     // coordinates of the buffer, n <= 4 corners counter-clockwise, window
     // depths z) reaches is nearer than the polygon there, and than floor_z;
     // true for a polygon facing away.
-    bool polygon_behind(const glm::dvec2 *p, const double *z, int n, double floor_z) const;
+    bool polygon_behind(const glm::dvec2 *p, const double *z, int n, double floor_z, double grow_more = 0.0) const;
 
     Isa isa_;
     Options options_;

@@ -658,6 +658,10 @@ std::vector<Variant> conservative_variants(int width)
     variants.push_back({"ou:max-test-area=1", 16});
     variants.push_back({"ou:proxy=triangles:max-test-area=1", 16});
     variants.push_back({"hp:proxy=triangles", 16});
+    variants.push_back({"skins:occluder-triangles=1024", 16});
+    variants.push_back({"skins:occluder-triangles=1024:coverage=merged", 16});
+    variants.push_back({"skins:occludee=triangles", 16});
+    variants.push_back({"skins-drawn:occludee=triangles", 16});
     return variants;
 }
 
