@@ -430,25 +430,31 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
 DepthRasterizer::TransformError DepthRasterizer::transform_error(const glm::vec3 *points, int count) const
 {
     const glm::dmat4 m(view_projection_);
-    const double sx = 0.5 * double(frame_width_) / options_.divisor, sy = 0.5 * double(frame_height_) / options_.divisor;
     TransformError e{0.0, 0.0};
     for (int i = 0; i < count; ++i) {
         const glm::dvec3 p(points[i]);
-        glm::dvec4 c = m * glm::dvec4(p, 1.0), bound;
-        for (int r = 0; r < 4; ++r)
-            bound[r] = product_error * (std::abs(m[0][r] * p.x) + std::abs(m[1][r] * p.y) + std::abs(m[2][r] * p.z) +
-                                        std::abs(m[3][r]));
-        if (!(c.w > bound.w)) {
-            // w itself uncertain: nothing known of where GL puts it.
-            e.window = e.depth = std::numeric_limits<double>::infinity();
-            return e;
-        }
-        const double w = c.w - bound.w;
-        e.window = std::max({e.window, sx * (bound.x + std::abs(c.x / c.w) * bound.w) / w,
-                             sy * (bound.y + std::abs(c.y / c.w) * bound.w) / w});
-        e.depth = std::max(e.depth, 0.5 * (bound.z + std::abs(c.z / c.w) * bound.w) / w);
+        add_transform_error(m, p, m * glm::dvec4(p, 1.0), e);
     }
     return e;
+}
+
+void DepthRasterizer::add_transform_error(const glm::dmat4 &m, const glm::dvec3 &p, const glm::dvec4 &c,
+                                          TransformError &e) const
+{
+    glm::dvec4 bound;
+    for (int r = 0; r < 4; ++r)
+        bound[r] = product_error *
+                   (std::abs(m[0][r] * p.x) + std::abs(m[1][r] * p.y) + std::abs(m[2][r] * p.z) + std::abs(m[3][r]));
+    if (!(c.w > bound.w)) {
+        // w itself uncertain: nothing known of where GL puts it.
+        e.window = e.depth = std::numeric_limits<double>::infinity();
+        return;
+    }
+    const double sx = 0.5 * double(frame_width_) / options_.divisor, sy = 0.5 * double(frame_height_) / options_.divisor;
+    const double w = c.w - bound.w;
+    e.window = std::max({e.window, sx * (bound.x + std::abs(c.x / c.w) * bound.w) / w,
+                         sy * (bound.y + std::abs(c.y / c.w) * bound.w) / w});
+    e.depth = std::max(e.depth, 0.5 * (bound.z + std::abs(c.z / c.w) * bound.w) / w);
 }
 
 void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
@@ -739,32 +745,29 @@ bool DepthRasterizer::all_nearer(int x0, int y0, int x1, int y1, float z) const
     for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
         for (int tx = x0 / tile_size; tx <= (x1 - 1) / tile_size; ++tx) {
             const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
-            if (dirty_[t]) {
-                const float *tile = tiles_.data() + t * tile_pixels;
-                float m = tile[0];
-                for (int i = 1; i < tile_pixels; ++i)
-                    m = std::max(m, tile[i]);
-                tile_max_[t] = m;
-                dirty_[t] = 0;
-            }
+            if (dirty_[t])
+                refresh_tile_maximum(t);
             if (!(tile_max_[t] < z))
                 return false;
         }
     return true;
 }
 
+void DepthRasterizer::refresh_tile_maximum(std::size_t t) const
+{
+    const float *tile = tiles_.data() + t * tile_pixels;
+    float m = tile[0];
+    for (int i = 1; i < tile_pixels; ++i)
+        m = std::max(m, tile[i]);
+    tile_max_[t] = m;
+    dirty_[t] = 0;
+}
+
 void DepthRasterizer::update_tile_maxima() const
 {
-    for (std::size_t t = 0; t < dirty_.size(); ++t) {
-        if (!dirty_[t])
-            continue;
-        const float *tile = tiles_.data() + t * tile_pixels;
-        float m = tile[0];
-        for (int i = 1; i < tile_pixels; ++i)
-            m = std::max(m, tile[i]);
-        tile_max_[t] = m;
-        dirty_[t] = 0;
-    }
+    for (std::size_t t = 0; t < dirty_.size(); ++t)
+        if (dirty_[t])
+            refresh_tile_maximum(t);
     any_dirty_ = false;
 }
 
@@ -849,22 +852,22 @@ bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::
         glm::dvec2 p[3];
         double z[3];
         unsigned out_all = 63;   // beyond one side of the frustum with every corner: GL draws none of it
+        TransformError error{0.0, 0.0};   // how far GL's transform may move it
         for (int i = 0; i < 3; ++i) {
-            const glm::dvec4 c = m * glm::dvec4(glm::dvec3(positions[indices[3 * t + std::size_t(i)]]), 1.0);
+            const glm::dvec3 corner(positions[indices[3 * t + std::size_t(i)]]);
+            const glm::dvec4 c = m * glm::dvec4(corner, 1.0);
             if (!std::isfinite(c.x + c.y + c.z + c.w) || !(c.w > 0.0) || c.z < -c.w)
                 return false;   // across the near plane, around the eye, or unknown: not shown hidden
             out_all &= unsigned(c.x > c.w) << 0 | unsigned(c.x < -c.w) << 1 | unsigned(c.y > c.w) << 2 |
                        unsigned(c.y < -c.w) << 3 | unsigned(c.z > c.w) << 4;
             p[i] = {(c.x / c.w + 1.0) * sx, (c.y / c.w + 1.0) * sy};
             z[i] = c.z / c.w * 0.5 + 0.5;
+            add_transform_error(m, corner, c, error);
         }
         if (out_all)
             continue;
         // Never nearer than its nearest corner, less the depth margin and
         // what GL's transform may move it by.
-        const glm::vec3 corners[3] = {positions[indices[3 * t]], positions[indices[3 * t + 1]],
-                                      positions[indices[3 * t + 2]]};
-        const TransformError error = transform_error(corners, 3);
         if (!(error.window < 1e6 && error.depth < 1.0))
             return false;
         for (double &zi : z)

@@ -179,6 +179,8 @@ private:
         double window, depth;   // {} is none
     };
     TransformError transform_error(const glm::vec3 *points, int count) const;
+    // Widens `e` by the bound for point p, whose clip position c = m p.
+    void add_transform_error(const glm::dmat4 &m, const glm::dvec3 &p, const glm::dvec4 &c, TransformError &e) const;
 
     void polygon(const glm::vec4 *clip, int count, const glm::vec3 *across = nullptr, TransformError error = {});
     void rasterize(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across = nullptr,
@@ -189,6 +191,7 @@ private:
     // `index` (tile layout); returns whether its depth changed.
     bool add_partial(std::size_t index, std::uint64_t mask, float z);
     void update_tile_maxima() const;
+    void refresh_tile_maximum(std::size_t tile) const;   // tile_max_ from its pixels; no longer dirty
     // Whether every depth pixel of [x0, x1) x [y0, y1) (buffer pixels,
     // inside the buffer, not empty) is nearer than z, by the tiles'
     // maxima; brings those tiles' maxima up to date.

@@ -135,6 +135,23 @@ std::vector<float> gl_depth(const Polygons &p, const Camera &camera)
     return depth;
 }
 
+// The frame pixels `draw` shows in white on black, drawn against the
+// depth buffer as it stands (the occluders' depth).
+template <typename Draw>
+long pixels_shown(Draw draw)
+{
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glColor3f(1, 1, 1);
+    draw();
+    std::vector<std::uint8_t> pixels(std::size_t(frame_size) * frame_size * 4);
+    glReadPixels(0, 0, frame_size, frame_size, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    long shown = 0;
+    for (std::size_t i = 0; i < pixels.size(); i += 4)
+        shown += pixels[i] != 0;
+    return shown;
+}
+
 struct Comparison {
     long covered = 0;        // depth pixels the rasterizer covers
     long gl_covered = 0;     // frame pixels GL covers
@@ -231,21 +248,15 @@ TEST_P(DepthRasterizerAgainstGl, BoxTestHidesOnlyBoxesGlHides)
             static const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
                                             {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
             // Its faces drawn white on black behind the occluders' depth.
-            glClearColor(0, 0, 0, 0);
-            glClear(GL_COLOR_BUFFER_BIT);
-            glColor3f(1, 1, 1);
-            glBegin(GL_QUADS);
-            for (const auto &face : faces)
-                for (int corner : face) {
-                    const glm::vec3 v = box.corner(corner);
-                    glVertex3f(v.x, v.y, v.z);
-                }
-            glEnd();
-            std::vector<std::uint8_t> pixels(std::size_t(frame_size) * frame_size * 4);
-            glReadPixels(0, 0, frame_size, frame_size, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-            long shown = 0;
-            for (std::size_t i = 0; i < pixels.size(); i += 4)
-                shown += pixels[i] != 0;
+            const long shown = pixels_shown([&] {
+                glBegin(GL_QUADS);
+                for (const auto &face : faces)
+                    for (int corner : face) {
+                        const glm::vec3 v = box.corner(corner);
+                        glVertex3f(v.x, v.y, v.z);
+                    }
+                glEnd();
+            });
             ASSERT_EQ(shown, 0) << "scene " << scene << " box " << b << " called occluded shows " << shown
                                 << " pixels";
         }
@@ -348,18 +359,12 @@ TEST_P(DepthRasterizerAgainstGl, TriangleTestHidesOnlyTrianglesGlHides)
             by_triangles += hidden && !box;   // the tighter test's own gain
             if (!hidden)
                 continue;
-            glClearColor(0, 0, 0, 0);
-            glClear(GL_COLOR_BUFFER_BIT);
-            glColor3f(1, 1, 1);
-            glBegin(GL_TRIANGLES);
-            for (const glm::vec3 &x : v)
-                glVertex3f(x.x, x.y, x.z);
-            glEnd();
-            std::vector<std::uint8_t> pixels(std::size_t(frame_size) * frame_size * 4);
-            glReadPixels(0, 0, frame_size, frame_size, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-            long shown = 0;
-            for (std::size_t i = 0; i < pixels.size(); i += 4)
-                shown += pixels[i] != 0;
+            const long shown = pixels_shown([&] {
+                glBegin(GL_TRIANGLES);
+                for (const glm::vec3 &x : v)
+                    glVertex3f(x.x, x.y, x.z);
+                glEnd();
+            });
             ASSERT_EQ(shown, 0) << "scene " << scene << " triangle " << t << " called hidden shows " << shown
                                 << " pixels";
         }
