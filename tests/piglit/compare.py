@@ -5,7 +5,10 @@ A test of Debian's piglit fails the check when its result is worse than the
 baseline's (Debian's unpatched Mesa of the same version on the same test).
 A test that reports subtests is checked per subtest too, as 'TEST@SUBTEST':
 a test whose baseline is a fail for one subtest still guards the others.
-occu's own tests (group 'occu@') have no baseline: they must pass or skip.
+occu's own tests (group 'occu@') have no baseline: they must pass or skip,
+but for those tests/known-defects.txt lists as failing on a driver until
+their fix, which must fail there (a listed test that passes fails the check:
+its line must go).
 Each check is counted as what it is: a pass as passed, a skip as skipped, a
 fail or warn that the baseline also has as known (failing as on unpatched
 Mesa), anything worse than the baseline as failed. Prints one line per failed
@@ -63,18 +66,42 @@ def load_baseline(path):
     return base, problems
 
 
+def load_known_defects(path):
+    """Lines 'DRIVER TEST # defect': the result names 'DRIVER@TEST'."""
+    known = set()
+    with open(path) as f:
+        for number, raw in enumerate(f, 1):
+            words = raw.partition('#')[0].split()
+            if len(words) == 2:
+                known.add(f'{words[0]}@{words[1]}')
+            elif words:
+                sys.exit(f'{path}:{number}: expected "DRIVER TEST # defect", got "{raw.strip()}"')
+    return known
+
+
+def known_defect(name, known):
+    """The listed test a result (a test's, or a subtest's 'TEST@SUBTEST') belongs to."""
+    return next((k for k in known if name == k or name.startswith(k + '@')), None)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     results = load_results(sys.argv[1])
     baseline, problems = load_baseline(sys.argv[2])
+    known_defects = load_known_defects(os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                                    '..', 'known-defects.txt'))
     passed, failed, skipped, known = 0, len(problems), 0, 0
     for p in problems:
         print(f'FAIL baseline: {p}')
     for name in sorted(results):
         got = results[name]
         own = '@occu@' in name
-        if own:
+        if own and known_defect(name, known_defects) and name in known_defects:
+            ok, why = got == 'fail', 'a known defect (tests/known-defects.txt) must fail until its fix removes the line'
+        elif own and known_defect(name, known_defects):
+            ok, why = True, 'a subtest of a known defect'
+        elif own:
             ok, why = got in ('pass', 'skip'), 'occu tests must pass or skip'
         elif name in baseline:
             want = baseline[name]

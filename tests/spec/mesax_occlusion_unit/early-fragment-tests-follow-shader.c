@@ -5,6 +5,14 @@
  * a discard, the alpha test, and in a multisampled framebuffer the sample
  * mask output. This holds with no depth or stencil test enabled too.
  * (early-fragment-tests checks a discard with the depth test on.)
+ * GL_SAMPLES_PASSED counts at the same place (OpenGL 4.6, section 14.9:
+ * the early tests include the occlusion query's counting), so every
+ * subtest also draws the rectangle in RENDER mode, depth writes off, inside
+ * a GL_SAMPLES_PASSED query, which must count what it counts for the
+ * rectangle without a shader (spec issue 21: the query and NOHC count at
+ * the same place): 1024 in the single-sampled subtests, where that is
+ * NOHC, and in the multisampled ones the reference query's count (samples,
+ * where NOHC counts fragments).
  *
  * A 32 x 32 window (or a 4x framebuffer object of that size), depth
  * cleared to 1; the pass draws a window-sized rectangle at z 0.5.
@@ -30,6 +38,26 @@
 enum { S = 32 };
 
 static PFNGLUSEPROGRAMPROC UseProgram;
+static PFNGLGENQUERIESPROC GenQueries;
+static PFNGLBEGINQUERYPROC BeginQuery;
+static PFNGLENDQUERYPROC EndQuery;
+static PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv;
+
+/* GL_SAMPLES_PASSED of the rectangle drawn in RENDER mode, with depth
+ * writes off so that the depth buffer stays as the pass saw it. */
+static GLuint
+samples_passed(void)
+{
+    GLuint query, samples = 0xdeadbeefu;
+    GenQueries(1, &query);
+    glDepthMask(GL_FALSE);
+    BeginQuery(GL_SAMPLES_PASSED, query);
+    ou_rect(0, 0, S, S, 0.5f);
+    EndQuery(GL_SAMPLES_PASSED);
+    glDepthMask(GL_TRUE);
+    GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+    return samples;
+}
 
 static void
 counts(GLuint *nohc, GLuint *phc)
@@ -47,7 +75,7 @@ counts(GLuint *nohc, GLuint *phc)
 }
 
 static void
-expect(const char *name, GLuint program, GLuint nohc, GLuint phc)
+expect(const char *name, GLuint program, GLuint nohc, GLuint phc, GLuint samples_expected)
 {
     GLuint got_nohc, got_phc;
     if (!program) {
@@ -57,10 +85,14 @@ expect(const char *name, GLuint program, GLuint nohc, GLuint phc)
     }
     UseProgram(program);
     counts(&got_nohc, &got_phc);
+    const GLuint samples = samples_passed();
     UseProgram(0);
     if (got_nohc != nohc || got_phc != phc)
         printf("%s: NOHC %u PHC %u, expected %u %u\n", name, got_nohc, got_phc, nohc, phc);
-    subtest(got_nohc == nohc && got_phc == phc && piglit_check_gl_error(GL_NO_ERROR), name);
+    if (samples != samples_expected)
+        printf("%s: GL_SAMPLES_PASSED %u, expected %u\n", name, samples, samples_expected);
+    subtest(got_nohc == nohc && got_phc == phc && samples == samples_expected && piglit_check_gl_error(GL_NO_ERROR),
+            name);
 }
 
 static GLuint
@@ -81,13 +113,17 @@ int main(int argc, char **argv)
 {
     ou_init(argc, argv, S, S);
     UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
     const GLuint discards =
         early_program("if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard; gl_FragColor = vec4(1.0);");
     const GLuint transparent = early_program("gl_FragColor = vec4(1.0, 1.0, 1.0, 0.0);");
 
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);
-    expect("discard-without-tests-removes-nothing", discards, S * S, S * S);
+    expect("discard-without-tests-removes-nothing", discards, S * S, S * S, S * S);
 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -95,7 +131,7 @@ int main(int argc, char **argv)
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_ALPHA_TEST);
     glAlphaFunc(GL_GREATER, 0.5f);
-    expect("alpha-test-after-counts", transparent, S * S, S * S);
+    expect("alpha-test-after-counts", transparent, S * S, S * S, S * S);
     glDisable(GL_ALPHA_TEST);
 
     GLint max_samples = 0;
@@ -116,9 +152,10 @@ int main(int argc, char **argv)
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     GLuint right, all;
     counts(&right, &all);
-    printf("references without a shader: NOHC %u, PHC %u\n", right, all);
-    expect("multisample-discard-removes-nothing", discards, right, all);
+    const GLuint right_samples = samples_passed();
+    printf("references without a shader: NOHC %u, PHC %u, GL_SAMPLES_PASSED %u\n", right, all, right_samples);
+    expect("multisample-discard-removes-nothing", discards, right, all, right_samples);
     const GLuint masked = early_program("gl_SampleMask[0] = 0; gl_FragColor = vec4(1.0);");
-    expect("multisample-sample-mask-output-after-counts", masked, right, all);
+    expect("multisample-sample-mask-output-after-counts", masked, right, all, right_samples);
     piglit_report_result(result);
 }
