@@ -28,6 +28,12 @@
  *                                    DrawArrays generates INVALID_OPERATION, and
  *                                    so does its Begin once A has bound its draw
  *                                    framebuffer again; A's pass counts 0
+ *   reallocation-inside-begin-end-error-at-end  B, in another thread, reallocates
+ *                                    the depth buffer while A is between Begin and
+ *                                    End of a quad: the primitive is either drawn
+ *                                    (NOHC 64) or refused with INVALID_OPERATION
+ *                                    reported right after End (NOHC 0), never by a
+ *                                    later command (RenderMode: no error)
  *   draws-after-pass                 after the pass, on the reallocated buffers
  *                                    (status checked, depth cleared), a pass
  *                                    counts the quad: 64
@@ -82,6 +88,19 @@ other_thread(void *arg)
     if (!ou_make_b_current(&contexts))
         return -1;
     const GLenum e = reallocate(1, S);
+    glFinish();
+    OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
+    return (int)e;
+}
+
+/* The same, reallocating the depth buffer at twice the size. */
+static int
+other_thread_grows(void *arg)
+{
+    (void)arg;
+    if (!ou_make_b_current(&contexts))
+        return -1;
+    const GLenum e = reallocate(1, 2 * S);
     glFinish();
     OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
     return (int)e;
@@ -174,6 +193,34 @@ int main(int argc, char **argv)
     subtest(joined && thread_result == GL_NO_ERROR && e == GL_INVALID_OPERATION &&
                 begin_error == GL_INVALID_OPERATION && record[OU_NOHC] == 0,
             "other-thread-reallocates");
+
+    /* B reallocates while A is between Begin and End: the error, if the
+     * quad is refused, is End's (spec section 5.X, Errors). */
+    f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    ou_first_error();
+    begin_pass();
+    glBegin(GL_QUADS);
+    glVertex3f(4, 4, 0.5f);
+    glVertex3f(12, 4, 0.5f);
+    glVertex3f(12, 12, 0.5f);
+    glVertex3f(4, 12, 0.5f);
+    thread_result = -1;
+    const bool joined_inside = thrd_create(&thread, other_thread_grows, NULL) == thrd_success &&
+                               thrd_join(thread, &thread_result) == thrd_success;
+    glEnd();
+    const GLenum end_error = ou_first_error();
+    glRenderMode(GL_RENDER);
+    const GLenum later_error = ou_first_error();
+    const bool drawn = end_error == GL_NO_ERROR && record[OU_NOHC] == 64;
+    const bool refused_by_end = end_error == GL_INVALID_OPERATION && record[OU_NOHC] == 0;
+    if (!joined_inside || thread_result != GL_NO_ERROR || !(drawn || refused_by_end) || later_error != GL_NO_ERROR)
+        printf("reallocation inside Begin/End: joined %d, B's error 0x%x; error after End 0x%x, NOHC %u "
+               "(expected none and 64, or INVALID_OPERATION and 0); error after RenderMode 0x%x (expected none)\n",
+               joined_inside, thread_result, end_error, record[OU_NOHC], later_error);
+    subtest(joined_inside && thread_result == GL_NO_ERROR && (drawn || refused_by_end) && later_error == GL_NO_ERROR,
+            "reallocation-inside-begin-end-error-at-end");
+    f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
 
     /* After the pass the framebuffer is A's to use again (its status
      * tested again after the other context's changes). */
