@@ -6,6 +6,11 @@ baseline's (Debian's unpatched Mesa of the same version on the same test).
 A test that reports subtests is checked per subtest too, as 'TEST@SUBTEST':
 a test whose baseline is a fail for one subtest still guards the others.
 occu's own tests (group 'occu@') have no baseline: they must pass or skip.
+The runs of llvmpipe at a set rasterizer thread count ('llvmpipe-threads-N@',
+tests/piglit/make_profile.py --llvmpipe-threads) are checked against the
+baseline of 'llvmpipe@' (the unpatched driver at its default thread count),
+taken to stand for every count: an unpatched result that depended on the
+count would show as a failure here, to be looked into.
 Each check is counted as what it is: a pass as passed, a skip as skipped, a
 fail or warn that the baseline also has as known (failing as on unpatched
 Mesa), anything worse than the baseline as failed. Prints one line per failed
@@ -16,6 +21,7 @@ check and ends with 'piglit: N passed, N failed, N skipped, N known'.
 import bz2
 import json
 import os
+import re
 import sys
 
 # Worse is larger. A skip is worse than a pass (a feature went missing).
@@ -63,6 +69,11 @@ def load_baseline(path):
     return base, problems
 
 
+def baseline_name(name):
+    """The baseline line a result is checked against."""
+    return re.sub(r'^llvmpipe-threads-\d+@', 'llvmpipe@', name)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -76,8 +87,8 @@ def main():
         own = '@occu@' in name
         if own:
             ok, why = got in ('pass', 'skip'), 'occu tests must pass or skip'
-        elif name in baseline:
-            want = baseline[name]
+        elif baseline_name(name) in baseline:
+            want = baseline[baseline_name(name)]
             ok, why = RANK[got] <= RANK[want], f'baseline is {want}'
             if RANK[got] < RANK[want]:
                 print(f'note: {name}: {got}, better than the baseline ({want}); re-record the baseline')
