@@ -78,7 +78,7 @@ class ExpectedSkips:
 
     def __init__(self, path=EXPECTED_SKIPS):
         self.path = path
-        self.entries = {}      # (stage, name) -> (line number, reason)
+        self.entries = {}      # (stage, name) -> ("FILE:LINE", reason), of the lines whose condition holds
         self.problems = []
         try:
             lines = open(path).read().splitlines()
