@@ -9,6 +9,11 @@ occu's own tests (group 'occu@') have no baseline: they must pass or skip,
 but for those tests/known-defects.txt lists as failing on a driver until
 their fix, which must fail there (a listed test that passes fails the check:
 its line must go).
+The runs of llvmpipe at a set rasterizer thread count ('llvmpipe-threads-N@',
+tests/piglit/make_profile.py --llvmpipe-threads) are checked against the
+baseline of 'llvmpipe@' (the unpatched driver at its default thread count),
+taken to stand for every count: an unpatched result that depended on the
+count would show as a failure here, to be looked into.
 Each check is counted as what it is: a pass as passed, a skip as skipped, a
 fail or warn that the baseline also has as known (failing as on unpatched
 Mesa), anything worse than the baseline as failed. Prints one line per failed
@@ -19,6 +24,7 @@ check and ends with 'piglit: N passed, N failed, N skipped, N known'.
 import bz2
 import json
 import os
+import re
 import sys
 
 # Worse is larger. A skip is worse than a pass (a feature went missing).
@@ -66,6 +72,11 @@ def load_baseline(path):
     return base, problems
 
 
+def baseline_name(name):
+    """The baseline line a result is checked against."""
+    return re.sub(r'^llvmpipe-threads-\d+@', 'llvmpipe@', name)
+
+
 def load_known_defects(path):
     """Lines 'DRIVER TEST # defect': the result names 'DRIVER@TEST'."""
     known = set()
@@ -97,14 +108,14 @@ def main():
     for name in sorted(results):
         got = results[name]
         own = '@occu@' in name
-        if own and known_defect(name, known_defects) and name in known_defects:
+        if own and baseline_name(name) in known_defects:
             ok, why = got == 'fail', 'a known defect (tests/known-defects.txt) must fail until its fix removes the line'
-        elif own and known_defect(name, known_defects):
+        elif own and known_defect(baseline_name(name), known_defects):
             ok, why = True, 'a subtest of a known defect'
         elif own:
             ok, why = got in ('pass', 'skip'), 'occu tests must pass or skip'
-        elif name in baseline:
-            want = baseline[name]
+        elif baseline_name(name) in baseline:
+            want = baseline[baseline_name(name)]
             ok, why = RANK[got] <= RANK[want], f'baseline is {want}'
             if RANK[got] < RANK[want]:
                 print(f'note: {name}: {got}, better than the baseline ({want}); re-record the baseline')

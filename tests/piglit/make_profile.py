@@ -7,7 +7,13 @@ Test names get the driver as their first group, so piglit's summary reads
 (piglit adds both to concurrent GL tests).
 
   make_profile.py OUT --drivers softpipe,llvmpipe --debian-list tests/piglit/regression.list
+      [--llvmpipe-threads 0,1,2,8 [--threads-list LIST]]
   make_profile.py OUT --drivers softpipe,llvmpipe --program NAME=PATH [--program ...]
+
+--llvmpipe-threads runs the Debian tests again on llvmpipe at each rasterizer
+thread count given (LP_NUM_THREADS), named 'llvmpipe-threads-N@...';
+--threads-list names the tests that do (default: all of --debian-list).
+tests/piglit/compare.py checks them against the baseline of 'llvmpipe@...'.
 """
 import argparse
 import ast
@@ -41,12 +47,15 @@ def debian_commands(path, wanted):
     return found
 
 
-def add_test(root, name, command, driver):
-    t = et.SubElement(root, 'Test', type='gl', name=f'{driver}@{name}')
+def add_test(root, name, command, driver, threads=None):
+    group = driver if threads is None else f'{driver}-threads-{threads}'
+    t = et.SubElement(root, 'Test', type='gl', name=f'{group}@{name}')
     et.SubElement(t, 'option', name='command', value=repr(list(command)))
     et.SubElement(t, 'option', name='run_concurrent', value='True')
     env = et.SubElement(t, 'environment')
     et.SubElement(env, 'env', name='GALLIUM_DRIVER', value=driver)
+    if threads is not None:
+        et.SubElement(env, 'env', name='LP_NUM_THREADS', value=threads)
 
 
 def main():
@@ -57,6 +66,8 @@ def main():
     ap.add_argument('--debian-profile', default=DEBIAN_PROFILE)
     ap.add_argument('--program', action='append', default=[], metavar='NAME=PATH')
     ap.add_argument('--name', default='occu')
+    ap.add_argument('--llvmpipe-threads', default='', metavar='N,N,...')
+    ap.add_argument('--threads-list', metavar='LIST')
     args = ap.parse_args()
 
     tests = []
@@ -67,17 +78,33 @@ def main():
             if name not in commands:
                 sys.exit(f'{args.debian_list}:{number}: no test named "{name}" in {args.debian_profile}')
             tests.append((name, commands[name]))
+    debian_tests = list(tests)
     for p in args.program:
         name, sep, path = p.partition('=')
         if not sep or not name or not path:
             sys.exit(f'--program wants NAME=PATH, got "{p}"')
         tests.append((name, [path]))
 
+    threads = [n for n in args.llvmpipe_threads.split(',') if n]
+    threaded = debian_tests if threads else []
+    if threads and args.threads_list:
+        wanted = read_list(args.threads_list)
+        known = {n for n, _ in threaded}
+        for name, number in wanted:
+            if name not in known:
+                sys.exit(f'{args.threads_list}:{number}: "{name}" is not a test of {args.debian_list}')
+        wanted_names = {n for n, _ in wanted}
+        threaded = [t for t in threaded if t[0] in wanted_names]
+
     drivers = [d for d in args.drivers.split(',') if d]
-    root = et.Element('PiglitTestList', name=args.name, count=str(len(tests) * len(drivers)))
+    root = et.Element('PiglitTestList', name=args.name,
+                      count=str(len(tests) * len(drivers) + len(threaded) * len(threads)))
     for driver in drivers:
         for name, command in tests:
             add_test(root, name, command, driver)
+    for n in threads:
+        for name, command in threaded:
+            add_test(root, name, command, 'llvmpipe', n)
     with gzip.open(args.out, 'wt') as f:
         f.write(et.tostring(root, encoding='unicode'))
 

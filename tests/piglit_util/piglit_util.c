@@ -9,6 +9,9 @@
 int piglit_width, piglit_height;
 static OSMesaContext context;
 static unsigned char *color_buffer;
+/* Subtests reported so far, by result: a program whose subtests all
+ * skipped has tested nothing, and says so (piglit_report_result). */
+static unsigned subtests_reported[PIGLIT_SKIP + 1];
 
 static const char *result_name(enum piglit_result r)
 {
@@ -21,6 +24,16 @@ static const char *result_name(enum piglit_result r)
 
 void piglit_report_result(enum piglit_result result)
 {
+    /* piglit's runner takes the worst subtest as the test's result: a
+     * failed subtest fails it, and subtests that all skipped make it a
+     * skip. meson reads the exit status alone, which must say the same. */
+    if (result == PIGLIT_PASS && subtests_reported[PIGLIT_FAIL] > 0) {
+        printf("%u subtests failed: the test reports a failure\n", subtests_reported[PIGLIT_FAIL]);
+        result = PIGLIT_FAIL;
+    } else if (result == PIGLIT_PASS && subtests_reported[PIGLIT_SKIP] > 0 && subtests_reported[PIGLIT_PASS] == 0) {
+        printf("every subtest (%u) skipped: the test reports a skip, not a pass\n", subtests_reported[PIGLIT_SKIP]);
+        result = PIGLIT_SKIP;
+    }
     printf("PIGLIT: {\"result\": \"%s\" }\n", result_name(result));
     fflush(stdout);
     if (context)
@@ -43,6 +56,7 @@ void piglit_report_subtest_result(enum piglit_result result, const char *format,
     vsnprintf(name, sizeof(name), format, ap);
     va_end(ap);
     printf("PIGLIT: {\"subtest\": {\"%s\" : \"%s\"}}\n", name, result_name(result));
+    subtests_reported[result == PIGLIT_PASS ? PIGLIT_PASS : result == PIGLIT_FAIL ? PIGLIT_FAIL : PIGLIT_SKIP]++;
     fflush(stdout);
 }
 

@@ -35,7 +35,9 @@ void piglit_osmesa_init(int argc, char **argv, int width, int height);
 
 extern int piglit_width, piglit_height;
 
-/* Prints the final result line and exits. */
+/* Prints the final result line and exits. A PASS is reported as FAIL when a
+ * subtest failed, and as SKIP when subtests were reported and every one of
+ * them skipped, as piglit's runner reads such a test. */
 void piglit_report_result(enum piglit_result result) __attribute__((noreturn));
 /* Prints one subtest's result line. */
 void piglit_report_subtest_result(enum piglit_result result, const char *format, ...)

@@ -21,7 +21,9 @@
  *                                       NOHC the fragments right of it
  *   samples-passed-counts-samples       a GL_SAMPLES_PASSED query inside
  *                                       the pass counts what it counts in
- *                                       GL_RENDER (samples, not fragments)
+ *                                       GL_RENDER (samples, not fragments):
+ *                                       exactly the samples right of the
+ *                                       occluder (derived where it is checked)
  *
  * softpipe has no multisampling (GL_MAX_SAMPLES below 4): there the test
  * skips, the one driver property it cannot have.
@@ -118,8 +120,20 @@ int main(int argc, char **argv)
 
     /* Spec 4.1.7 edit: occlusion queries count as in RENDER mode. The
      * same draw against the same depth buffer, once in GL_RENDER and once
-     * in a pass; every sample of the rectangle right of the occluder
-     * passes, so both must be 4 * 128 at least, and equal. */
+     * in a pass, must count exactly the samples that pass:
+     * - the rectangle's edges (x 8 and 24, y 8 and 24) and the occluder's
+     *   right edge (x 16) lie on pixel boundaries, and a sample position
+     *   lies inside its pixel, never on its boundary, so every sample of the
+     *   rectangle's pixels, and of those only, is inside the rectangle, and
+     *   every sample of the pixels left of x = 16 is inside the occluder;
+     * - a sample on the diagonal the two triangles share is covered by one
+     *   of them, never both (GL 4.6 section 14.6.3, multisample
+     *   rasterization takes the polygon rules at each sample point);
+     * - LESS, the occluder's depth 0.25 against the rectangle's 0.5: the
+     *   occluded samples fail, the others pass against the cleared 1.0.
+     * So the count is the samples of the 8 x 16 pixels right of x = 16:
+     * GL_SAMPLES of the framebuffer (4 asked for; the implementation may
+     * give more) times 128. */
     PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
     PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
     PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
@@ -144,7 +158,12 @@ int main(int argc, char **argv)
             glRenderMode(GL_RENDER);
         GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples[in_pass]);
     }
-    printf("GL_SAMPLES_PASSED: %u in GL_RENDER, %u in a pass\n", samples[0], samples[1]);
-    subtest(samples[0] >= 4 * 128 && samples[1] == samples[0], "samples-passed-counts-samples");
+    GLint samples_per_pixel = 0;
+    glGetIntegerv(GL_SAMPLES, &samples_per_pixel);
+    const GLuint expected = (GLuint)samples_per_pixel * 8 * 16;
+    printf("GL_SAMPLES_PASSED: %u in GL_RENDER, %u in a pass, expected %u (%d samples a pixel, 8 x 16 pixels)\n",
+           samples[0], samples[1], expected, samples_per_pixel);
+    subtest(samples_per_pixel >= 4 && samples[0] == expected && samples[1] == expected,
+            "samples-passed-counts-samples");
     piglit_report_result(result);
 }

@@ -20,8 +20,22 @@
  * Counts, extents and depth exact (0.5 and 0.125 map to themselves,
  * counts-analytic.c).
  *
+ * That the pass was cut: a SAMPLES_PASSED query active during the first
+ * layer only (it counts as in RENDER mode, section 5.X: the layer's right
+ * half, 32768 samples), and GL_QUERY_RESULT_AVAILABLE asked once, still
+ * inside the pass, after the last layer. llvmpipe answers from the fence of
+ * the scene that holds the query's end (lp_query.c): signalled, TRUE; not
+ * yet submitted, it submits the scene then and answers FALSE. At
+ * LP_NUM_THREADS 0 a submitted scene is rasterized at once in the calling
+ * thread, so the answer is TRUE exactly when that scene was submitted
+ * before the question, during the pass: the pass spans scenes, and the
+ * subtests require it there. With rasterizer threads a submitted scene may
+ * still be rasterizing, so the answer is printed, not required; softpipe
+ * has no scenes (it rasterizes each primitive as it is drawn).
+ *
  * Subtests:
- *   brief-counts-every-primitive     the records, read with RenderMode
+ *   brief-counts-every-primitive     the records, read with RenderMode, the
+ *                                    query, and the cut at LP_NUM_THREADS 0
  *   async-counts-every-primitive     the same pass with Begin/EndOcclusionPassMESAX
  *                                    and a waiting read
  *
@@ -33,14 +47,19 @@
 enum { S = 256, LAYERS = 8, TILES = 3 };
 
 static struct ou_async_functions a;
+static PFNGLGENQUERIESPROC GenQueries;
+static PFNGLBEGINQUERYPROC BeginQuery;
+static PFNGLENDQUERYPROC EndQuery;
+static PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv;
+static GLuint query;
 static const GLint tiles[4 * TILES] = {0, 0, S, S, 124, 60, 8, 8, 128, 0, 128, S};
 static GLuint records[TILES][OU_BRIEF_SIZE];
 
 static void
-draw_layers(void)
+draw_layers(int first, int end)
 {
     glBegin(GL_QUADS);
-    for (int l = 0; l < LAYERS; ++l) {
+    for (int l = first; l < end; ++l) {
         const float z = l % 2 ? 0.125f : 0.5f;
         for (int y = 0; y < S; y += 2)
             for (int x = 0; x < S; x += 2) {
@@ -72,6 +91,47 @@ prepare(void)
     ScissorsMESAX(TILES, tiles);
 }
 
+/* The layers, the first under the query; whether the query's result was
+ * available after the last, asked inside the pass. */
+static GLuint
+draw_pass(void)
+{
+    BeginQuery(GL_SAMPLES_PASSED, query);
+    draw_layers(0, 1);
+    EndQuery(GL_SAMPLES_PASSED);
+    draw_layers(1, LAYERS);
+    GLuint available = 0;
+    GetQueryObjectuiv(query, GL_QUERY_RESULT_AVAILABLE, &available);
+    return available;
+}
+
+/* The query counted the first layer's visible half, and the pass was cut
+ * after the query's end where that is observable (see the top comment). */
+static bool
+check_query_and_cut(const char *name, GLuint available)
+{
+    GLuint samples = 0;
+    GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+    bool ok = samples == S * S / 2;
+    if (!ok)
+        printf("%s: the query during the first layer counted %u samples, expected %u\n", name, samples, S * S / 2);
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    const char *threads = getenv("LP_NUM_THREADS");
+    if (renderer && strstr(renderer, "llvmpipe") && threads && strcmp(threads, "0") == 0) {
+        if (!available) {
+            printf("%s: the scene holding the query's end was not submitted before the pass's last layer was drawn: "
+                   "the pass was not cut, so it did not span scenes\n",
+                   name);
+            ok = false;
+        }
+    } else {
+        printf("%s: query available inside the pass after the last layer: %s (required only on llvmpipe at "
+               "LP_NUM_THREADS 0)\n",
+               name, available ? "yes" : "no");
+    }
+    return ok;
+}
+
 static bool
 check(const char *name)
 {
@@ -93,26 +153,35 @@ check(const char *name)
 int main(int argc, char **argv)
 {
     a = ou_init_async(argc, argv, S, S);
+    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
+    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
+    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    if (!GenQueries || !BeginQuery || !EndQuery || !GetQueryObjectuiv) {
+        printf("OpenGL 1.5 occlusion queries are missing\n");
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    GenQueries(1, &query);
 
     prepare();
     glRenderMode(GL_BRIEF_OCCLUSION_MESAX);
-    draw_layers();
+    GLuint available = draw_pass();
     const GLint overflowed = glRenderMode(GL_RENDER);
     ScissorsMESAX(0, NULL);
-    subtest(overflowed == 0 && piglit_check_gl_error(GL_NO_ERROR) && check("RenderMode"),
-            "brief-counts-every-primitive");
+    bool ok = overflowed == 0 && piglit_check_gl_error(GL_NO_ERROR) && check("RenderMode");
+    subtest(check_query_and_cut("RenderMode", available) && ok, "brief-counts-every-primitive");
 
     GLuint pass;
     a.GenOcclusionPasses(1, &pass);
     prepare();
     a.BeginOcclusionPass(GL_BRIEF_OCCLUSION_MESAX, pass);
-    draw_layers();
+    available = draw_pass();
     a.EndOcclusionPass();
     ScissorsMESAX(0, NULL);
     GLint async_overflowed = -1;
     a.GetOcclusionPassiv(pass, GL_OCCLUSION_PASS_RESULT_MESAX, &async_overflowed);
-    subtest(async_overflowed == 0 && piglit_check_gl_error(GL_NO_ERROR) && check("async"),
-            "async-counts-every-primitive");
+    ok = async_overflowed == 0 && piglit_check_gl_error(GL_NO_ERROR) && check("async");
+    subtest(check_query_and_cut("async", available) && ok, "async-counts-every-primitive");
     a.DeleteOcclusionPasses(1, &pass);
     piglit_report_result(result);
 }

@@ -1,11 +1,16 @@
 // A budget of occluders in triangles (selection.h,
-// first_leaves_within_triangles) against a brute-force search: the
-// shortest prefix of the best-first leaves holding at least the budget's
-// triangles, or all of them, and never none when there is a leaf.
+// first_leaves_within_triangles) against a brute-force search from the
+// definition, not from the implementation's loop: of every prefix length
+// 0..n of the best-first leaves, each summed on its own, the lengths that
+// are not empty and hold at least the budget's triangles; the answer is the
+// shortest of them, or all n leaves when no length qualifies (so never none
+// when there is a leaf).
 #include "strategies/poon_wang_opacity_maps/selection.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <numeric>
 #include <random>
 
@@ -23,11 +28,29 @@ TEST(OccluderTriangleBudget, TakesTheShortestPrefixReachingTheBudget)
         std::vector<std::uint32_t> best_first;
         for (std::uint32_t i = length(rng); i-- > 0;)
             best_first.push_back(std::uniform_int_distribution<std::uint32_t>(0, 39)(rng));
-        const std::size_t budget = std::uniform_int_distribution<std::size_t>(1, 2000)(rng);
+        std::size_t budget = std::uniform_int_distribution<std::size_t>(1, 2000)(rng);
+        if (round % 2 == 1 && !best_first.empty()) {
+            // A budget some prefix reaches exactly: the boundary between
+            // taking a leaf and stopping before it.
+            const std::size_t j = std::uniform_int_distribution<std::size_t>(1, best_first.size())(rng);
+            budget = 0;
+            for (std::size_t i = 0; i < j; ++i)
+                budget += triangles[best_first[i]];
+            budget = std::max<std::size_t>(budget, 1);
+        }
 
-        std::size_t expected = 0, sum = 0;
-        while (expected < best_first.size() && (expected == 0 || sum < budget))
-            sum += triangles[best_first[expected++]];
+        // Every prefix length, its triangles summed afresh; the qualifying
+        // lengths gathered, and the least taken.
+        std::vector<std::size_t> qualifying;
+        for (std::size_t k = 0; k <= best_first.size(); ++k) {
+            const std::size_t held = std::accumulate(
+                best_first.begin(), best_first.begin() + std::ptrdiff_t(k), std::size_t{0},
+                [&](std::size_t total, std::uint32_t leaf) { return total + triangles.at(leaf); });
+            if (k > 0 && held >= budget)
+                qualifying.push_back(k);
+        }
+        const std::size_t expected =
+            qualifying.empty() ? best_first.size() : *std::min_element(qualifying.begin(), qualifying.end());
         const auto got = first_leaves_within_triangles(best_first, triangles, budget);
         ASSERT_EQ(got.size(), expected) << "round " << round;
         for (std::size_t i = 0; i < got.size(); ++i)
