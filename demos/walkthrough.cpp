@@ -99,7 +99,7 @@ struct Options {
 
 Options parse(int argc, char **argv)
 {
-    // The registry's strategies, as --help lists them or as README's table.
+    // The registry's strategies, as --help lists them or as docs/strategies.md's table.
     if (argc >= 2 && std::strcmp(argv[1], "--list-strategies") == 0) {
         const bool markdown = argc == 3 && std::strcmp(argv[2], "--markdown") == 0;
         if (argc > 2 && !markdown)

@@ -165,7 +165,7 @@ std::vector<std::string> strategy_names();
 std::vector<std::string> distinct_strategy_names();
 // The families, their papers, presets and settings, for --help.
 std::string strategies_help();
-// The same as one markdown table, a row per family (README's strategies
+// The same as one markdown table, a row per family (docs/strategies.md's
 // table is this text, and a test keeps it so).
 std::string strategies_markdown();
 

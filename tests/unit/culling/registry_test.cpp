@@ -66,7 +66,7 @@ TEST(Registry, EveryFamilyNamesItsPaperAndFactory)
         EXPECT_NE(help.find(n), std::string::npos) << n;
 }
 
-// README's strategies table: a row per family in the registry's order, each
+// docs/strategies.md's table: a row per family in the registry's order, each
 // with the table's six cells (a '|' inside a cell is escaped), naming the
 // family, its listed presets, its paper and every setting.
 TEST(Registry, MarkdownTableHasARowPerFamily)
