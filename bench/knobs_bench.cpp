@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-knobs: what accuracy costs in time, for every knob of every
 // strategy in the registry, in one command (docs/knobs.md).
 //

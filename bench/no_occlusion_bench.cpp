@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-no-occlusion: only the work the scene calls for (issue 18,
 // item 6; docs/no-occlusion.md). Every strategy of the registry against
 // vfc where occlusion culling has little or nothing to gain: the city's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-real-scenes: the targets of culling on scenes occu did not
 // make (issue 29; docs/real-scenes.md): Quake III levels from Debian's
 // OpenArena data and buildings from assimp-testmodels, every strategy side

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-random-views: renders random cameras over several scenes with every
 // conservative strategy of the registry and counts the visible pixels each
 // frame lost against the unculled frame of the same camera (must be 0;

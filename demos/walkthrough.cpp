@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // walkthrough: renders a route through a scene with several culling
 // strategies, frame by frame side by side, and reports what each drew,
 // how long it took, and how it compares with the exact-visibility oracle,

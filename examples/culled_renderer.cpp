@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A renderer of its own that embeds one of occu's culling strategies, the way
 // an application would: it makes the GL context, the scene and the camera
 // itself, and per frame asks the strategy's Culler which objects to draw.

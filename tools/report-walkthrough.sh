@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Writes DIR/index.html, a self-contained report of a walkthrough run
 # (build/demos/walkthrough --out DIR): the summary table (DIR/summary.csv),
 # the plots tools/plot-walkthrough.sh made (frame-times.png, triangles.png,

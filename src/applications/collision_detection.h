@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Collision detection with occlusion tiles: Bartz, Meissner and Huettner,
 // "Extending Graphics Hardware For Occlusion Queries In OpenGL" (1998),
 // section 5, "Support for Collision Detection", and figure 7

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Ray casting accelerated by verbose occlusion lists: Bartz, Meissner and
 // Huettner, "Extending Graphics Hardware For Occlusion Queries In OpenGL"
 // (1998), section 5, "Support for Ray Casting"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The strategy registry: every culling strategy the programs can run, one
 // entry per family (the list: src/strategies/registry.cpp), each from its
 // own folder under src/strategies/. Programs learn strategies, their papers and their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "evaluation/measurement_session.h"
 
 #include <sys/resource.h>

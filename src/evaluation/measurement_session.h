@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One measurement of several culling strategies side by side, for every
 // program that compares them (walkthrough, occu-random-views,
 // occu-bench-no-occlusion, occu-bench-knobs): the strategies made from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A volume for the mixed polygon/volume scenes of Bartz, Meissner and
 // Huettner (1998), section 5, "Support for Ray Casting": a scalar density
 // on a regular grid, its subdivision entities (bricks), and front-to-back

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cull maps: Wonka, Wimmer and Schmalstieg, "Visibility Preprocessing with
 // Occluder Fusion for Urban Walkthroughs" (2000), sections 1.3, 2.2 and 5
 // (/work/shared/papers/003_9d0037856a5dffc6.txt, lines 74-96, 142-150,

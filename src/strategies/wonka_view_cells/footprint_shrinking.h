@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Occluder shrinking for 2.5D occluders of constant height: Wonka, Wimmer
 // and Schmalstieg, "Visibility Preprocessing with Occluder Fusion for Urban
 // Walkthroughs" (2000), sections 2.1 and 4.4

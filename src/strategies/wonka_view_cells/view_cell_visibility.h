@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The potentially visible set of a view cell: Wonka, Wimmer and
 // Schmalstieg, "Visibility Preprocessing with Occluder Fusion for Urban
 // Walkthroughs" (2000), sections 2.4, 5 and 6

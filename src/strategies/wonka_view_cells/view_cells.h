@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // View cells over a city's free space: Wonka, Wimmer and Schmalstieg,
 // "Visibility Preprocessing with Occluder Fusion for Urban Walkthroughs"
 // (2000), section 3 (/work/shared/papers/003_9d0037856a5dffc6.txt,

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The strategies table of docs/strategies.md is the registry's: the lines
 # between its two markers are exactly what `walkthrough --list-strategies
 # --markdown` prints, so the table cannot drift from the families, their

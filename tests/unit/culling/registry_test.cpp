@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The strategy registry: every listed name builds a strategy of its
 // family with its settings; traits come from the family, not the name;
 // approximation knobs at tolerance=0 are exact; unknown strategies,

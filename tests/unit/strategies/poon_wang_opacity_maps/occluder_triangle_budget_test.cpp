@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A budget of occluders in triangles (selection.h,
 // first_leaves_within_triangles) against a brute-force search: the
 // shortest prefix of the best-first leaves holding at least the budget's
