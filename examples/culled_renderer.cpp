@@ -32,8 +32,8 @@ using namespace occu;
 
 namespace {
 
-constexpr int frame_size = 256;      // pixels, each way
-constexpr std::size_t batch = 16;    // objects tested together (one occlusion pass for `ou`)
+constexpr int frame_size = 256;     // pixels, each way
+constexpr std::size_t batch = 16;   // objects tested together (one occlusion pass for `ou`)
 
 void add_box(Scene &scene, const std::string &name, const Aabb &box, const glm::vec3 &colour)
 {
@@ -96,8 +96,7 @@ float distance_to(const glm::vec3 &eye, const Aabb &box)
 
 // One frame: clear, then either every leaf in the frustum, or the leaves a
 // culler finds visible. Returns how many leaves it drew.
-std::size_t draw_frame(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Frame &frame,
-                       Culler *culler)
+std::size_t draw_frame(const SceneRenderer &renderer, const Hierarchy &hierarchy, const Frame &frame, Culler *culler)
 {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl::load_camera(frame.camera);
@@ -133,7 +132,7 @@ std::size_t draw_frame(const SceneRenderer &renderer, const Hierarchy &hierarchy
     return drawn;
 }
 
-}  // namespace
+}   // namespace
 
 int main(int argc, char **argv)
 {
@@ -163,8 +162,10 @@ int main(int argc, char **argv)
         const StrategyContext strategy_context{scene, hierarchy, renderer};
         Strategy strategy = make_strategy(spec, strategy_context);
         if (own_traversal(*strategy.culler) || strategy.choice.family->needs_truth) {
-            std::fprintf(stderr, "occu-culled-renderer: %s walks the hierarchy itself or needs the oracle; "
-                                 "this renderer only asks for tests\n", spec.c_str());
+            std::fprintf(stderr,
+                         "occu-culled-renderer: %s walks the hierarchy itself or needs the oracle; "
+                         "this renderer only asks for tests\n",
+                         spec.c_str());
             return 2;
         }
 
@@ -178,14 +179,15 @@ int main(int argc, char **argv)
             std::size_t differing = 0;
             for (std::size_t i = 0; i < pixels; i += 4)
                 differing += !std::equal(&unculled[i], &unculled[i] + 4, context.pixels() + i);
-            std::printf("frame %2d: %3zu objects in the frustum, %3zu drawn, %3zu culled, %zu pixels differ\n", f,
-                        all, visible, all - visible, differing);
+            std::printf("frame %2d: %3zu objects in the frustum, %3zu drawn, %3zu culled, %zu pixels differ\n", f, all,
+                        visible, all - visible, differing);
             in_frustum += all;
             drawn += visible;
             differing_frames += differing > 0;
         }
         std::printf("%s: %zu of %zu objects in the frustum culled over %d frames; %zu frames differ from the "
-                    "unculled ones\n", spec.c_str(), in_frustum - drawn, in_frustum, frames, differing_frames);
+                    "unculled ones\n",
+                    spec.c_str(), in_frustum - drawn, in_frustum, frames, differing_frames);
         if (strategy.choice.conservative() && differing_frames > 0) {
             std::fprintf(stderr, "occu-culled-renderer: %s is conservative but changed %zu frames\n", spec.c_str(),
                          differing_frames);
