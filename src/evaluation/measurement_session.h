@@ -145,6 +145,12 @@ public:
     // that refuses its settings throws what it throws.
     SessionStrategy &add(const std::string &spec, const std::vector<std::string> &common = {},
                          const std::string &label = {}, std::size_t batch = 0);
+    // add(), unless the strategy's family refuses the session's scene
+    // (StrategyFamily::refusal): then it adds nothing and returns why
+    // (empty: added), so that a run over several scenes leaves out, with
+    // its reason, what a scene cannot serve.
+    std::string add_unless_refused(const std::string &spec, const std::vector<std::string> &common = {},
+                                   const std::string &label = {});
 
     using Observer = std::function<void(const SessionStrategy &, const StrategyFrame &)>;
     // One frame of `camera` by every strategy, in this frame's shuffled
