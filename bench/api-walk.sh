@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The API walk (tests/spec/mesax_occlusion_unit/api-random-calls.c) at
 # 1,000,000 calls per driver, from its fixed seed, on the patched Mesa with
 # the files the series changes built with AddressSanitizer and

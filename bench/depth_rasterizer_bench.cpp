@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-raster: the CPU depth rasterizer's throughput on the city's
 // routes, its scalar and AVX2 loops side by side in one process.
 //

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The occluder database's density against preprocessing time and culling
 # (Poon and Wang, section 3: grid points over the scene, representative view
 # directions at each): om-mos against vfc and the floor on the dense and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-knobs: what accuracy costs in time, for every knob of every
 // strategy in the registry, in one command (docs/knobs.md).
 //
@@ -56,6 +57,7 @@
 #include "culling/registry.h"
 #include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
+#include "evaluation/session_command_line.h"
 #include "gl/offscreen_context.h"
 
 namespace {
@@ -69,7 +71,15 @@ const char *const batch_knob = "batch (traversal)";
 const char *const leaf_knob = "leaf-triangles (hierarchy)";
 
 struct Options {
-    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
+    // --strategies (empty: every family with a knob), --size, --driver,
+    // --allocator, --databases, --make-databases; the traversal and the
+    // settings are what it sweeps, so it takes no --batch, --coherence,
+    // --switch-off nor --set.
+    SessionCommandLine session = [] {
+        SessionCommandLine s;
+        s.traversal_options = false;
+        return s;
+    }();
     std::vector<std::string> scenes = {"city"};
     std::vector<std::string> routes = {"dense", "medium", "open"};
     // Every route on every scene, made by parse(): a run is one of them.
@@ -78,15 +88,10 @@ struct Options {
         std::string route, label;
     };
     std::vector<Run> runs;
-    std::vector<std::string> strategies;   // empty: every family with a knob
     std::map<std::string, std::vector<std::string>> knobs;   // --knob: only these, with these values
     int frames = 20;
-    int size = 512;
-    std::string driver = "llvmpipe";
     std::string out = "knobs-out";
     bool plots = true;
-    std::string databases = default_database_directory();
-    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -237,7 +242,7 @@ Sweep plan(const Options &o)
     }
     std::set<std::string> used_knobs;
     auto wanted = [&o](const std::string &name) { return o.knobs.empty() || o.knobs.count(name); };
-    for (const std::string &name : o.strategies) {
+    for (const std::string &name : o.session.strategies) {
         const StrategyChoice c = choose_strategy(name);
         Variant base;
         base.strategy = base.spec = name;
@@ -306,7 +311,8 @@ Options parse(int argc, char **argv)
 {
     Options o;
     for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
-        if (a == "--scenes") {
+        if (o.session.take(a, v)) return true;
+        else if (a == "--scenes") {
             o.scenes = list_items(v, ',');
             if (o.scenes.empty())
                 usage("--scenes is empty");
@@ -314,29 +320,20 @@ Options parse(int argc, char **argv)
             o.routes = list_items(v, ',');
             if (o.routes.empty())
                 usage("--routes is empty");
-        } else if (a == "--strategies") {
-            o.strategies = list_items(v, ',');
-            if (o.strategies.empty())
-                usage("--strategies is empty");
         } else if (a == "--knob") {
             const std::size_t eq = v.find('=');
             if (eq == std::string::npos || eq == 0 || list_items(v.substr(eq + 1), ',').empty())
                 usage("--knob wants SETTING=V1,V2,..., got '" + v + "'");
             o.knobs[v.substr(0, eq)] = list_items(v.substr(eq + 1), ',');
         } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
-        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
-        else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
-        else if (a == "--driver") o.driver = v;
         else if (a == "--out") o.out = v;
         else if (a == "--plots") o.plots = switch_option(a, v);
-        else if (a == "--databases") o.databases = v;
-        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else
             return false;
         return true;
     });
-    if (o.strategies.empty())
-        o.strategies = default_strategies();
+    if (o.session.strategies.empty())
+        o.session.strategies = default_strategies();
     for (std::size_t scene = 0; scene < o.scenes.size(); ++scene)
         for (const std::string &route : o.routes) {
             const std::string &name = o.scenes[scene];
@@ -347,8 +344,7 @@ Options parse(int argc, char **argv)
             o.runs.push_back({scene, route, o.scenes.size() == 1 ? route : short_name + " " + route});
         }
     try {
-        gl::parse_driver(o.driver);
-        for (const std::string &s : o.strategies) {
+        for (const std::string &s : o.session.strategies) {
             const StrategyChoice c = choose_strategy(s);
             if (c.family->needs_truth || c.family->settings.empty() ||
                 !std::any_of(c.family->settings.begin(), c.family->settings.end(), sweeps))
@@ -375,15 +371,13 @@ void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup 
 {
     const std::string &route_name = o.runs[route_index].route;
     const std::vector<Camera> route = setup.route(route_name, o.frames);
-    SessionOptions so;
-    so.allocator = o.allocator;
+    DatabaseProvider databases = o.session.database_provider();
+    SessionOptions so = o.session.session_options(databases);
     so.batch = default_batch;
     // Unrelated views (random eyes, camera/route.h): no policies across frames.
     so.coherence = !unrelated_views(route_name);
     so.switch_off = unrelated_views(route_name) ? 0.0 : so.switch_off;
     so.lost_pixels = SessionOptions::PixelCheck::all;
-    DatabaseProvider databases(o.databases, o.make_databases);
-    so.databases = &databases;
     MeasurementSession session(setup, ctx, so);
     std::vector<std::size_t> variant_of;   // per strategy of the session
     for (std::size_t i = 0; i < sweep.variants.size(); ++i) {
@@ -561,8 +555,8 @@ bool plot(const Options &o, const std::string &strategy, const Sweep &sweep, dou
        << "set output " << gnuplot_quoted(png) << "\n"
        << "set multiplot layout 1,2 title "
        << gnuplot_quoted(strategy + ": every knob, means over the routes " + routes + " (" + std::to_string(o.frames) +
-                         " frames, " + std::to_string(o.size) + "x" + std::to_string(o.size) + ", " + o.driver +
-                         "); vfc " + fixed(vfc_ms, 2) + " ms")
+                         " frames, " + std::to_string(o.session.size) + "x" + std::to_string(o.session.size) +
+                         ", " + gl::driver_name(o.session.driver) + "); vfc " + fixed(vfc_ms, 2) + " ms")
        << "\nset grid\nset key outside bottom center horizontal\nset ylabel 'mean frame time, ms'\n";
     auto plots = [&](const std::string &x, const std::string &front) {
         std::string p = "plot ";
@@ -600,7 +594,7 @@ int main(int argc, char **argv)
         usage(e.what());
     }
     try {
-        gl::select_driver(gl::parse_driver(o.driver));
+        gl::select_driver(o.session.driver);
         for (Variant &v : sweep.variants)
             v.routes.resize(o.runs.size());
         // Each scene, its hierarchy for each leaf size swept.
@@ -622,13 +616,13 @@ int main(int argc, char **argv)
         // Routes are checked before any run.
         for (const Options::Run &r : o.runs)
             setups[r.scene].begin()->second.route(r.route, o.frames);
-        gl::OffscreenContext ctx(o.size, o.size);
+        gl::OffscreenContext ctx(o.session.size, o.session.size);
         std::filesystem::create_directories(o.out);
         std::printf("occu-bench-knobs: %zu variants of %zu strategies, routes", sweep.variants.size() - 2,
-                    o.strategies.size());
+                    o.session.strategies.size());
         for (const Options::Run &r : o.runs)
             std::printf(" %s", r.label.c_str());
-        std::printf(", %d frames, %dx%d, %s\n", o.frames, o.size, o.size, ctx.renderer().c_str());
+        std::printf(", %d frames, %dx%d, %s\n", o.frames, o.session.size, o.session.size, ctx.renderer().c_str());
         for (const std::string &l : sweep.left_out)
             std::printf("left out: %s\n", l.c_str());
         std::set<std::string> notes;
@@ -714,7 +708,7 @@ int main(int argc, char **argv)
         std::printf("| strategy | default (approximation) | default ms | x vfc | default on the front: time/wrong px | "
                     "time/efficiency | exact (0 wrong px) ms | fastest with 0 wrong px | fastest of all (wrong px/frame) |\n"
                     "|---|---|---|---|---|---|---|---|---|\n");
-        for (const std::string &strategy : o.strategies) {
+        for (const std::string &strategy : o.session.strategies) {
             std::vector<std::size_t> ids;
             for (const Row &r : sweep.rows)
                 if (r.strategy == strategy && std::find(ids.begin(), ids.end(), r.variant) == ids.end())
@@ -776,7 +770,7 @@ int main(int argc, char **argv)
                     "csv: %s\n",
                     path.c_str());
         if (o.plots)
-            for (const std::string &strategy : o.strategies)
+            for (const std::string &strategy : o.session.strategies)
                 plot(o, strategy, sweep, vfc.ms);
         if (violations) {
             std::fprintf(stderr, "occu-bench-knobs: %d approximation knob(s) never exact: see VIOLATION above\n",

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a Quake III level holds and what loading it costs: for each level
 // named (a .bsp file or PAK.pk3:maps/NAME.bsp), the time from the pk3 to
 // the scene (load_scene: the member inflated, the BSP read, patches

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a Quake III level holds, counted from the scene occu read
 // (scene/quake3_bsp.h), for the benches that choose levels by it and
 // report them (occu-bench-level-load, occu-bench-real-scenes;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared helpers of the bench scripts (sourced, not run): the walkthrough's
 # results are read from its summary.csv by column name.
 source "$(dirname "${BASH_SOURCE[0]}")/../tools/lib.sh"

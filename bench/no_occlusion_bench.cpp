@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-no-occlusion: only the work the scene calls for (issue 18,
 // item 6; docs/no-occlusion.md). Every strategy of the registry against
 // vfc where occlusion culling has little or nothing to gain: the city's
@@ -36,6 +37,7 @@
 #include "culling/registry.h"
 #include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
+#include "evaluation/session_command_line.h"
 #include "gl/offscreen_context.h"
 
 namespace {
@@ -45,17 +47,17 @@ using namespace occu;
 constexpr double target = 1.05;
 
 struct Options {
-    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
-    std::vector<std::string> strategies;   // empty: every strategy of the registry once (distinct_strategy_names())
+    // --strategies (empty: every strategy of the registry once,
+    // distinct_strategy_names()), --set, --size, --driver, --allocator,
+    // --batch, --coherence, --switch-off, --databases, --make-databases
+    // (all: no database is made inside a frame's time).
+    SessionCommandLine session = [] {
+        SessionCommandLine s;
+        s.make_databases = DatabaseProvider::Makes::all;
+        return s;
+    }();
     int frames = 120;
     int rounds = 1;   // walks of each route, strategies made anew for each
-    int size = 512;
-    std::string driver = "llvmpipe";
-    int batch = 32;
-    double switch_off = 0.5;
-    bool coherence = true;
-    std::string databases = default_database_directory();
-    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::all;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -64,9 +66,10 @@ struct Options {
     if (!error.empty())
         std::fprintf(to, "occu-bench-no-occlusion: %s\n", error.c_str());
     std::fprintf(to,
-                 "usage: occu-bench-no-occlusion [--strategies NAME,...] [--frames N] [--rounds R] [--size PIXELS]\n"
-                 "                               [--driver llvmpipe|softpipe] [--batch N] [--switch-off F] [--allocator keep|system]\n"
-                 "                               [--coherence on|off] [--databases DIR] [--make-databases required|all]\n"
+                 "usage: occu-bench-no-occlusion [--strategies NAME,...] [--set key=value]... [--frames N] [--rounds R]\n"
+                 "                               [--size PIXELS] [--driver llvmpipe|softpipe] [--batch N] [--switch-off F]\n"
+                 "                               [--allocator keep|system] [--coherence on|off] [--databases DIR]\n"
+                 "                               [--make-databases required|all]\n"
                  "Runs every strategy (default: every name of the registry, a preset that repeats its family's\n"
                  "defaults once) side by side with vfc on the city's open route and on the field's overhead route\n"
                  "(default 120 frames each, 512x512, llvmpipe) and prints each one's frame time against vfc's with\n"
@@ -84,30 +87,17 @@ Options parse(int argc, char **argv)
 {
     Options o;
     for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
-        if (a == "--strategies") {
-            o.strategies = list_items(v, ',');
-            if (o.strategies.empty())
-                usage("--strategies is empty");
-        } else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
+        if (o.session.take(a, v)) return true;
+        else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
         else if (a == "--rounds") o.rounds = int(integer_option(a, v, 1, 100));
-        else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
-        else if (a == "--driver") o.driver = v;
-        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
-        else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
-        else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
-        else if (a == "--coherence") o.coherence = switch_option(a, v);
-        else if (a == "--databases") o.databases = v;
-        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else
             return false;
         return true;
     });
     try {
-        gl::parse_driver(o.driver);
-        if (o.strategies.empty())
-            o.strategies = distinct_strategy_names();
-        for (const std::string &s : o.strategies)
-            choose_strategy(s);
+        if (o.session.strategies.empty())
+            o.session.strategies = distinct_strategy_names();
+        o.session.check_strategies(o.session.strategies);
     } catch (const std::invalid_argument &e) {
         usage(e.what());
     }
@@ -160,27 +150,19 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
     const std::vector<Camera> route = setup.route(route_name, o.frames);
     out.triangles = setup.scene().triangle_count();
     out.leaves = setup.hierarchy().leaf_count();
-    SessionOptions so;
-    so.allocator = o.allocator;
-    so.batch = std::size_t(o.batch);
-    so.coherence = o.coherence;
-    so.switch_off = o.switch_off;
+    DatabaseProvider databases = o.session.database_provider();
+    SessionOptions so = o.session.session_options(databases);
     so.lost_pixels = SessionOptions::PixelCheck::none;
-    DatabaseProvider databases(o.databases, o.make_databases);
-    so.databases = &databases;
 
     // One walk of the route by every strategy, made anew in a session of its own.
     auto walk = [&](bool first) {
         auto session = std::make_unique<MeasurementSession>(setup, ctx, so);
         auto add = [&](const std::string &label, const std::string &spec) {
-            if (const std::string why = choose_strategy(spec).family->refusal(setup.scene()); !why.empty()) {
+            if (const std::string why = session->add_unless_refused(spec, o.session.common, label); !why.empty())
                 if (first)
                     out.left_out.push_back(spec + ": " + why);
-                return;
-            }
-            session->add(spec, {}, label);
         };
-        for (const std::string &s : o.strategies) {
+        for (const std::string &s : o.session.strategies) {
             add(s, s);
             if (s == "vfc")
                 add("vfc again", "vfc");
@@ -191,7 +173,7 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
         if (first) {
             std::printf("%s (%zu triangles, %zu leaves), route %s: %zu strategies, %zu frames, %d round(s), %dx%d, %s\n",
                         scene_name.c_str(), out.triangles, out.leaves, route_name.c_str(), made.size(), route.size(),
-                        o.rounds, o.size, o.size, ctx.renderer().c_str());
+                        o.rounds, o.session.size, o.session.size, ctx.renderer().c_str());
             for (const std::string &l : out.left_out)
                 std::printf("left out: %s\n", l.c_str());
             std::fflush(stdout);
@@ -311,8 +293,8 @@ int main(int argc, char **argv)
 {
     const Options o = parse(argc, argv);
     try {
-        gl::select_driver(gl::parse_driver(o.driver));
-        gl::OffscreenContext ctx(o.size, o.size);
+        gl::select_driver(o.session.driver);
+        gl::OffscreenContext ctx(o.session.size, o.session.size);
         std::vector<SceneResult> scenes;
         scenes.push_back(run_scene(o, "city", "open", ctx));
         scenes.push_back(run_scene(o, "field", "overhead", ctx));

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Occluder selection and culling method comparisons of Poon and Wang
 # (figures 6, 9 and 8) on occu's city, llvmpipe, 512x512, in one run each:
 #   1. figure 6: PS, FH and MOS with 1..128 occluders at viewpoints (the

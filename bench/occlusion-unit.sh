@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Benchmark of the Occlusion Unit against ARB_occlusion_query, and of
 # GL_RENDER on patched vs unpatched Mesa (same build options), in one run.
 # Usage: bench/occlusion-unit.sh [softpipe|llvmpipe] [ROUNDS]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-ou: what an Occlusion Unit query costs against the ARB
 // occlusion query it replaces, on one driver, side by side in one process.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-om: the run-time tests of Poon and Wang (sections 5.2, 5.4)
 // against pixel-by-pixel comparison (their PC), side by side in one run.
 //   overlap  is a W x W rectangle of a 128 x 128 coverage map fully covered?

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-bench-real-scenes: the targets of culling on scenes occu did not
 // make (issue 29; docs/real-scenes.md): Quake III levels from Debian's
 // OpenArena data and buildings from assimp-testmodels, every strategy side
@@ -47,6 +48,7 @@
 #include "culling/registry.h"
 #include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
+#include "evaluation/session_command_line.h"
 #include "gl/offscreen_context.h"
 #include "level_statistics.h"
 #include "scene/scene_file.h"
@@ -80,18 +82,20 @@ struct Options {
     // (96,256) of Debian's 100 (occu-bench-level-load --all-debian).
     std::vector<std::string> load_levels = {openarena + "pak6-patch085.pk3:maps/ctf_compromise.bsp",
                                             openarena + "pak1-maps.pk3:maps/oa_dm5.bsp"};
-    std::vector<std::string> strategies;   // empty: every strategy once, and bsp-pvs's chains
-    std::vector<std::string> common;       // --set key=value
+    // --strategies (empty: every strategy once, and bsp-pvs's chains),
+    // --set, --size, --driver, --allocator, --batch, --coherence,
+    // --switch-off, --databases, --make-databases (all: no database is
+    // made inside a frame's time).
+    SessionCommandLine session = [] {
+        SessionCommandLine s;
+        s.make_databases = DatabaseProvider::Makes::all;
+        return s;
+    }();
     int spawn_views = 2, orbit_frames = 60, random_views = 200;
     unsigned long seed = 2026;
-    int size = 512, repeat = 3, batch = 32;
+    int repeat = 3;
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
-    std::string driver = "llvmpipe", out;
-    double switch_off = 0.5;
-    bool coherence = true;
-    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;
-    std::string databases = default_database_directory();
-    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::all;
+    std::string out;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -125,46 +129,34 @@ Options parse(int argc, char **argv)
 {
     Options o;
     for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
-        if (a == "--scenes") o.scenes = list_items(v, ',');
-        else if (a == "--strategies") o.strategies = list_items(v, ',');
-        else if (a == "--set") o.common.push_back(v);
+        if (o.session.take(a, v)) return true;
+        else if (a == "--scenes") o.scenes = list_items(v, ',');
         else if (a == "--spawn-views") o.spawn_views = int(integer_option(a, v, 1, 360));
         else if (a == "--orbit-frames") o.orbit_frames = int(integer_option(a, v, 1, 100000));
         else if (a == "--random-views") o.random_views = int(integer_option(a, v, 0, 100000));
         else if (a == "--seed") o.seed = (unsigned long)integer_option(a, v, 0, 1L << 40);
-        else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
-        else if (a == "--driver") o.driver = v;
         else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
-        else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
-        else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
-        else if (a == "--coherence") o.coherence = switch_option(a, v);
-        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
         else if (a == "--load-levels") o.load_levels = list_items(v, ',');
         else if (a == "--repeat") o.repeat = int(integer_option(a, v, 1, 100));
-        else if (a == "--databases") o.databases = v;
-        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else if (a == "--out") o.out = v;
         else
             return false;
         return true;
     });
     try {
-        gl::parse_driver(o.driver);
         if (o.scenes.empty())
             usage("--scenes is empty");
-        if (o.strategies.empty()) {
-            o.strategies = distinct_strategy_names();
-            o.strategies.erase(std::remove(o.strategies.begin(), o.strategies.end(), "none"), o.strategies.end());
-            o.strategies.push_back("bsp-pvs+ou-shared");
-            o.strategies.push_back("bsp-pvs+om-ps");
+        std::vector<std::string> &strategies = o.session.strategies;
+        if (strategies.empty()) {
+            strategies = distinct_strategy_names();
+            strategies.erase(std::remove(strategies.begin(), strategies.end(), "none"), strategies.end());
+            strategies.push_back("bsp-pvs+ou-shared");
+            strategies.push_back("bsp-pvs+om-ps");
         }
         for (const char *reference : {"vfc", "ideal"})
-            if (std::find(o.strategies.begin(), o.strategies.end(), reference) == o.strategies.end())
-                o.strategies.insert(o.strategies.begin(), reference);
-        std::vector<StrategyChoice> chosen;
-        for (const std::string &s : o.strategies)
-            chosen.push_back(choose_strategy(s, o.common));
-        check_common_settings(chosen, o.common);
+            if (std::find(strategies.begin(), strategies.end(), reference) == strategies.end())
+                strategies.insert(strategies.begin(), reference);
+        o.session.check_strategies(strategies);
     } catch (const std::invalid_argument &e) {
         usage(e.what());
     }
@@ -254,30 +246,26 @@ Run run_route(const Options &o, const SceneSetup &setup, const std::string &rout
     const std::vector<Camera> route = setup.route(route_name, o.orbit_frames);
     run.frames = route.size();
 
-    SessionOptions so;
-    so.allocator = o.allocator;
-    so.batch = std::size_t(o.batch);
+    DatabaseProvider databases = o.session.database_provider();
+    SessionOptions so = o.session.session_options(databases);
     // Random eyes are unrelated views (camera/route.h): neither temporal
     // coherence nor the switch-off applies (as occu-random-views runs them).
     const bool unrelated = unrelated_views(route_name);
-    so.coherence = o.coherence && !unrelated;
-    so.switch_off = unrelated ? 0.0 : o.switch_off;
+    so.coherence = so.coherence && !unrelated;
+    so.switch_off = unrelated ? 0.0 : so.switch_off;
     so.lost_pixels = SessionOptions::PixelCheck::all;
-    DatabaseProvider databases(o.databases, o.make_databases);
-    so.databases = &databases;
     MeasurementSession session(setup, ctx, so);
-    for (const std::string &spec : o.strategies) {
-        if (const std::string why = choose_strategy(spec, o.common).family->refusal(setup.scene()); !why.empty())
+    for (const std::string &spec : o.session.strategies) {
+        if (const std::string why = session.add_unless_refused(spec, o.session.common); !why.empty())
             run.left_out.push_back(spec + ": " + why);
-        else
-            session.add(spec, o.common);
         // vfc a second time: the ratio of two identical strategies is the run's noise.
         if (spec == "vfc")
-            session.add("vfc", o.common, "vfc again");
+            session.add("vfc", o.session.common, "vfc again");
     }
     std::printf("\n%s (%zu triangles, %zu leaves of at most %u), route %s: %zu frames, %zu strategies, %dx%d, %s\n",
                 run.scene.c_str(), run.triangles, run.leaves, unsigned(setup.hierarchy().max_leaf_triangles()),
-                route_name.c_str(), route.size(), session.strategies().size(), o.size, o.size, ctx.renderer().c_str());
+                route_name.c_str(), route.size(), session.strategies().size(), o.session.size, o.session.size,
+                ctx.renderer().c_str());
     for (const std::string &l : run.left_out)
         std::printf("left out: %s\n", l.c_str());
     std::fflush(stdout);
@@ -441,8 +429,8 @@ int main(int argc, char **argv)
 {
     const Options o = parse(argc, argv);
     try {
-        control_allocator(o.allocator);
-        gl::select_driver(gl::parse_driver(o.driver));
+        control_allocator(o.session.allocator);
+        gl::select_driver(o.session.driver);
         const auto start = std::chrono::steady_clock::now();
         std::ofstream runs_csv, levels_csv, loads_csv;
         if (!o.out.empty()) {
@@ -485,7 +473,7 @@ int main(int argc, char **argv)
                           << triangles << '\n';
         }
 
-        gl::OffscreenContext ctx(o.size, o.size);
+        gl::OffscreenContext ctx(o.session.size, o.session.size);
         std::vector<Run> runs;
         for (std::size_t i = 0; i < o.scenes.size(); ++i) {
             const SceneSetup setup({o.scenes[i], 1, o.leaf_triangles});
@@ -554,7 +542,7 @@ int main(int argc, char **argv)
             for (std::size_t i = 0; i < kind.size(); ++i)
                 std::printf("---|");
             std::printf("\n");
-            std::vector<std::string> labels = o.strategies;
+            std::vector<std::string> labels = o.session.strategies;
             labels.insert(std::find(labels.begin(), labels.end(), "vfc") + 1, "vfc again");
             for (const std::string &label : labels) {
                 std::printf("| `%s` |", label.c_str());

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Frame time of every strategy against vfc and the floor (ideal: the
 # oracle's visible leaves alone) on the four built-in routes, llvmpipe
 # 512x512, each route one walkthrough run with every strategy frame by

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # What one setting of one strategy costs and saves: the strategy at each
 # value, beside vfc and the floor (ideal), in one walkthrough run with every
 # variant frame by frame side by side. For an approximation knob

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # What the view-cell knobs (Wonka et al.: epsilon, the cull map's pixel,
 # the longest cell edge) cost and save: for each setting, the PVS database
 # of the cells a route's cameras are in (occu-preprocess view-cells --route),

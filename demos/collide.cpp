@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-collide: collision detection with occlusion tiles (Bartz, Meissner
 // and Huettner 1998, section 5, figure 7; applications/collision_detection.h)
 // along a route. At every camera of the route it checks a step of --step

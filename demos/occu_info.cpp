@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-info: which Mesa occu renders with, per gallium driver, and whether
 // that Mesa advertises GL_MESAX_occlusion_unit.
 //

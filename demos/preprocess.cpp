@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-preprocess: builds the minimum-occluder-set database that the
 // walkthrough's om-mos strategy reads (Poon and Wang, section 4; the steps
 // are in src/strategies/poon_wang_opacity_maps/view_preprocessing.h).

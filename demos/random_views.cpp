@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-random-views: renders random cameras over several scenes with every
 // conservative strategy of the registry and counts the visible pixels each
 // frame lost against the unculled frame of the same camera (must be 0;
@@ -33,6 +34,7 @@
 #include "culling/registry.h"
 #include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
+#include "evaluation/session_command_line.h"
 #include "gl/offscreen_context.h"
 
 namespace {
@@ -48,23 +50,30 @@ const char *const default_models[] = {
 };
 
 struct Options {
-    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
+    // --strategies (empty: every conservative strategy, default_strategies),
+    // --set, --size, --driver, --allocator, --batch, --coherence,
+    // --switch-off, --databases, --make-databases; with the defaults of
+    // session_defaults().
+    SessionCommandLine session;
     std::vector<std::string> scenes;   // "city" or a file; empty: the city and default_models
     long views = 300;                  // over all scenes
     unsigned long seed = 2026;
-    int size = 128;
-    std::vector<std::string> strategies;   // empty: every conservative strategy (default_strategies)
-    std::string driver = "llvmpipe";
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
-    int batch = 32;
-    bool coherence = false;
-    double switch_off = 0.0;
     float fov_min = 20.0f, fov_max = 120.0f;
-    std::vector<std::string> common;   // --set key=value, for every strategy that has the key
     std::string out = "random-views-out";
-    std::string databases = default_database_directory();
-    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
 };
+
+// Unrelated views: no temporal coherence, no switch-off (each view is a
+// frame of its own); small frames.
+SessionCommandLine session_defaults()
+{
+    SessionCommandLine s;
+    s.size = 128;
+    s.max_size = 4096;
+    s.coherence = false;
+    s.switch_off = 0.0;
+    return s;
+}
 
 [[noreturn]] void usage(const std::string &error)
 {
@@ -108,8 +117,10 @@ std::vector<std::string> default_strategies()
 Options parse(int argc, char **argv)
 {
     Options o;
+    o.session = session_defaults();
     for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
-        if (a == "--scene") {
+        if (o.session.take(a, v)) return true;
+        else if (a == "--scene") {
             const std::vector<std::string> s = list_items(v, ',');
             if (s.empty())
                 usage("--scene is empty");
@@ -117,18 +128,7 @@ Options parse(int argc, char **argv)
         }
         else if (a == "--views") o.views = integer_option(a, v, 1, 10000000);
         else if (a == "--seed") o.seed = (unsigned long)integer_option(a, v, 0, 0xffffffffL);
-        else if (a == "--size") o.size = int(integer_option(a, v, 16, 4096));
-        else if (a == "--strategies") {
-            o.strategies = list_items(v, ',');
-            if (o.strategies.empty())
-                usage("--strategies is empty");
-        }
-        else if (a == "--driver") o.driver = v;
         else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
-        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
-        else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
-        else if (a == "--coherence") o.coherence = switch_option(a, v);
-        else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
         else if (a == "--fov") {
             const std::vector<std::string> f = list_items(v, ',');
             if (f.size() != 2)
@@ -138,9 +138,6 @@ Options parse(int argc, char **argv)
             if (o.fov_min > o.fov_max)
                 usage("--fov is MIN,MAX: " + f[0] + " > " + f[1]);
         }
-        else if (a == "--set") o.common.push_back(v);
-        else if (a == "--databases") o.databases = v;
-        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else if (a == "--out") o.out = v;
         else
             return false;
@@ -151,19 +148,11 @@ Options parse(int argc, char **argv)
     if (o.views < long(o.scenes.size()))
         usage("--views " + std::to_string(o.views) + " gives some of the " + std::to_string(o.scenes.size()) +
               " scenes no view");
-    try {
-        gl::parse_driver(o.driver);
-    } catch (const std::exception &e) {
-        usage(e.what());
-    }
     // Strategies are checked before anything is built.
-    if (o.strategies.empty())
-        o.strategies = default_strategies();
+    if (o.session.strategies.empty())
+        o.session.strategies = default_strategies();
     try {
-        std::vector<StrategyChoice> chosen;
-        for (const std::string &s : o.strategies)
-            chosen.push_back(choose_strategy(s, o.common));
-        check_common_settings(chosen, o.common);
+        o.session.check_strategies(o.session.strategies);
     } catch (const std::invalid_argument &e) {
         usage(e.what());
     }
@@ -201,28 +190,21 @@ void run_scene(const Options &o, const SceneSetup &setup, long views, unsigned l
     const Scene &scene = setup.scene();
     const std::vector<Camera> cameras = setup.random_views(views, seed, o.fov_min, o.fov_max);
 
-    gl::OffscreenContext ctx(o.size, o.size);
-    SessionOptions so;
-    so.allocator = o.allocator;
-    so.batch = std::size_t(o.batch);
-    so.coherence = o.coherence;
-    so.switch_off = o.switch_off;
+    const int size = o.session.size;
+    gl::OffscreenContext ctx(size, size);
+    DatabaseProvider databases = o.session.database_provider();
+    SessionOptions so = o.session.session_options(databases);
     so.lost_pixels = SessionOptions::PixelCheck::all;
-    DatabaseProvider databases(o.databases, o.make_databases);
-    so.databases = &databases;
     MeasurementSession session(setup, ctx, so);
     // A strategy whose family refuses the scene is left out, with why.
     std::vector<std::string> left_out;
-    for (const std::string &spec : o.strategies) {
-        if (const std::string why = choose_strategy(spec, o.common).family->refusal(scene); !why.empty())
+    for (const std::string &spec : o.session.strategies)
+        if (const std::string why = session.add_unless_refused(spec, o.session.common); !why.empty())
             left_out.push_back(spec + " (" + why + ")");
-        else
-            session.add(spec, o.common);
-    }
     std::printf("\nscene %s: %zu triangles, %zu leaves of at most %u; %ld random views (seed %lu), %dx%d, fov %g..%g, %s\n",
                 scene_name.c_str(), scene.triangle_count(), setup.hierarchy().leaf_count(),
-                unsigned(setup.hierarchy().max_leaf_triangles()), views, seed, o.size,
-                o.size, double(o.fov_min), double(o.fov_max), ctx.renderer().c_str());
+                unsigned(setup.hierarchy().max_leaf_triangles()), views, seed, size,
+                size, double(o.fov_min), double(o.fov_max), ctx.renderer().c_str());
     for (const std::string &s : left_out)
         std::printf("left out: %s\n", s.c_str());
     std::fflush(stdout);
@@ -279,7 +261,7 @@ int main(int argc, char **argv)
 {
     const Options o = parse(argc, argv);
     try {
-        gl::select_driver(gl::parse_driver(o.driver));
+        gl::select_driver(o.session.driver);
         // Every scene is read before any is rendered: an unreadable one is named at once.
         std::vector<SceneSetup> scenes;
         for (const std::string &s : o.scenes)
@@ -294,7 +276,8 @@ int main(int argc, char **argv)
         summary << "scene,strategy,views,mean_ms,vs_vfc,x_ideal,triangles,occluded_leaves,occluded_leaves_culled,"
                    "efficiency_percent,visible_leaves_culled,lost_pixels,tied_pixels\n";
         std::printf("random views: %ld over %zu scenes, %zu strategies, %dx%d; views.csv and summary.csv in %s\n",
-                    o.views, o.scenes.size(), o.strategies.size(), o.size, o.size, o.out.c_str());
+                    o.views, o.scenes.size(), o.session.strategies.size(), o.session.size, o.session.size,
+                    o.out.c_str());
         Totals totals;
         const auto start = std::chrono::steady_clock::now();
         for (std::size_t i = 0; i < o.scenes.size(); ++i) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-raycast: ray casting in a mixed polygon/volume scene accelerated by
 // verbose occlusion lists (Bartz, Meissner and Huettner 1998, section 5,
 // "Support for Ray Casting"; applications/ray_casting.h). The scene is the

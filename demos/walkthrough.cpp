@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // walkthrough: renders a route through a scene with several culling
 // strategies, frame by frame side by side, and reports what each drew,
 // how long it took, and how it compares with the exact-visibility oracle,
@@ -27,6 +28,7 @@
 #include "culling/registry.h"
 #include "evaluation/allocator.h"
 #include "evaluation/measurement_session.h"
+#include "evaluation/session_command_line.h"
 #include "evaluation/session_report.h"
 #include "gl/offscreen_context.h"
 #include "image/png.h"
@@ -37,25 +39,18 @@ namespace {
 using namespace occu;
 
 struct Options {
-    AllocatorPolicy allocator = AllocatorPolicy::keep_freed;   // --allocator (evaluation/allocator.h)
+    // --strategies, --set, --size, --driver, --allocator, --batch,
+    // --coherence, --switch-off, --databases, --make-databases.
+    SessionCommandLine session;
     std::string route = "dense";
     std::string scene;   // empty or "city": the procedural city; "field": the flat field (no occlusion); else a file
-    std::vector<std::string> strategies = {"none", "vfc", "ideal", "ou", "ou-shared", "om-ps"};
-    std::vector<std::string> common;   // --set key=value, for every strategy that has the key
     int frames = 60;
-    int size = 512;
-    std::string driver = "llvmpipe";
     int city_copies = 1;
     int patch_segments = Quake3Options{}.patch_segments;
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
-    int batch = 32;
     int png_every = 20;
     bool oracle = true;
-    bool coherence = true;
-    double switch_off = 0.5;
     std::string out = "walkthrough-out";
-    std::string databases = default_database_directory();
-    DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
     bool report = true;                 // plots and index.html in `out` at the end
     std::vector<std::string> video;     // strategies of route.mp4; empty: none
 };
@@ -99,7 +94,7 @@ struct Options {
 
 Options parse(int argc, char **argv)
 {
-    // The registry's strategies, as --help lists them or as README's table.
+    // The registry's strategies, as --help lists them or as docs/strategies.md's table.
     if (argc >= 2 && std::strcmp(argv[1], "--list-strategies") == 0) {
         const bool markdown = argc == 3 && std::strcmp(argv[2], "--markdown") == 0;
         if (argc > 2 && !markdown)
@@ -108,32 +103,20 @@ Options parse(int argc, char **argv)
         std::exit(0);
     }
     Options o;
+    o.session.strategies = {"none", "vfc", "ideal", "ou", "ou-shared", "om-ps"};
     for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
-        if (a == "--route") o.route = v;
+        if (o.session.take(a, v)) return true;
+        else if (a == "--route") o.route = v;
         else if (a == "--scene") o.scene = v;
-        else if (a == "--strategies") {
-            o.strategies = list_items(v, ',');
-            if (o.strategies.empty())
-                usage("--strategies is empty");
-        }
-        else if (a == "--set") o.common.push_back(v);
-        else if (a == "--occluder-db") o.common.push_back("database=" + v);
+        else if (a == "--occluder-db") o.session.common.push_back("database=" + v);
         else if (a == "--frames") o.frames = int(integer_option(a, v, 1, 100000));
-        else if (a == "--size") o.size = int(integer_option(a, v, 16, 8192));
-        else if (a == "--driver") o.driver = v;
         else if (a == "--city-copies") o.city_copies = int(integer_option(a, v, 1, 64));
         else if (a == "--patch-segments") o.patch_segments = int(integer_option(a, v, 1, 64));
         else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
-        else if (a == "--allocator") o.allocator = parse_allocator_policy(a, v);
-        else if (a == "--batch") o.batch = int(integer_option(a, v, 1, 4096));
         else if (a == "--png-every") o.png_every = int(integer_option(a, v, 0, 100000));
         else if (a == "--out") o.out = v;
-        else if (a == "--switch-off") o.switch_off = number_option(a, v, 0.0, 1.0);
-        else if (a == "--coherence") o.coherence = switch_option(a, v);
         else if (a == "--oracle") o.oracle = switch_option(a, v);
         else if (a == "--report") o.report = switch_option(a, v);
-        else if (a == "--databases") o.databases = v;
-        else if (a == "--make-databases") o.make_databases = make_databases_option(a, v);
         else if (a == "--video") {
             o.video = list_items(v, ',');
             if (o.video.empty())
@@ -144,19 +127,17 @@ Options parse(int argc, char **argv)
         return true;
     });
     // Strategies and settings are checked before anything is built.
+    const std::vector<std::string> &strategies = o.session.strategies;
     try {
-        std::vector<StrategyChoice> chosen;
-        for (const std::string &s : o.strategies) {
-            chosen.push_back(choose_strategy(s, o.common));
-            if (chosen.back().family->needs_truth && !o.oracle)
+        o.session.check_strategies(strategies);
+        for (const std::string &s : strategies)
+            if (choose_strategy(s, o.session.common).family->needs_truth && !o.oracle)
                 usage(s + " needs the oracle (--oracle on)");
-        }
-        check_common_settings(chosen, o.common);
     } catch (const std::invalid_argument &e) {
         usage(e.what());
     }
     for (const std::string &v : o.video)
-        if (std::find(o.strategies.begin(), o.strategies.end(), v) == o.strategies.end())
+        if (std::find(strategies.begin(), strategies.end(), v) == strategies.end())
             usage("--video names '" + v + "', which --strategies does not");
     if (!o.video.empty() && o.png_every != 1)
         usage("--video needs an image of every frame: --png-every 1");
@@ -221,7 +202,8 @@ void write_images(const Options &o, gl::OffscreenContext &ctx, const SceneSetup 
     char number[24];
     std::snprintf(number, sizeof(number), "%04zu", f.index);
     const std::string base = o.out + "/" + file_name(s.label);
-    write_png(base + "-" + number + ".png", o.size, o.size, ctx.pixels());
+    const int size = o.session.size;
+    write_png(base + "-" + number + ".png", size, size, ctx.pixels());
 
     TopViewCaption caption;
     caption.strategy = s.label;
@@ -239,15 +221,15 @@ void write_images(const Options &o, gl::OffscreenContext &ctx, const SceneSetup 
             caption.efficiency_percent = 100.0 * f.quality.efficiency();
     }
     render_top_view(setup.hierarchy(), f.frame->camera, f.stats.drawn, wrongly_culled,
-                    top_view_map_area(o.size, o.size));
+                    top_view_map_area(size, size));
     glFinish();
     // Top row first, for the caption.
-    const std::size_t row = std::size_t(o.size) * 4;
-    std::vector<std::uint8_t> top(row * std::size_t(o.size));
-    for (std::size_t y = 0; y < std::size_t(o.size); ++y)
-        std::memcpy(&top[y * row], ctx.pixels() + (std::size_t(o.size) - 1 - y) * row, row);
-    caption_top_view({top.data(), o.size, o.size}, caption);
-    write_png(base + "-top-" + number + ".png", o.size, o.size, top.data(), false);
+    const std::size_t row = std::size_t(size) * 4;
+    std::vector<std::uint8_t> top(row * std::size_t(size));
+    for (std::size_t y = 0; y < std::size_t(size); ++y)
+        std::memcpy(&top[y * row], ctx.pixels() + (std::size_t(size) - 1 - y) * row, row);
+    caption_top_view({top.data(), size, size}, caption);
+    write_png(base + "-top-" + number + ".png", size, size, top.data(), false);
 }
 
 }  // namespace
@@ -256,37 +238,33 @@ int main(int argc, char **argv)
 {
     const Options o = parse(argc, argv);
     try {
-        gl::select_driver(gl::parse_driver(o.driver));
+        gl::select_driver(o.session.driver);
         SceneChoice choice(o.scene, o.city_copies, o.leaf_triangles);
         choice.quake3.patch_segments = o.patch_segments;
         const SceneSetup setup(choice);
         const std::vector<Camera> route = setup.route(o.route, o.frames);
 
-        gl::OffscreenContext ctx(o.size, o.size);
-        SessionOptions so;
-    so.allocator = o.allocator;
-        so.batch = std::size_t(o.batch);
-        so.coherence = o.coherence;
-        so.switch_off = o.switch_off;
+        const int size = o.session.size;
+        gl::OffscreenContext ctx(size, size);
+        DatabaseProvider databases = o.session.database_provider();
+        SessionOptions so = o.session.session_options(databases);
         so.oracle = o.oracle;
-        DatabaseProvider databases(o.databases, o.make_databases);
-        so.databases = &databases;
         MeasurementSession session(setup, ctx, so);
-        for (const std::string &spec : o.strategies)
-            session.add(spec, o.common);
+        for (const std::string &spec : o.session.strategies)
+            session.add(spec, o.session.common);
         std::filesystem::create_directories(o.out);
         FramesCsv csv(o.out + "/frames.csv", o.route, setup.scene().triangle_count());
         std::printf("scene: %zu triangles, %zu leaves of at most %u; route %s, %zu frames, %dx%d, %s; allocator %s\n",
                     setup.scene().triangle_count(), setup.hierarchy().leaf_count(),
                     unsigned(setup.hierarchy().max_leaf_triangles()), o.route.c_str(), route.size(),
-                    o.size, o.size, ctx.renderer().c_str(), allocator_policy_name(o.allocator));
+                    size, size, ctx.renderer().c_str(), allocator_policy_name(o.session.allocator));
         session.walk(route, "frames", [&](const SessionStrategy &s, const StrategyFrame &f) {
             if (o.png_every > 0 && f.index % std::size_t(o.png_every) == 0)
                 write_images(o, ctx, setup, s, f);
             csv.row(s, f);
         });
         csv.close();
-        write_summary(session, o.out + "/summary.csv", o.route, o.size);
+        write_summary(session, o.out + "/summary.csv", o.route, size);
         std::printf("\nvs vfc: vfc's mean ms / the strategy's; x floor: the strategy's mean ms / ideal's (the oracle's\n"
                     "visible leaves alone); efficiency: occluded leaves culled / occluded leaves.\n"
                     "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png\n",

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds occu: installs what is missing, builds (or reuses) the patched Mesa,
 # then configures and builds the meson project in build/.
 # Prints the Mesa prefix on stdout; source "<prefix>/occu/env.sh" to run on it.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Developer tool: checks patches/mesa/series as a merge request's patches are
 # checked, part by part.
 #

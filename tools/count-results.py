@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Counts one stage of tools/test from what the stage itself wrote, never from
 what it was expected to write, and prints one line:
 

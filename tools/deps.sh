@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs the Debian packages occu needs, only those that are missing.
 # Usage: tools/deps.sh [build|demo|test|bench|all]   (default: all)
 set -euo pipefail

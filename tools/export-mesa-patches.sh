@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Developer tool: writes the cache's Mesa tree back into patches/mesa/.
 # tools/mesa.sh commits each patch of the series on the pristine source
 # (git am); change a patch by changing its commit (git commit --amend for

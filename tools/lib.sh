@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared shell helpers for occu's tools (sourced, not run).
 # Everything that is cached lives under $OCCU_CACHE, outside the work tree,
 # so that a second run, a CI run or another clone on the same machine reuses it.

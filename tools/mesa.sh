@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Fetches Debian's Mesa source, applies patches/mesa/series, builds and installs it
 # into a cache outside the work tree; prints the install prefix on stdout.
 #

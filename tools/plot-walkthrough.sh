@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Plots a walkthrough's per-frame results (DIR/frames.csv, written by
 # build/demos/walkthrough --out DIR) with gnuplot, into DIR:
 #   frame-times.png  frame time of every strategy along the route, log scale:

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The shards of tools/slurm/preprocess-view-cells.sh under GNU parallel on
 # this machine (or, with parallel's own --sshlogin options in PARALLEL, on
 # others): N runs of occu-preprocess view-cells OPTIONS --shard I/N, JOBS at

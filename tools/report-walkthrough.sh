@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Writes DIR/index.html, a self-contained report of a walkthrough run
 # (build/demos/walkthrough --out DIR): the summary table (DIR/summary.csv),
 # the plots tools/plot-walkthrough.sh made (frame-times.png, triangles.png,
@@ -83,7 +84,7 @@ img { max-width: 100%; border: 1px solid #ccc; background: #fff; }
 ''')
 w(f'<h1>{esc(title)}</h1>\n')
 w('<p>Made by <code>tools/report-walkthrough.sh</code> from <a href="summary.csv">summary.csv</a> '
-  'and <a href="frames.csv">frames.csv</a>; the README\'s walkthrough section says what each column means.</p>\n')
+  'and <a href="frames.csv">frames.csv</a>; docs/walkthrough.md in occu\'s tree says what each column means.</p>\n')
 if 'route.mp4' in files:
     w('<p>The route as a video (frame and top view side by side): <a href="route.mp4">route.mp4</a>.</p>\n')
 

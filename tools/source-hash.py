@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Writes a C header defining NAME as a short hash of the sources below DIRs.
 
 Usage: source-hash.py OUTPUT NAME DIR...

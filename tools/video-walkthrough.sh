@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Makes DIR/route.mp4, a video of a walkthrough's route (ffmpeg, H.264, 10
 # frames a second): for each chosen strategy its frame and its top view side
 # by side (the top view's title carries the strategy, frame number and the

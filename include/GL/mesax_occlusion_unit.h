@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: tokens and entry-point types, as
  * spec/MESAX_occlusion_unit.txt defines them. Include after <GL/gl.h>;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "applications/collision_detection.h"
 
 #include <algorithm>

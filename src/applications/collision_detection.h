@@ -1,7 +1,7 @@
+// SPDX-License-Identifier: MIT
 // Collision detection with occlusion tiles: Bartz, Meissner and Huettner,
 // "Extending Graphics Hardware For Occlusion Queries In OpenGL" (1998),
-// section 5, "Support for Collision Detection", and figure 7
-// (/work/shared/papers/001_b2be44d379417d74.txt, lines 221-237).
+// section 5, "Support for Collision Detection", and figure 7.
 //
 // The paper: "For a given position of the user, an image of the scene is
 // generated. [...] in case the user heads in viewing direction - e.g.

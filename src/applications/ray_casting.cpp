@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "applications/ray_casting.h"
 
 #include <algorithm>

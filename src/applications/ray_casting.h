@@ -1,7 +1,7 @@
+// SPDX-License-Identifier: MIT
 // Ray casting accelerated by verbose occlusion lists: Bartz, Meissner and
 // Huettner, "Extending Graphics Hardware For Occlusion Queries In OpenGL"
-// (1998), section 5, "Support for Ray Casting"
-// (/work/shared/papers/001_b2be44d379417d74.txt, lines 239-243).
+// (1998), section 5, "Support for Ray Casting".
 //
 // The paper: "One of the results of the GL_BRIEF_OCCLUSION and
 // GL_VERBOSE_OCCLUSION modes is a list of not occluded pixels of the tested

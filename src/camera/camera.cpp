@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "camera/camera.h"
 
 #include <glm/gtc/matrix_transform.hpp>

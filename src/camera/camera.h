@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cameras and view frusta. OpenGL conventions: the camera looks down its
 // -z axis, clip space z in [-w, w], window depth in [0, 1].
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "camera/footprint.h"
 
 #include <cmath>

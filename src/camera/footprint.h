@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A box's footprint on screen: the one box-to-rectangle function of occu,
 // used alike by the run-time tests (every strategy) and by preprocessing,
 // so that what preprocessing chooses occluders for is what is tested.

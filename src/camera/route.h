@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Camera routes through a scene, like the papers' walkthrough paths
 // (Poon and Wang, section 6: best, average and worst routes).
 //

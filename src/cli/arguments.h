@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Option values for occu's programs: each parser reads the whole text or
 // throws std::invalid_argument with a message naming the option, the range
 // and what was given, which the program prints as its usage error.

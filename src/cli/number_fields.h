@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Numbers in occu's text files (route files, occluder databases). The
 // library keeps world coordinates as floats, so a coordinate field must be
 // a number whose float is finite: strtod reads "nan", "inf" and numbers

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A progress bar on stderr, only when stderr is a terminal (logs and CI
 // output stay clean).
 #pragma once

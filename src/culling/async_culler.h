@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A culler whose tests are issued in batches and answered later, while
 // drawing goes on: hardware occlusion queries read when their results are
 // available, as coherent hierarchical culling uses them (Bittner et al.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strategies in sequence (a chain, culling/registry.h: "bsp-pvs+ou-shared"):
 // each stage tests only the nodes every stage before it found visible, so
 // a precomputed set (a PVS) can cut the frame first and an occlusion

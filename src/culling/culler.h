@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The interface every culling strategy implements (in the manner of Intel's
 // Masked Occlusion Culling: clear and render occluders, then test boxes).
 //

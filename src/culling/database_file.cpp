@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "culling/database_file.h"
 
 #include <charconv>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one file format of occu's databases (the minimum occluder sets of
 // Poon and Wang, the occluder skins of Leone et al., the potentially visible
 // sets of Wonka et al.): text, one record a line, '#' starting a comment,

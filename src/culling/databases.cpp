@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "culling/databases.h"
 
 #include <unistd.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one resource provider: the databases a strategy reads
 // (StrategyFamily::databases) that its settings do not name are made here
 // on demand, or found where an earlier run made them, by their full

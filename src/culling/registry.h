@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The strategy registry: every culling strategy the programs can run, one
 // entry per family (the list: src/strategies/registry.cpp), each from its
 // own folder under src/strategies/. Programs learn strategies, their papers and their
@@ -165,7 +166,7 @@ std::vector<std::string> strategy_names();
 std::vector<std::string> distinct_strategy_names();
 // The families, their papers, presets and settings, for --help.
 std::string strategies_help();
-// The same as one markdown table, a row per family (README's strategies
+// The same as one markdown table, a row per family (docs/strategies.md's
 // table is this text, and a test keeps it so).
 std::string strategies_markdown();
 

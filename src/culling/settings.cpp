@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "culling/settings.h"
 
 #include <cmath>

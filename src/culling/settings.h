@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A strategy's settings: declared by its family (name, kind, default,
 // range), parsed from "key=value" text, validated, and read by name.
 //

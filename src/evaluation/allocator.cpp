@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "evaluation/allocator.h"
 
 #include <malloc.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the C library's allocator does with freed memory while a program
 // measures. glibc's malloc gives large freed blocks back to the kernel
 // (munmap of blocks over M_MMAP_THRESHOLD, trimming the heap's top over

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "evaluation/lost_pixels.h"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Visible pixels a culled frame lost, against the unculled frame of the
 // same camera: what says a conservative strategy kept every visible pixel
 // (occu-random-views, demos/random_views.cpp).

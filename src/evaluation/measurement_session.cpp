@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "evaluation/measurement_session.h"
 
 #include <sys/resource.h>
@@ -113,6 +114,15 @@ MeasurementSession::MeasurementSession(const SceneSetup &scene, gl::OffscreenCon
 }
 
 MeasurementSession::~MeasurementSession() = default;
+
+std::string MeasurementSession::add_unless_refused(const std::string &spec, const std::vector<std::string> &common,
+                                                   const std::string &label)
+{
+    if (std::string why = choose_strategy(spec, common).family->refusal(scene_.scene()); !why.empty())
+        return why;
+    add(spec, common, label);
+    return {};
+}
 
 SessionStrategy &MeasurementSession::add(const std::string &spec, const std::vector<std::string> &common,
                                          const std::string &label, std::size_t batch)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One measurement of several culling strategies side by side, for every
 // program that compares them (walkthrough, occu-random-views,
 // occu-bench-no-occlusion, occu-bench-knobs): the strategies made from
@@ -144,6 +145,12 @@ public:
     // that refuses its settings throws what it throws.
     SessionStrategy &add(const std::string &spec, const std::vector<std::string> &common = {},
                          const std::string &label = {}, std::size_t batch = 0);
+    // add(), unless the strategy's family refuses the session's scene
+    // (StrategyFamily::refusal): then it adds nothing and returns why
+    // (empty: added), so that a run over several scenes leaves out, with
+    // its reason, what a scene cannot serve.
+    std::string add_unless_refused(const std::string &spec, const std::vector<std::string> &common = {},
+                                   const std::string &label = {});
 
     using Observer = std::function<void(const SessionStrategy &, const StrategyFrame &)>;
     // One frame of `camera` by every strategy, in this frame's shuffled

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "evaluation/oracle.h"
 
 #include <algorithm>

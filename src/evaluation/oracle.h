@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The exact-visibility oracle: which leaves of the hierarchy contribute at
 // least one pixel to a frame, from an ID buffer (every leaf in the frustum
 // drawn in its own flat colour, then read back). It draws into the bound

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "evaluation/scene_setup.h"
 
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene a program measures, made in one place for every program and
 // test: its meshes (the procedural city, the field, or a file), the
 // hierarchy built over them (spatial/hierarchy.h) and the routes through

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "evaluation/session_report.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A measurement session's results as files and a table
 // (evaluation/measurement_session.h): frames.csv, one row per strategy and
 // frame, and summary.csv, one row per strategy, with the table printed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Axis-aligned bounding boxes.
 //
 // Conventions for all of occu's geometry: right-handed world space, y up,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex regions bounded by half-spaces, and the facts of convex polygons
 // and boxes they are built from: the geometry that object-space shadow
 // culling's two tests share (Moeller and Haines, "Occlusion Culling

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rectangles of pixels. A PixelRect holds the pixels (x, y) with
 // x0 <= x < x1 and y0 <= y < y1; pixel (x, y) covers [x, x + 1) x [y, y + 1)
 // and has its centre at (x + 0.5, y + 0.5). Empty when x0 >= x1 or y0 >= y1.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Extension lookup in the two forms GL reports them: the space-separated
 // GL_EXTENSIONS string of compatibility contexts, and glGetStringi lists.
 #pragma once

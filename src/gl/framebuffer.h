@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A framebuffer object of occu's own: RGBA8 colour and 24-bit depth with
 // 8-bit stencil, for images a strategy or a preprocessing step draws for
 // itself (occluder depth, ID buffers), so that it never touches the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one place that includes GL headers, so that every file sees the same
 // prototypes and extension typedefs. Entry points beyond GL 1.1 are fetched
 // with get_proc_address, never linked directly.

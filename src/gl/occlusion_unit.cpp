@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "gl/occlusion_unit.h"
 
 #include <algorithm>

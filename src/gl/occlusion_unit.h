@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL_MESAX_occlusion_unit as the library uses it (spec/MESAX_occlusion_unit.txt):
 // the one owner of its entry points, tiles, buffers and records. Every user
 // (strategies, preprocessing, benchmarks) runs passes through it.

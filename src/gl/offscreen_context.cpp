@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "gl/offscreen_context.h"
 
 #include <GL/osmesa.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Off-screen OpenGL through OSMesa on occu's patched Mesa.
 //
 // Conventions: the colour buffer is RGBA8 in client memory, origin at the

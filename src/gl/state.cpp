@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "gl/state.h"
 
 #include <glm/gtc/type_ptr.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL state saved and restored by scope: the one way occu's library changes
 // state it does not own. Every strategy, preprocessing step and renderer
 // helper that sets depth, culling, polygon, colour or viewport state for

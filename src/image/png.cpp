@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "image/png.h"
 
 #include <png.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PNG output for frames and top views.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "image/text.h"
 
 #include <algorithm>

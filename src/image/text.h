@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Text in images without fonts from anywhere: occu's own bitmap font, 5x7
 // pixels a glyph (descenders 2 more) for the printable ASCII characters,
 // drawn into RGBA8 images in client memory, for titles and legends of the

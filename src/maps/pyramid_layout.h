@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The shape of an image pyramid built by 2x2 reduction, shared by the
 // Z-pyramid of Greene, Kass and Miller
 // (strategies/greene_hierarchical_z_buffer/z_pyramid.h) and the

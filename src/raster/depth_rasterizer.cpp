@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "raster/depth_rasterizer.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A CPU depth rasterizer for occluders, in the manner of Leone et al.,
 // "Implementing Software Occlusion Culling for Real-Time Applications":
 // occluder triangles and quads (quads natively, section 7) go into a

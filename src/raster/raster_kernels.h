@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The depth rasterizer's inner loops (raster/depth_rasterizer.h), once in
 // scalar code and once in AVX2. Both evaluate the same float expressions,
 // in the same order and without fused multiply-add (their files build with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The AVX2 loops: eight depth pixels of a tile row, or eight tiles of a
 // band, at once, the scalar loops' expressions lane by lane
 // (raster_kernels_scalar.cpp); and the triangles' screen and setup, eight

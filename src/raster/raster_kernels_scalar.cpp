@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scalar loops: the reference the AVX2 loops must equal bit for bit.
 #include "raster/raster_kernels.h"
 

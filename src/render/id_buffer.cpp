@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/id_buffer.h"
 
 #include <stdexcept>

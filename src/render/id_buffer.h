@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ID rendering: each leaf drawn in a flat colour that encodes its index,
 // depth tested, then read back, so that every pixel names the leaf seen
 // there. The oracle (exact visibility), first-hit occluder selection and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/occlusion_proxy.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Drawing a node's proxy for an occlusion test (a pass of the Occlusion
 // Unit, an occlusion query): the proxy must pass the depth test wherever
 // what it holds would. Content can lie on the box's faces, and far away a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Draws the leaves of a hierarchy with OpenGL (compatibility profile), one
 // vertex buffer per leaf, colours pre-lit on the CPU once (render/shading.h)
 // so that frames need no lighting state. Also draws node boxes as occlusion proxies.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/shading.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pre-lit vertex colours: the lighting of every frame, computed once on the
 // CPU when the renderer builds its vertex buffers (render/scene_renderer.h),
 // so that frames need no lighting state and cost what unlit frames cost.

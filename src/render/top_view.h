@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A top view of a frame, like the papers' bird's-eye figures (Bartz et al.
 // 1998, figures 1b and 2b): every leaf's footprint seen from above, coloured
 // by what the strategy did with it, and the camera's position and view

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scene/city.h"
 
 #include <random>

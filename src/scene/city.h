@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The default scene: a city in the manner of the papers' test models
 // (Bartz et al. 1998, figure 1; Poon and Wang, section 6): a grid of blocks,
 // each a ring of buildings whose facades carry ledges at every floor, so that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scene/field.h"
 
 #include <random>

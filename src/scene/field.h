@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A scene with no occlusion: a flat field of small objects (issue 18,
 // item 6), the counterpart of the city (scene/city.h). A grid of small
 // boxes ("posts") on a ground plane, spaced far enough apart that, seen

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The colours scenes are drawn in: a palette of light facade hues (plaster,
 // stone, brick, painted render) for the city's buildings and for the meshes
 // of user scenes whose file gives no colour. Colours are albedos, RGB in

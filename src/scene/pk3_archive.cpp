@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scene/pk3_archive.h"
 
 #include <zip.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Members of Quake III's pk3 archives (zip files), read through libzip:
 // a scene named "ARCHIVE.pk3:MEMBER" is MEMBER inside ARCHIVE.
 #pragma once

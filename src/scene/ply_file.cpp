@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scene/ply_file.h"
 
 #include <algorithm>

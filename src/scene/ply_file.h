@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PLY (Turk's polygon file format: a header of elements and their typed
 // properties, then their values in ASCII or binary) read by occu itself.
 //

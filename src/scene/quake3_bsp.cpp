@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scene/quake3_bsp.h"
 
 #include <algorithm>

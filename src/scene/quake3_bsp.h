@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Quake III Arena levels (IBSP version 46, as id's q3map and its
 // successors write them and Debian's OpenArena data ships them) read by
 // occu itself. assimp 5.2.5's BSP importer makes meshes its own validation

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenes: triangle meshes with bounding boxes.
 #pragma once
 

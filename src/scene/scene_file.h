@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // User scenes from files (OBJ, glTF and the other formats assimp reads;
 // PLY files and Quake III levels occu reads itself).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks of a scene file before assimp reads it: what Debian's assimp
 // 5.2.5 would crash on, overflow a buffer with or hang on, found by the
 // scene-file fuzzer (tests/fuzz/scene_file_fuzz.cpp). load_scene runs it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "spatial/hierarchy.h"
 
 #include <cmath>

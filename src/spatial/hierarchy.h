@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The spatial hierarchy occlusion-driven rendering traverses: an octree
 // over the scene's triangles whose nodes are bounded by the boxes of the
 // triangles they hold, so siblings may overlap. This is the "sloppy n-ary

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whether a point lies inside a model: in a room of a building, the cabin
 // of a ship, anywhere a camera sees the model around it rather than its
 // outside or the backs of its walls. A model read from a file says nothing

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The strategy registry (culling/registry.h): one line per family, in the
 // order help lists them. A new paper's strategies are a folder beside this
 // file, one line here, and their sources in src/meson.build.

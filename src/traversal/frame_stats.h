@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the traversal did in one frame (traversal/traversal.h), which its
 // policies (traversal/policies.h) judge by.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "traversal/policies.h"
 
 #include <algorithm>

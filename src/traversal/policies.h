@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The traversal's policies across frames, each an object the traversal
 // calls (traversal/traversal.h), with its own settings and state, kept per
 // strategy and hierarchy. They only decide where occlusion tests are worth

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "traversal/traversal.h"
 
 #include <algorithm>

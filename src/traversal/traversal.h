@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hierarchical rendering driven by a Culler: the general occlusion culling
 // algorithm of Moeller and Haines (figure 2) over the hierarchy, front to
 // back (Bartz et al. 1998, section 3: test a node's box, draw it if it is a

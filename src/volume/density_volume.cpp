@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "volume/density_volume.h"
 
 #include <algorithm>

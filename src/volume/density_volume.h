@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: MIT
 // A volume for the mixed polygon/volume scenes of Bartz, Meissner and
 // Huettner (1998), section 5, "Support for Ray Casting": a scalar density
 // on a regular grid, its subdivision entities (bricks), and front-to-back
 // ray marching with emission and absorption that stops at the polygons'
-// depth (/work/shared/papers/001_b2be44d379417d74.txt, lines 239-243).
+// depth.
 //
 // Conventions: world space as everywhere in occu (metres, y up). The grid
 // holds density samples at its points: point (i, j, k) sits at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // occu-egl-check: proves that an unmodified program linked to glvnd's libEGL
 // and libOpenGL (as Debian's piglit binaries are) renders on occu's patched
 // Mesa: it makes a surfaceless EGL context, prints GL_RENDERER and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes the reader every database shares (culling/database_file.h), as the
 // database provider reads a file it finds (any kind, its provenance, then
 // its records to the end) and with every kind of field a payload reads: any

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the fuzz targets share: the fuzzer's bytes as a file the loaders
 // read (they take paths, as the programs do), and the rule every target
 // checks: bad input is refused with an exception that names it, never a

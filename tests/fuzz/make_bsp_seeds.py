@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 # Writes the seed corpus of the Quake III level fuzz target
 # (tests/fuzz/corpus/scene_file_bsp/): small IBSP version 46 files made
 # here, lump by lump (Kekoa Proudfoot's "Unofficial Quake 3 Map Specs"),

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 # Writes the seed corpora of the scene-file fuzz targets
 # (tests/fuzz/corpus/scene_file_{obj,ply,gltf,glb}/) from Debian's
 # assimp-testmodels (/usr/share/assimp/models/), and the list of where each

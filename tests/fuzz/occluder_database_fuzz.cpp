@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes the minimum-occluder-set database loader
 // (strategies/poon_wang_opacity_maps/occluder_database.h): any bytes are
 // either a database or refused naming the file.

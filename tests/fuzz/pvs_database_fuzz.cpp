@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes the PVS database loader (strategies/wonka_view_cells/
 // pvs_database.h): any bytes are either a database whose cells are finite
 // triangles with area, whose sets name cells that exist with leaves in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes route files (camera/route.h): any bytes are either cameras whose
 // positions and view directions are finite, or refused naming the file.
 #include <cmath>

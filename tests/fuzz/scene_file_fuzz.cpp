@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes user scenes (scene/scene_file.h) in the five formats occu's
 // users bring: Wavefront OBJ, glTF 2 (.gltf, JSON with its buffers as
 // base64 data URIs) and GLB (binary glTF) through assimp, PLY (ASCII and

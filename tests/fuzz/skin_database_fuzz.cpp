@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes the occluder-skin database loader
 // (strategies/leone_occluder_skins/occluder_skins.h): any bytes are either a
 // database whose boxes are finite and not inverted, or refused naming the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes strategy names and settings (culling/registry.h): any text is
 // either a strategy of the registry with valid settings or refused with
 // std::invalid_argument.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chc's own behaviour across frames (strategies/bittner_coherent_hierarchical_culling):
 // a leaf hidden in one frame and seen in the next is drawn in the next
 // (nodes invisible last frame are tested every frame), and a leaf that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Conservative strategies never remove a visible pixel: on short routes of
 // a small city and random views inside it, every frame of every conservative strategy in the registry
 // (and of its traversal variants: strictly front to back, in batches, with

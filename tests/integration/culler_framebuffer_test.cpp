@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strategies never touch the caller's framebuffer or GL state: each one's
 // begin_frame and tests leave the colour and depth buffers, the viewport,
 // the matrices and the enables exactly as the caller set them (their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the integration tests of conservative culling share: one frame
 // drawn through a culler into the current context, read back, and how two
 // such frames differ.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Named hard cases for conservative culling: small scenes, each with one
 // camera and viewport chosen to be numerically or geometrically awkward
 // (the eye inside boxes, the near plane through them, far from the origin,

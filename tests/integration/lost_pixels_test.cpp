@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The lost-pixel counter (evaluation/lost_pixels.h), which occu-random-views
 // trusts to say that a conservative strategy lost nothing: on random views
 // of a small city it counts 0 for vfc, ou and chc (chc against its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The measurement session (evaluation/measurement_session.h) every
 // comparing program runs, and the scene setup it runs over
 // (evaluation/scene_setup.h):

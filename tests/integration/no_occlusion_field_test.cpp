@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The field (scene/field.h), the scene with no occlusion, and what the
 // strategies do on it (issue 18, item 6). Nothing here is timed
 // (occu-bench-no-occlusion measures the time); these check what can be

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A see-through mesh (Mesh::occluder false: a Quake III level's glass,
 // water or fog, scene/quake3_bsp.h) is drawn but hides nothing: what lies
 // behind it shows through it in the frame, the oracle counts it visible, no

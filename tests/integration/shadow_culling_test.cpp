@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shadow culling (Moeller and Haines, "Occlusion Culling Algorithms",
 // section "Shadow Culling": `shadow`, Hudson et al.; `planes`, Coorg and
 // Teller), and every other strategy whose occluders are occluder skins

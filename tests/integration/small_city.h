@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The small cities the integration tests draw whole frames of: a city of
 // blocks x blocks (scene/city.h) in leaves of at most `leaf_triangles`,
 // made by the one scene setup of the programs (evaluation/scene_setup.h),

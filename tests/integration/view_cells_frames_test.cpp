@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // View-cell visibility (Wonka, Wimmer and Schmalstieg 2000;
 // strategies/wonka_view_cells/view_cell_visibility.h): on a 3x3-block city,
 // the potentially visible sets found with the Occlusion Unit equal those

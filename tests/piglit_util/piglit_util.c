@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #include "piglit_util.h"
 
 #include <GL/osmesa.h>

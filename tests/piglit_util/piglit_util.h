@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * A small piglit-compatible test harness for occu's own tests on OSMesa.
  *

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Preprocesses the view cells' potentially visible sets (occu-preprocess
 # view-cells; Wonka, Wimmer and Schmalstieg 2000) on a Slurm cluster: a job
 # array of N tasks, task I making shard I/N (the cells c with c % N == I - 1,

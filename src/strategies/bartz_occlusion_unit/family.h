@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bartz, Meissner and Huettner, "Extending Graphics Hardware For Occlusion
 // Queries In OpenGL" (1998): occlusion-driven rendering with the Occlusion
 // Unit (GL_MESAX_occlusion_unit, gl/occlusion_unit.h).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/bartz_occlusion_unit/family.h"
 
 #include <algorithm>

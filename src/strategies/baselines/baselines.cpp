@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/baselines/family.h"
 
 #include <optional>

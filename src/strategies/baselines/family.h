@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The references every occlusion strategy is measured against.
 //   none   draws everything;
 //   vfc    view-frustum culling only: the baseline of the occlusion

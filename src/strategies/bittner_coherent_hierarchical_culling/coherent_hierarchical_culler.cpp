@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/bittner_coherent_hierarchical_culling/family.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Coherent hierarchical culling on the Occlusion Unit: Bittner, Wimmer,
 // Piringer and Purgathofer, "Coherent Hierarchical Culling: Hardware
 // Occlusion Queries Made Useful" (Eurographics 2004), and Mattausch,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/bittner_coherent_hierarchical_culling/occlusion_unit_async_culler.h"
 
 #include <algorithm>

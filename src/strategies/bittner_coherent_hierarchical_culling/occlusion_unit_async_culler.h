@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The asynchronous culler of coherent hierarchical culling on the Occlusion
 // Unit (culling/async_culler.h): a batch is one pass of
 // GL_MESAX_occlusion_unit_async with one tile per test (its area), read when

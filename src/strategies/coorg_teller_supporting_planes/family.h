@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Coorg and Teller, "Real-Time Occlusion Culling for Models with Large
 // Occluders" (Symposium on Interactive 3D Graphics 1997), as Moeller and
 // Haines, "Occlusion Culling Algorithms", section "Shadow Culling",

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Supporting planes (Coorg and Teller; Moeller and Haines, "Occlusion
 // Culling Algorithms", section "Shadow Culling"): see family.h.
 #include "strategies/coorg_teller_supporting_planes/family.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Coorg and Teller's supporting planes (Moeller and Haines, "Occlusion
 // Culling Algorithms", section "Shadow Culling"): see supporting_planes.h
 // for the statements and their proofs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Coorg and Teller's supporting planes, the geometry (Coorg and Teller,
 // "Real-Time Occlusion Culling for Models with Large Occluders", 1997, as
 // Moeller and Haines, "Occlusion Culling Algorithms", section "Shadow

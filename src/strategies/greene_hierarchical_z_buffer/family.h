@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Greene, Kass and Miller, "Hierarchical Z-Buffer Visibility" (SIGGRAPH
 // 1993), as Moeller and Haines, "Occlusion Culling Algorithms", section
 // "Hierarchical Z-Buffering and the Hierarchical Visibility Algorithm",

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The hierarchical Z-buffer (Greene, Kass and Miller; Moeller and Haines,
 // "Hierarchical Z-Buffering and the Hierarchical Visibility Algorithm"):
 // see family.h.

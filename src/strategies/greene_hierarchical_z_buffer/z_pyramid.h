@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Z-pyramid of Greene, Kass and Miller's hierarchical Z-buffer
 // ([Greene93], in Moller and Haines, "Occlusion Culling Algorithms", section
 // "Hierarchical Z-Buffering and the Hierarchical Visibility Algorithm",

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hudson, Manocha, Cohen, Lin, Hoff and Zhang, "Accelerated Occlusion
 // Culling using Shadow Frusta" (Symposium on Computational Geometry 1997),
 // as Moeller and Haines, "Occlusion Culling Algorithms", section "Shadow

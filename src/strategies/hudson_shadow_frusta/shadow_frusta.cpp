@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hudson et al.'s shadow frusta (Moeller and Haines, "Occlusion Culling
 // Algorithms", section "Shadow Culling"): see shadow_frusta.h for the
 // statements and their proofs.

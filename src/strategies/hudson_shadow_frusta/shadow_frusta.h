@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hudson et al.'s shadow frusta, the geometry (Hudson, Manocha, Cohen,
 // Lin, Hoff and Zhang, "Accelerated Occlusion Culling using Shadow
 // Frusta", 1997, as Moeller and Haines, "Occlusion Culling Algorithms",

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shadow frusta (Hudson et al.; Moeller and Haines, "Occlusion Culling
 // Algorithms", section "Shadow Culling"): see family.h.
 #include "strategies/hudson_shadow_frusta/family.h"

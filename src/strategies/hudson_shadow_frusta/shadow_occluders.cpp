@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Occluders of shadow culling per frame: see shadow_occluders.h.
 #include "strategies/hudson_shadow_frusta/shadow_occluders.h"
 

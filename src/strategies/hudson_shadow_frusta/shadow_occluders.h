@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The occluders of object-space shadow culling (Moeller and Haines,
 // "Occlusion Culling Algorithms", section "Shadow Culling": "select a
 // small set of large occluders and discard the objects behind [them]"),

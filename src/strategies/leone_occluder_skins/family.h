@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Leone, Barbagallo, Banquiero, Agromayor and Bursztyn, "Implementing
 // Software Occlusion Culling for Real-Time Applications": occlusion
 // culling on the CPU against a downscaled depth buffer.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Occluder skins: Leone et al., section 4 (the steps are in the header).
 #include "strategies/leone_occluder_skins/occluder_skins.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Occluder skins (Leone, Barbagallo, Banquiero, Agromayor and Bursztyn,
 // "Implementing Software Occlusion Culling for Real-Time Applications",
 // section 4, after Danell): for each mesh, a few axis-aligned boxes that

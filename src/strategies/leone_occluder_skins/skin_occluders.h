@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Occluder skins at run time (Leone et al., section 5): the skins of the
 // scene's meshes (occluder_skins.h), frustum-culled each
 // frame, the largest on screen first, and their faces that face the eye

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/leone_occluder_skins/family.h"
 
 #include <memory>

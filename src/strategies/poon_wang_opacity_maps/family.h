@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Poon and Wang, "Occlusion Culling Using Minimum Occluder Set and Opacity
 // Map": occlusion culling with the opacity map and the sparse depth map
 // (section 5; opacity_map.h, sparse_depth_map.h), by one of three occluder

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/poon_wang_opacity_maps/minimum_occluder_set.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Minimum occluder sets (Poon and Wang, section 4.2). An occludee's
 // combination table lists, for each group of its pixels, the occluders that
 // cover that group (a slot); the slots are sorted by how many occluders they

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The occluder database (Poon and Wang, section 3): for grid points over
 // the scene, each with representative view directions, the occluders
 // (hierarchy leaves) chosen there by the minimum-occluder-set

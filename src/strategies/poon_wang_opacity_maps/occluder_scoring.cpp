@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/poon_wang_opacity_maps/occluder_scoring.h"
 
 #include <algorithm>

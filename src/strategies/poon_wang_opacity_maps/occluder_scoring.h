@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scoring and selecting minimum occluder sets (Poon and Wang, section 4.3).
 //   Scores: gain = occludees the set occludes, plus the gain of every set
 //   it is a superset of (occluder fusion); cost = the set's occluders, each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Occluder stacks (Poon and Wang, section 4.1): for each occludee, the
 // occluders in front of it at each pixel of its footprint.
 //

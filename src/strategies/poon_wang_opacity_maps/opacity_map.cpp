@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/poon_wang_opacity_maps/opacity_map.h"
 
 #include <stdexcept>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The opacity map of Poon and Wang (section 5.1): a summed-area table of the
 // occluders' coverage bitmap, with a row and a column of zeros in front, so
 // that the coverage of any rectangle takes three additions/subtractions

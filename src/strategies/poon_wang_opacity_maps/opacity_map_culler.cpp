@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/poon_wang_opacity_maps/family.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Occluder selection at run time (Poon and Wang, section 6.1): which
 // hierarchy leaves an occlusion strategy renders as occluders.
 //   projected size (PS)  the leaves in the frustum whose boxes subtend the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/poon_wang_opacity_maps/sparse_depth_map.h"
 
 #include <algorithm>

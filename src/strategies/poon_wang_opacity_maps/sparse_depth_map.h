@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The sparse depth map of Poon and Wang (section 5.3): for each pixel of the
 // occluders' depth map, how many pixels to the right the run of
 // non-decreasing depth it belongs to goes on. Within such a run the farthest

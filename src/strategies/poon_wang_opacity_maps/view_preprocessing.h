@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Minimum-occluder-set preprocessing for one view (Poon and Wang, section
 // 4): which leaves to render as occluders from there, best first. The
 // steps, each in the file of its section:

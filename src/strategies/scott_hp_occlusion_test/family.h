@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The HP occlusion test: Hewlett-Packard's occlusion culling in the
 // VISUALIZE fx graphics hardware (Scott, Olsen and Gannett, "An Overview
 // of the VISUALIZE fx Graphics Accelerator Hardware", Hewlett-Packard

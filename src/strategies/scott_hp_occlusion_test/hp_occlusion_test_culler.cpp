@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/scott_hp_occlusion_test/family.h"
 
 #include <optional>

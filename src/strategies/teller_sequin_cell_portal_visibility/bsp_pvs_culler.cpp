@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/teller_sequin_cell_portal_visibility/family.h"
 
 #include <algorithm>

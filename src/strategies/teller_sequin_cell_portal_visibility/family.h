@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A Quake III level's own visibility: the potentially visible set its map
 // compiler stored (q3map -vis). The compiler splits the level's empty
 // space into the convex leaves of its BSP tree, groups them into clusters

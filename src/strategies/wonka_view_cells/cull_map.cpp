@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/wonka_view_cells/cull_map.h"
 
 #include <algorithm>

@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: MIT
 // Cull maps: Wonka, Wimmer and Schmalstieg, "Visibility Preprocessing with
-// Occluder Fusion for Urban Walkthroughs" (2000), sections 1.3, 2.2 and 5
-// (/work/shared/papers/003_9d0037856a5dffc6.txt, lines 74-96, 142-150,
-// 204-224).
+// Occluder Fusion for Urban Walkthroughs" (2000), sections 1.3 ("Cull
+// Maps", figures 3 and 4), 2.2 ("Hardware rasterization of shrunk
+// occluders") and 5 ("Rendering and Merging Occluder Shadows").
 //
 // A cull map is a depth buffer seen from straight above: pixel (i, j) is
 // the ground square of k x k metres at region.min + (i, j) k (x to the

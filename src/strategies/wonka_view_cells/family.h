@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Wonka, Wimmer and Schmalstieg, "Visibility Preprocessing with Occluder
 // Fusion for Urban Walkthroughs" (2000): view cells over the city's
 // streets, each with its potentially visible set precomputed from point

@@ -1,7 +1,9 @@
+// SPDX-License-Identifier: MIT
 // Occluder shrinking for 2.5D occluders of constant height: Wonka, Wimmer
 // and Schmalstieg, "Visibility Preprocessing with Occluder Fusion for Urban
-// Walkthroughs" (2000), sections 2.1 and 4.4
-// (/work/shared/papers/003_9d0037856a5dffc6.txt, lines 122-198).
+// Walkthroughs" (2000), sections 2.1 ("Occluder fusion by occluder
+// shrinking and point sampling", figures 5 to 7) and 4.4 ("Occluders with
+// constant height", figure 8).
 //
 // "An object classified as occluded by the shrunk occluder will remain
 // occluded with respect to the original larger occluder when moving the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/wonka_view_cells/pvs_database.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The potentially visible sets of a scene's view cells (Wonka, Wimmer and
 // Schmalstieg 2000, section 7.3: "object IDs of potentially visible objects
 // for each view cell"), in occu's database format (culling/database_file.h):

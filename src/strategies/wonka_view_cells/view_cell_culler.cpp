@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/wonka_view_cells/family.h"
 
 #include <cmath>

@@ -1,7 +1,9 @@
+// SPDX-License-Identifier: MIT
 // The potentially visible set of a view cell: Wonka, Wimmer and
 // Schmalstieg, "Visibility Preprocessing with Occluder Fusion for Urban
-// Walkthroughs" (2000), sections 2.4, 5 and 6
-// (/work/shared/papers/003_9d0037856a5dffc6.txt, lines 152-164, 204-246).
+// Walkthroughs" (2000), sections 2.4 ("Algorithm Overview"), 5
+// ("Rendering and Merging Occluder Shadows") and 6 ("Hierarchical
+// Occlusion Test").
 //
 // Per cell (section 2.4): the occluders (the scene's prism occluders,
 // shrunk by epsilon once, footprint_shrinking.h) cast their

@@ -1,7 +1,7 @@
+// SPDX-License-Identifier: MIT
 // View cells over a city's free space: Wonka, Wimmer and Schmalstieg,
 // "Visibility Preprocessing with Occluder Fusion for Urban Walkthroughs"
-// (2000), section 3 (/work/shared/papers/003_9d0037856a5dffc6.txt,
-// lines 166-172).
+// (2000), section 3, "Subdivision into View Cells".
 //
 // "We chose to use a constrained Delaunay triangulation of free space,
 // modified to guarantee that the maximum length of view cell edges does

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Zhang, Manocha, Hudson and Hoff, "Visibility Culling using Hierarchical
 // Occlusion Maps" (SIGGRAPH 1997), as Moeller and Haines, "Occlusion
 // Culling Algorithms", section "The HOM Algorithm", describe it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The two halves of Zhang, Manocha, Hudson and Hoff's occlusion test
 // ([Zhang97], [Zhang98]; Moller and Haines, "Occlusion Culling Algorithms",
 // section "The HOM Algorithm"): the overlap test in the image plane against a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hierarchical occlusion maps (Zhang et al.; Moeller and Haines,
 // "Hierarchical Occlusion Map"): see family.h.
 #include "strategies/zhang_hierarchical_occlusion_maps/family.h"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Bad input to the demos gets a message naming it and a failing exit status,
 # never a crash (no signal) and never a silent success.
 # Usage: bad-input.sh WALKTHROUGH OCCU-PREPROCESS

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # occu-bench-knobs: a short run (om-ps on 3 frames of the dense route, its
 # tolerance at 0 and 16) writes knobs.csv with a row per value and route
 # (and the means, route "all"), the exact value (tolerance=0) with 0 wrong

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Scenes nobody here made, from Debian's assimp-testmodels: every
 # conservative strategy of the registry (the list is walkthrough
 # --list-strategies', never typed in here) loses no visible pixel on them,

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # occu-collide refuses bad input with a message naming it and a failing
 # exit status, never a crash (no signal) and never a silent success; and
 # a good run prints its confusion tables and writes its files.

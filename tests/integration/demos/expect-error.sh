@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Sourced by the demos' bad-input tests: a scratch directory $dir (removed
 # at exit), a failure count, and
 #   expect_error WHAT-THE-MESSAGE-NAMES COMMAND...

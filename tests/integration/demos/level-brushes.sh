@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # skin-source=brushes (scene/quake3_bsp.h, Quake3BrushOccluders::BoxBrush): the skin
 # families with a Quake III level's box brushes as occluders, on random eyes
 # in Debian's OpenArena levels (openarena-088-data, which tools/deps.sh test

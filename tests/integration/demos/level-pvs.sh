@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # bsp-pvs, a Quake III level's own PVS (strategies/teller_sequin_cell_portal_visibility/),
 # on Debian's OpenArena levels (openarena-088-data, which tools/deps.sh test
 # installs), every frame compared pixel for pixel with the unculled frame

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # A Quake III level from Debian's OpenArena data (openarena-088-data, which
 # tools/deps.sh test installs), the small arena aggressor: occu-random-views
 # over its open space (eyes only in BSP leaves of a cluster), every

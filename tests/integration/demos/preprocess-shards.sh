@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # occu-preprocess: a database built in two shards and merged is byte for byte
 # the database built whole (views are independent and the output is
 # deterministic), and merging refuses a shard twice.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # occu-preprocess skins (Leone et al., section 4): skins made in two shards
 # and merged are byte for byte the skins made whole; merge refuses a shard
 # twice and shards of other options; a walkthrough takes the database and

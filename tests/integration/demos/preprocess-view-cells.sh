@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # occu-preprocess view-cells (Wonka et al.): a range of cells made in two
 # shards and merged is byte for byte the range made in one process; the
 # Occlusion Unit and the read-back find the same sets (--test both fails

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # occu-preprocess views: the route it writes holds the database's views with
 # occluders at inner grid points, every K-th, each camera where
 # preprocessing put it (grid point, heading d at 2 pi d / D from +x to +z).

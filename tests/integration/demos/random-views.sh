@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # occu-random-views: a CI-sized run (VIEWS random cameras over the city and
 # the two assimp-testmodels scenes, every conservative strategy, om-mos and
 # pc-mos with small occluder databases made on demand) loses no

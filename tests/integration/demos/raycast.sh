@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # occu-raycast refuses bad input with a message naming it and a failing
 # exit status, never a crash (no signal) and never a silent success; a good
 # run casts through the lists of several brick sizes, finds every lists

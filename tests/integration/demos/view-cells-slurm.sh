@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Distributed view-cell preprocessing (issue 16, item 6): starts a
 # single-node Slurm cluster of its own on localhost (munged with its own key,
 # slurmctld and slurmd, everything in a temporary directory, on free ports),

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The walkthrough's pictures: a small run, then tools/plot-walkthrough.sh on
 # its folder. The plots (frame time, triangles and culling efficiency per
 # frame) must exist and be whole PNGs of a plausible size with something

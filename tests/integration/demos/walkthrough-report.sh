@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The walkthrough's report page: a small run (4 frames of 128 x 128, images
 # every 2 frames, three strategies), tools/plot-walkthrough.sh, then
 # tools/report-walkthrough.sh on its folder. Every <img> of index.html must

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Sourced after expect-error.sh ($dir, $failures) by the tests that read a
 # walkthrough's summary.csv:
 #   walk LABEL OUT ARGS...   runs "$walkthrough" ARGS --out OUT (its output

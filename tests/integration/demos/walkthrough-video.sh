@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The walkthrough's video: a tiny run with an image of every frame (5 frames
 # of 64 x 64, --png-every 1), then tools/video-walkthrough.sh on its folder.
 # ffprobe must count one video frame per route frame, of the size the layout

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Collision detection with occlusion tiles (Bartz et al. 1998, section 5,
 // figure 7; applications/collision_detection.h): hand-built cases (a wall
 // one step ahead, a wall just beyond the step, a pillar in a side tile,

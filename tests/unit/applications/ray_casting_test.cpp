@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Ray casting through verbose occlusion lists (Bartz et al. 1998, section
 // 5; applications/ray_casting.h, volume/density_volume.h): the volume's
 // trilinear density, its bricks against brute-force sampling, the ray

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A camera's view matrix for every view direction: with the up vector
 // parallel to the view direction (looking straight down or up with the
 // default up), the cross product lookAt builds its basis from is zero.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A box's footprint against brute force: every pixel whose centre a point
 // of the box projects into lies inside the footprint (and inside its map
 // rectangle at any divisor); boxes that hold the eye or cross the near

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "camera/route.h"
 
 #include <gtest/gtest.h>

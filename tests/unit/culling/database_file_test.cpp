@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The database format every database shares (culling/database_file.h):
 // the writer's header and provenance read back as written; every malformed
 // header and provenance line, every bad field of a payload record, a file

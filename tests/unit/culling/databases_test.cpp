@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The resource provider (culling/databases.h), with a family of its own:
 // a database is made the first time it is asked for and found afterwards
 // (in this provider and in another on the same directory), a provenance

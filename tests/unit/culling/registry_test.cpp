@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The strategy registry: every listed name builds a strategy of its
 // family with its settings; traits come from the family, not the name;
 // approximation knobs at tolerance=0 are exact; unknown strategies,
@@ -66,7 +67,7 @@ TEST(Registry, EveryFamilyNamesItsPaperAndFactory)
         EXPECT_NE(help.find(n), std::string::npos) << n;
 }
 
-// README's strategies table: a row per family in the registry's order, each
+// docs/strategies.md's table: a row per family in the registry's order, each
 // with the table's six cells (a '|' inside a cell is escaped), naming the
 // family, its listed presets, its paper and every setting.
 TEST(Registry, MarkdownTableHasARowPerFamily)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The box faces and front-face masks that shadow culling's geometries
 // share (geometry/convex_region.h).
 #include "geometry/convex_region.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "gl/extensions.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The library's owner of GL_MESAX_occlusion_unit: a pass over a drawn
 // rectangle returns named records with the analytic counts and extents,
 // verbose lists exactly the pixels (flagging an overflow), and GL state

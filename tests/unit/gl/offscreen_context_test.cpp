@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs once per driver (meson sets GALLIUM_DRIVER); checks that the context
 // really is that driver on the patched Mesa, and occu's conventions hold.
 #include "gl/offscreen_context.h"

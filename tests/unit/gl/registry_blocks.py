@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Writes gl_registry_blocks.inc, the facts tokens_test.cpp checks the
 extensions' token values against, from the Khronos registry's gl.xml:
 every enumerant block of the GL namespace (start, end, vendor, and whether

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The token values of GL_MESAX_occlusion_unit and GL_MESAX_occlusion_unit_async
 // collide with nothing the Khronos registry assigns or will assign soon (spec
 // MESAX_occlusion_unit, issue 16): every value lies in no vendor's block of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The CPU depth rasterizer against GL: every depth pixel it covers is
 // covered in GL's full-resolution rendering of the same polygons, with
 // GL's depth no farther than the rasterizer's at every frame pixel in it;

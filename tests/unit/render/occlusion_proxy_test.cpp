@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The proxy an occlusion test draws for a box: grown by about 1.5 pixels
 // at its distance, and refused where growing makes it hold the eye or
 // cross the near plane (drawn with back faces culled and clipped there, it

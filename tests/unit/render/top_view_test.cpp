@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/top_view.h"
 
 #include <gtest/gtest.h>

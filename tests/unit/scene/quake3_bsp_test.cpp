@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Quake III level reader (scene/quake3_bsp.h) on minimal levels built
 // here, lump by lump, and on one of Debian's OpenArena levels.
 #include "scene/quake3_bsp.h"

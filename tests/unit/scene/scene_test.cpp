@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -117,7 +118,7 @@ TEST(City, BuildingsHaveHuesOfTheirOwnAndWallsLedgesAndRoofsApart)
 {
     const Scene city = generate_city({});
     // The palette draws from a generator of its own: the shapes are the
-    // README's city of 272,796 triangles.
+    // city of 272,796 triangles that docs/walkthrough.md describes.
     EXPECT_EQ(city.triangle_count(), 272796u);
     std::size_t buildings = 0;
     const Mesh *before = nullptr;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "spatial/inside_points.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The leaf size chosen per scene (HierarchyOptions::max_leaf_triangles =
 // auto_leaf_triangles): the power of two whose leaf count is nearest
 // auto_leaf_count_target by ratio.

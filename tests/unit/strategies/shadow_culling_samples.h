@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Random occluders, eyes and boxes, and brute-force visibility, for the
 // tests of shadow culling's two geometries (Moeller and Haines, "Occlusion
 // Culling Algorithms", section "Shadow Culling"): Hudson et al.'s shadow

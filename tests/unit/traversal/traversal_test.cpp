@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The traversal: a "do not test below" answer stops occlusion tests under
 // a node and still draws what vfc draws; switched-off occlusion tests come
 // back only in probe frames, backing off; temporal coherence takes last

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bartz et al.'s adaptive culling rule (section 5) on counts near and at
 // 2^32 - 1, where the unit's counters saturate (spec issue 5): saturation
 // can keep a node visible that the exact counts would cull, never the

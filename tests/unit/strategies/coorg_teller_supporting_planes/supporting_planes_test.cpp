@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Coorg and Teller's supporting planes (Moeller and Haines, "Occlusion
 // Culling Algorithms", section "Shadow Culling"; supporting_planes.h): the
 // test agrees with Hudson et al.'s shadow frusta (the equivalence

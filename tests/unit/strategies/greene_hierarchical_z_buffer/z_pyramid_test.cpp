@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/greene_hierarchical_z_buffer/z_pyramid.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hudson et al.'s shadow frusta (Moeller and Haines, "Occlusion Culling
 // Algorithms", section "Shadow Culling"; shadow_frusta.h) against brute
 // force: a box the tests call occluded has every sample point (its corners

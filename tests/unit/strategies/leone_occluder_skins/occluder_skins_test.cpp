@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Occluder skins (Leone et al., section 4): skins lie inside their meshes
 // (checked by brute-force ray parity and, for convex meshes, by the face
 // planes), fill simple ones, stay out of concavities, courtyards and sealed

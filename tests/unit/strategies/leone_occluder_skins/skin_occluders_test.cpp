@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Skins in the frame: drawing them nearest first and skipping those already
 // hidden leaves the depth buffer exactly as drawing every usable skin in
 // the frustum would (a hidden skin has no pixel nearer than what is there);

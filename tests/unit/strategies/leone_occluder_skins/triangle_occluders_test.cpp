@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene's own triangles as occluders (SkinOccluders::render_triangles):
 // against a brute-force ray cast, no box with a point the eye sees past
 // every front-facing occluder triangle (the part of it beyond the near

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The occluder database file: what save writes, load reads back, with its
 // provenance and the grid and resolution of its settings; shards merge;
 // malformed payload lines and grid settings are refused with the file and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The greedy order of section 4.3's selection
 // (strategies/poon_wang_opacity_maps/occluder_scoring.h,
 // order_by_marginal_score): gain and cost counted against what the sets

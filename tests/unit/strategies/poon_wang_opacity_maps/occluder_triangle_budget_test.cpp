@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A budget of occluders in triangles (selection.h,
 // first_leaves_within_triangles) against a brute-force search from the
 // definition, not from the implementation's loop: of every prefix length

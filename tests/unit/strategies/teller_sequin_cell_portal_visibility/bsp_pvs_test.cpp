@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // bsp-pvs (strategies/teller_sequin_cell_portal_visibility/family.h) on a
 // hand-made level: four rooms in a row along x, one BSP leaf and cluster
 // each, a solid leaf before the first, and visibility data in which each

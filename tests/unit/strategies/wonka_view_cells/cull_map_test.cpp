@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cull maps (Wonka, Wimmer and Schmalstieg 2000, sections 1.3 and 5;
 // strategies/wonka_view_cells/cull_map.h) against brute force: the umbra at
 // every pixel centre computed on the CPU from the definition (a point is

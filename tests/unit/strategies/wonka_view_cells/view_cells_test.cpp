@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // View cells and occluder shrinking (Wonka, Wimmer and Schmalstieg 2000,
 // sections 3 and 4.4; strategies/wonka_view_cells/view_cells.h and
 // footprint_shrinking.h), each against brute force: the cells tile the free

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "strategies/zhang_hierarchical_occlusion_maps/hierarchical_occlusion_map.h"
 
 #include <gtest/gtest.h>

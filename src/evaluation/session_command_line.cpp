@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+#include "evaluation/session_command_line.h"
+
+#include <stdexcept>
+
+#include "cli/arguments.h"
+#include "culling/registry.h"
+
+namespace occu {
+
+bool SessionCommandLine::take(const std::string &name, const std::string &value)
+{
+    const std::string &a = name, &v = value;
+    if (a == "--strategies") {
+        strategies = list_items(v, ',');
+        if (strategies.empty())
+            throw std::invalid_argument("--strategies is empty");
+    } else if (a == "--size") {
+        size = int(integer_option(a, v, 16, max_size));
+    } else if (a == "--driver") {
+        try {
+            driver = gl::parse_driver(v);
+        } catch (const std::invalid_argument &e) {
+            throw std::invalid_argument(a + ": " + e.what());
+        }
+    } else if (a == "--allocator") {
+        allocator = parse_allocator_policy(a, v);
+    } else if (a == "--databases") {
+        databases = v;
+    } else if (a == "--make-databases") {
+        make_databases = make_databases_option(a, v);
+    } else if (!traversal_options) {
+        return false;
+    } else if (a == "--set") {
+        common.push_back(v);
+    } else if (a == "--batch") {
+        batch = int(integer_option(a, v, 1, 4096));
+    } else if (a == "--coherence") {
+        coherence = switch_option(a, v);
+    } else if (a == "--switch-off") {
+        switch_off = number_option(a, v, 0.0, 1.0);
+    } else {
+        return false;
+    }
+    return true;
+}
+
+void SessionCommandLine::check_strategies(const std::vector<std::string> &specs) const
+{
+    std::vector<StrategyChoice> chosen;
+    for (const std::string &s : specs)
+        chosen.push_back(choose_strategy(s, common));
+    check_common_settings(chosen, common);
+}
+
+SessionOptions SessionCommandLine::session_options(DatabaseProvider &provider) const
+{
+    SessionOptions so;
+    so.allocator = allocator;
+    so.batch = std::size_t(batch);
+    so.coherence = coherence;
+    so.switch_off = switch_off;
+    so.databases = &provider;
+    return so;
+}
+
+}  // namespace occu

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// The session's command line: each option sets its value, bad values are
+// refused naming the option and what was given, names a program handles
+// itself are left to it, and a program that sweeps the traversal takes
+// none of its options.
+#include "evaluation/session_command_line.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+using namespace occu;
+
+namespace {
+
+// The message take() throws for `name value`; empty when it takes them.
+std::string refusal(SessionCommandLine &c, const std::string &name, const std::string &value)
+{
+    try {
+        c.take(name, value);
+    } catch (const std::invalid_argument &e) {
+        return e.what();
+    }
+    return {};
+}
+
+}  // namespace
+
+TEST(SessionCommandLine, TakesItsOptions)
+{
+    SessionCommandLine c;
+    EXPECT_TRUE(c.take("--strategies", "vfc,,ou-shared"));
+    EXPECT_EQ(c.strategies, (std::vector<std::string>{"vfc", "ou-shared"}));
+    EXPECT_TRUE(c.take("--set", "tolerance=0.1"));
+    EXPECT_TRUE(c.take("--set", "batch=8"));
+    EXPECT_EQ(c.common, (std::vector<std::string>{"tolerance=0.1", "batch=8"}));
+    EXPECT_TRUE(c.take("--size", "96"));
+    EXPECT_TRUE(c.take("--driver", "softpipe"));
+    EXPECT_TRUE(c.take("--allocator", "system"));
+    EXPECT_TRUE(c.take("--batch", "7"));
+    EXPECT_TRUE(c.take("--coherence", "off"));
+    EXPECT_TRUE(c.take("--switch-off", "0.25"));
+    EXPECT_TRUE(c.take("--databases", "/tmp/dbs"));
+    EXPECT_TRUE(c.take("--make-databases", "all"));
+    EXPECT_EQ(c.size, 96);
+    EXPECT_EQ(c.driver, gl::Driver::softpipe);
+    EXPECT_EQ(c.allocator, AllocatorPolicy::system);
+    EXPECT_EQ(c.databases, "/tmp/dbs");
+    EXPECT_EQ(c.make_databases, DatabaseProvider::Makes::all);
+
+    DatabaseProvider provider = c.database_provider();
+    const SessionOptions so = c.session_options(provider);
+    EXPECT_EQ(so.batch, 7u);
+    EXPECT_FALSE(so.coherence);
+    EXPECT_EQ(so.switch_off, 0.25);
+    EXPECT_EQ(so.allocator, AllocatorPolicy::system);
+    EXPECT_EQ(so.databases, &provider);
+    EXPECT_EQ(provider.directory(), "/tmp/dbs");
+}
+
+TEST(SessionCommandLine, LeavesOtherNamesToTheProgram)
+{
+    SessionCommandLine c;
+    EXPECT_FALSE(c.take("--route", "dense"));
+    EXPECT_FALSE(c.take("--frames", "3"));
+    c.traversal_options = false;
+    for (const char *name : {"--batch", "--coherence", "--switch-off", "--set"})
+        EXPECT_FALSE(c.take(name, "1")) << name;
+    EXPECT_TRUE(c.take("--size", "64"));
+    EXPECT_EQ(c.batch, 32);
+    EXPECT_TRUE(c.common.empty());
+}
+
+TEST(SessionCommandLine, RefusesBadValuesNamingTheOption)
+{
+    SessionCommandLine c;
+    c.max_size = 4096;
+    EXPECT_EQ(refusal(c, "--size", "8192"), "--size wants an integer in 16..4096, got '8192'");
+    EXPECT_EQ(refusal(c, "--batch", "0"), "--batch wants an integer in 1..4096, got '0'");
+    EXPECT_EQ(refusal(c, "--switch-off", "1.5"), "--switch-off wants a number in [0, 1], got '1.5'");
+    EXPECT_EQ(refusal(c, "--coherence", "maybe"), "--coherence wants on or off, got 'maybe'");
+    EXPECT_EQ(refusal(c, "--strategies", ","), "--strategies is empty");
+    EXPECT_NE(refusal(c, "--driver", "voodoo").find("--driver: unknown driver 'voodoo'"), std::string::npos);
+    EXPECT_NE(refusal(c, "--allocator", "glibc").find("--allocator"), std::string::npos);
+    EXPECT_NE(refusal(c, "--make-databases", "some").find("--make-databases"), std::string::npos);
+    // Nothing refused changed: the defaults stand.
+    EXPECT_EQ(c.size, 512);
+    EXPECT_EQ(c.batch, 32);
+    EXPECT_EQ(c.driver, gl::Driver::llvmpipe);
+}
+
+TEST(SessionCommandLine, ChecksStrategiesWithTheirSettings)
+{
+    SessionCommandLine c;
+    EXPECT_NO_THROW(c.check_strategies({"vfc", "ou-shared"}));
+    EXPECT_THROW(c.check_strategies({"vfc", "zbuffer-magic"}), std::invalid_argument);
+    c.common = {"tolerance=0.5"};
+    EXPECT_NO_THROW(c.check_strategies({"vfc", "ou"}));
+    EXPECT_THROW(c.check_strategies({"vfc"}), std::invalid_argument);   // no chosen strategy has it
+    c.common = {"tolerance=2"};
+    EXPECT_THROW(c.check_strategies({"ou"}), std::invalid_argument);   // out of range
+}
