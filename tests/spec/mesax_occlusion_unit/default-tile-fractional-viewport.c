@@ -76,7 +76,6 @@ edge_strip(void)
 static void
 rendered_record(void (*draw)(void), GLuint expected[OU_BRIEF_SIZE], GLuint *samples)
 {
-    static GLubyte pixels[H][W][4];
     GLuint query;
 
     glClearColor(0, 0, 0, 0);
@@ -87,23 +86,7 @@ rendered_record(void (*draw)(void), GLuint expected[OU_BRIEF_SIZE], GLuint *samp
     draw();
     EndQuery(GL_SAMPLES_PASSED);
     GetQueryObjectuiv(query, GL_QUERY_RESULT, samples);
-    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
-
-    const GLuint z = ou_depth(0.5);
-    GLuint n = 0, x0 = OU_EMPTY_MIN, x1 = OU_EMPTY_MAX, y0 = OU_EMPTY_MIN, y1 = OU_EMPTY_MAX;
-    for (GLuint y = 0; y < H; ++y) {
-        for (GLuint x = 0; x < W; ++x) {
-            if (!pixels[y][x][0])
-                continue;
-            ++n;
-            x0 = x < x0 ? x : x0;
-            x1 = x > x1 ? x : x1;
-            y0 = y < y0 ? y : y0;
-            y1 = y > y1 ? y : y1;
-        }
-    }
-    const GLuint record[OU_BRIEF_SIZE] = {n, n, x0, x1, y0, y1, n ? z : OU_EMPTY_MIN, n ? z : OU_EMPTY_MAX};
-    memcpy(expected, record, sizeof(record));
+    ou_record_of_drawn_pixels(W, H, 0.5, expected);
 }
 
 static bool

@@ -182,6 +182,33 @@ ou_depth(double z)
     return (GLuint)(z * 4294967295.0 + 0.5);
 }
 
+/* The brief record a draw at window depth z should give, from the colour
+ * buffer (0, 0, width, height) read back after drawing it onto black: the
+ * pixels with non-zero red are its non-occluded fragments (NOHC = PHC), their
+ * box, and z as both depths, or the empty record. */
+static inline void
+ou_record_of_drawn_pixels(int width, int height, double z, GLuint record[OU_BRIEF_SIZE])
+{
+    GLubyte *pixels = malloc((size_t)width * (size_t)height * 4);
+    GLuint n = 0, x0 = OU_EMPTY_MIN, x1 = OU_EMPTY_MAX, y0 = OU_EMPTY_MIN, y1 = OU_EMPTY_MAX;
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+    for (GLuint y = 0; y < (GLuint)height; ++y) {
+        for (GLuint x = 0; x < (GLuint)width; ++x) {
+            if (!pixels[((size_t)y * (size_t)width + x) * 4])
+                continue;
+            ++n;
+            x0 = x < x0 ? x : x0;
+            x1 = x > x1 ? x : x1;
+            y0 = y < y0 ? y : y0;
+            y1 = y > y1 ? y : y1;
+        }
+    }
+    free(pixels);
+    const GLuint depth = ou_depth(z);
+    const GLuint r[OU_BRIEF_SIZE] = {n, n, x0, x1, y0, y1, n ? depth : OU_EMPTY_MIN, n ? depth : OU_EMPTY_MAX};
+    memcpy(record, r, sizeof(r));
+}
+
 /* Tolerance, in record units, between a record's z and the same fragment's
  * depth read back from a 24-bit depth buffer as GL_UNSIGNED_INT. One step
  * of the buffer is (2^32 - 1) / (2^24 - 1) = 257.00002 record units; the

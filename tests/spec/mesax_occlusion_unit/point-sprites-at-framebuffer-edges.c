@@ -40,7 +40,6 @@ draw_sprite(void)
 static bool
 sprite_counts_agree(const char *edge, float size, float x, float y, bool vertical_edge)
 {
-    static GLubyte pixels[H][W][4];
     static GLuint list[8 + 2 * W * H];
     GLuint query, samples = 0xdeadbeefu;
     char what[96];
@@ -56,21 +55,9 @@ sprite_counts_agree(const char *edge, float size, float x, float y, bool vertica
     draw_sprite();
     EndQuery(GL_SAMPLES_PASSED);
     GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
-    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
-    GLuint n = 0, x0 = OU_EMPTY_MIN, x1 = OU_EMPTY_MAX, y0 = OU_EMPTY_MIN, y1 = OU_EMPTY_MAX;
-    for (GLuint row = 0; row < H; ++row) {
-        for (GLuint col = 0; col < W; ++col) {
-            if (!pixels[row][col][0])
-                continue;
-            ++n;
-            x0 = col < x0 ? col : x0;
-            x1 = col > x1 ? col : x1;
-            y0 = row < y0 ? row : y0;
-            y1 = row > y1 ? row : y1;
-        }
-    }
-    const GLuint z = ou_depth(0.5);
-    const GLuint expected[OU_BRIEF_SIZE] = {n, n, x0, x1, y0, y1, z, z};
+    GLuint expected[OU_BRIEF_SIZE];
+    ou_record_of_drawn_pixels(W, H, 0.5, expected);
+    const GLuint n = expected[OU_NOHC];
 
     GLuint record[2][OU_BRIEF_SIZE];
     bool ok = ou_brief_pass(0, NULL, record, draw_sprite) == 0;
