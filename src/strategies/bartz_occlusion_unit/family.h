@@ -16,7 +16,8 @@
 //
 // Section 5, adaptive culling: with tolerance t > 0 a box counts as
 // occluded when NOHC <= t * PHC, i.e. when at most that fraction of its
-// projection is visible; t = 0 is exact and conservative.
+// projection is visible; t = 0 is exact and conservative
+// (culling/adaptive_culling.h, the rule chc's passes use too).
 //
 // Boxes without a footprint (they hold the eye or cross the near plane)
 // are visible without a test (spec issue 13), and so are boxes whose
@@ -31,23 +32,10 @@
 // price of the leaf's vertex work in the pass.
 #pragma once
 
-#include <cstdint>
-
 #include "culling/registry.h"
 
 namespace occu::strategies {
 
 StrategyFamily occlusion_unit_family();
-
-// Adaptive culling (section 5): a tile whose non-occlusion hits are at
-// most `tolerance` of its projection hits is occluded; at tolerance 0,
-// only a tile with none. Counters saturate at 2^32 - 1 (the spec's issue
-// 5): a saturated PHC understates the fragments and a saturated NOHC
-// overstates their share, so saturation can only keep a node visible,
-// never cull one the exact counts would keep.
-inline bool adaptive_culling_occludes(std::uint32_t nohc, std::uint32_t phc, double tolerance)
-{
-    return tolerance == 0.0 ? nohc == 0 : double(nohc) <= tolerance * double(phc);
-}
 
 }  // namespace occu::strategies

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "culling/adaptive_culling.h"
 #include "gl/occlusion_unit.h"
 #include "render/occlusion_proxy.h"
 #include "render/scene_renderer.h"

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <optional>
 
+#include "culling/adaptive_culling.h"
 #include "gl/occlusion_unit.h"
 #include "render/occlusion_proxy.h"
-#include "strategies/bartz_occlusion_unit/family.h"
 
 namespace occu::strategies {
 

@@ -4,14 +4,14 @@
 // can keep a node visible that the exact counts would cull, never the
 // reverse. The exact counts here are 64-bit; the unit reports them
 // saturated to 32 bits.
-#include "strategies/bartz_occlusion_unit/family.h"
+#include "culling/adaptive_culling.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <random>
 
-using occu::strategies::adaptive_culling_occludes;
+using occu::adaptive_culling_occludes;
 
 namespace {
 
