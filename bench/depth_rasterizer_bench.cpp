@@ -32,7 +32,7 @@
 #include "culling/culler.h"
 #include "evaluation/allocator.h"
 #include "evaluation/scene_setup.h"
-#include "strategies/leone_occluder_skins/skin_occluders.h"
+#include "occluders/skin_occluders.h"
 #include "raster/depth_rasterizer.h"
 
 namespace {

@@ -42,7 +42,7 @@
 // database made for another scene, hierarchy, map resolution or Mesa.
 //
 // `skins` makes the occluder skins of the scene's meshes (Leone et al.,
-// section 4; strategies/leone_occluder_skins/occluder_skins.h, which
+// section 4; occluders/occluder_skins.h, which
 // describes the file and the options: voxel edge in metres, boxes per mesh,
 // the smallest box in m^3 and where boxes start growing). Pure geometry: no GL, no Mesa. Meshes without
 // skins (not watertight, no interior at that voxel size) are listed on
@@ -85,11 +85,11 @@
 #include "evaluation/scene_setup.h"
 #include "gl/extensions.h"
 #include "gl/offscreen_context.h"
+#include "occluders/occluder_skins.h"
 #include "render/scene_renderer.h"
 #include "scene/city.h"
 #include "scene/scene_file.h"
 #include "spatial/hierarchy.h"
-#include "strategies/leone_occluder_skins/occluder_skins.h"
 #include "strategies/poon_wang_opacity_maps/occluder_database.h"
 #include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
 #include "strategies/wonka_view_cells/pvs_database.h"

@@ -112,6 +112,25 @@ std::pair<std::string, std::string> split_assignment(const std::string &item)
 
 }  // namespace
 
+std::vector<StrategyFamily> with_occluder_sources(std::vector<StrategyFamily> families)
+{
+    for (StrategyFamily &f : families)
+        for (const OccluderSourceUse &use : f.occluder_sources) {
+            for (const SettingSpec &s : use.source->settings)
+                if (std::none_of(f.settings.begin(), f.settings.end(),
+                                 [&s](const SettingSpec &e) { return e.name == s.name; }))
+                    f.settings.push_back(s);
+            for (DatabaseNeed d : use.source->databases)
+                if (std::none_of(f.databases.begin(), f.databases.end(),
+                                 [&d](const DatabaseNeed &e) { return e.setting == d.setting; })) {
+                    if (use.used_by)
+                        d.read_by = use.used_by;
+                    f.databases.push_back(d);
+                }
+        }
+    return families;
+}
+
 StrategyChoice choose_strategy(const std::string &spec, const std::vector<std::string> &common)
 {
     const auto colon = spec.find(':');

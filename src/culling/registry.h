@@ -108,6 +108,27 @@ struct DatabaseNeed {
     bool read_by_settings(const Settings &settings) const { return !read_by || read_by(settings); }
 };
 
+// A per-frame source of occluders that several families draw from
+// (occluders/sources.h: skins, a level's brushes, the scene's own
+// triangles, shadow culling's large occluders): the settings and databases
+// it reads, declared once by the source. A family that takes occluders
+// from it names it among its occluder_sources, as it names its databases
+// and scene requirements, and the registry gives the family the source's
+// settings and databases after its own (with_occluder_sources).
+struct OccluderSource {
+    std::string name;   // what it is, for messages ("occluder skins")
+    std::vector<SettingSpec> settings;
+    std::vector<DatabaseNeed> databases;
+};
+
+// A family's use of a source: whether a strategy of these settings takes
+// occluders from it (null: every one); the source's databases are read
+// only then.
+struct OccluderSourceUse {
+    const OccluderSource *source = nullptr;
+    bool (*used_by)(const Settings &settings) = nullptr;
+};
+
 struct StrategyFamily {
     std::string name;
     std::string paper;     // the paper and sections it implements
@@ -118,6 +139,9 @@ struct StrategyFamily {
     std::vector<SceneRequirement> scene_requirements;
     std::vector<DatabaseNeed> databases;
     std::vector<SettingSpec> settings;
+    // The shared occluder sources it draws from, in order; their settings
+    // and databases join the two lists above (with_occluder_sources).
+    std::vector<OccluderSourceUse> occluder_sources;
     std::vector<StrategyPreset> presets;
     std::unique_ptr<Culler> (*make)(const StrategyContext &context, const Settings &settings) = nullptr;
     // A chain's stages, first to last (above); empty for a registered family.
@@ -129,6 +153,11 @@ struct StrategyFamily {
 };
 
 const std::vector<StrategyFamily> &strategy_families();
+
+// `families` each with the settings and databases of its occluder sources
+// added after its own (a setting or database the family declares itself
+// is kept, not added twice), for strategy_families() to list.
+std::vector<StrategyFamily> with_occluder_sources(std::vector<StrategyFamily> families);
 
 // A strategy chosen by name, its settings parsed, not yet built.
 struct StrategyChoice {

@@ -21,7 +21,7 @@ namespace occu {
 
 const std::vector<StrategyFamily> &strategy_families()
 {
-    static const std::vector<StrategyFamily> families = {
+    static const std::vector<StrategyFamily> families = with_occluder_sources({
         strategies::no_culling_family(),        // none
         strategies::frustum_culling_family(),   // vfc
         strategies::ideal_family(),             // ideal: the oracle's visible leaves, the floor
@@ -36,7 +36,7 @@ const std::vector<StrategyFamily> &strategy_families()
         strategies::occluder_skins_family(),    // skins: Leone et al.
         strategies::view_cell_family(),         // pvs: Wonka, Wimmer and Schmalstieg 2000
         strategies::bsp_pvs_family(),           // bsp-pvs: Quake III's PVS, Teller and Sequin 1991
-    };
+    });
     return families;
 }
 

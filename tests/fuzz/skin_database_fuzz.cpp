@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Fuzzes the occluder-skin database loader
-// (strategies/leone_occluder_skins/occluder_skins.h): any bytes are either a
+// (occluders/occluder_skins.h): any bytes are either a
 // database whose boxes are finite and not inverted, or refused naming the
 // file.
 #include <cmath>
 
 #include "fuzz_input.h"
-#include "strategies/leone_occluder_skins/occluder_skins.h"
+#include "occluders/occluder_skins.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
 {

@@ -19,8 +19,8 @@
 #include "camera/route.h"
 #include "culling/registry.h"
 #include "gl/offscreen_context.h"
+#include "occluders/skin_occluders.h"
 #include "scene/city.h"
-#include "strategies/leone_occluder_skins/skin_occluders.h"
 
 #include "frame_comparison.h"
 #include "small_city.h"

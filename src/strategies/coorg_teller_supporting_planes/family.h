@@ -4,7 +4,7 @@
 // Haines, "Occlusion Culling Algorithms", section "Shadow Culling",
 // describe it.
 //   planes  (supporting_plane_culler.cpp) the occluders of shadow
-//           (strategies/hudson_shadow_frusta/shadow_occluders.h); a node is
+//           (occluders/shadow_occluders.h); a node is
 //           culled when the viewer is inside all the supporting planes of
 //           an occluder and the node's box (each through an occluder edge,
 //           or silhouette edge of an aggregate, and a box vertex, occluder

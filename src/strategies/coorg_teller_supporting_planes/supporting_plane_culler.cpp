@@ -8,9 +8,10 @@
 #include <optional>
 #include <vector>
 
+#include "occluders/shadow_occluders.h"
+#include "occluders/sources.h"
 #include "spatial/hierarchy.h"
 #include "strategies/coorg_teller_supporting_planes/supporting_planes.h"
-#include "strategies/hudson_shadow_frusta/shadow_occluders.h"
 
 namespace occu::strategies {
 
@@ -178,12 +179,11 @@ StrategyFamily supporting_plane_family()
     f.paper = "Coorg and Teller 1997 (Moeller and Haines, shadow culling)";
     f.summary = "the viewer inside every supporting plane of a large skin occluder and a box, planes kept per pair";
     f.traversal.switch_off = true;   // its tests: each node against each occluder's planes (0.9 ms a frame on dense)
-    // As shadow's, and the cache.
-    f.settings = shadow_occluder_settings();
-    f.databases = {skin_database_need()};
-    f.settings.push_back(on_off_setting("plane-cache", true, SettingSpec::Role::choice,
-                                        "keep each occluder-node pair's supporting planes across frames; off: make "
-                                        "them at every test"));
+    // The cache, and shadow's occluders.
+    f.settings = {on_off_setting("plane-cache", true, SettingSpec::Role::choice,
+                                 "keep each occluder-node pair's supporting planes across frames; off: make them at "
+                                 "every test")};
+    f.occluder_sources = {{&shadow_occluder_source()}, {&skin_occluder_source()}};
     f.presets = {
         {"planes-faces", "aggregate=off"},
     };

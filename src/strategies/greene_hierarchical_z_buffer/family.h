@@ -6,7 +6,7 @@
 // below, against which boxes are tested hierarchically.
 //   hzb  (hierarchical_z_buffer_culler.cpp) the pyramid built per frame
 //        from the occluder skins' CPU depth buffer (raster/depth_rasterizer.h;
-//        Leone et al.'s occluders, strategies/leone_occluder_skins/) or,
+//        Leone et al.'s occluders, occluders/skin_occluders.h) or,
 //        source=last-frame, from the depth of the leaves the last frame
 //        drew, rendered in this frame's view and read back (the two-pass
 //        scheme of GPU culling). Boxes, front to back, are tested from the

@@ -10,11 +10,12 @@
 
 #include "gl/framebuffer.h"
 #include "gl/state.h"
+#include "occluders/skin_occluders.h"
+#include "occluders/sources.h"
 #include "raster/depth_rasterizer.h"
 #include "render/scene_renderer.h"
 #include "spatial/hierarchy.h"
 #include "strategies/greene_hierarchical_z_buffer/z_pyramid.h"
-#include "strategies/leone_occluder_skins/skin_occluders.h"
 
 namespace occu::strategies {
 
@@ -143,12 +144,10 @@ StrategyFamily hierarchical_z_buffer_family()
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),
     };
-    for (SettingSpec &s : skin_settings())
-        f.settings.push_back(std::move(s));
-    f.settings.push_back(occluder_triangles_setting());
-    f.settings.push_back(coverage_setting());
-    f.databases = {skin_database_need()};
-    f.databases[0].read_by = [](const Settings &s) { return s.text("source") == "skins"; };
+    f.occluder_sources = {
+        {&skin_occluder_source(), [](const Settings &s) { return s.text("source") == "skins"; }},
+        {&triangle_occluder_source()},
+    };
     f.presets = {
         {"hzb-last-frame", "source=last-frame"},
     };

@@ -6,8 +6,8 @@
 //   shadow  (shadow_frustum_culler.cpp) a few large occluders per frame,
 //           chosen by Coorg and Teller's solid-angle estimate
 //           g = -a (n . v) / (d . d) with last frame's kept unless one
-//           twice as good appears (shadow_occluders.h): the faces of the
-//           occluder skins (strategies/leone_occluder_skins/) that face
+//           twice as good appears (occluders/shadow_occluders.h): the faces of the
+//           occluder skins (occluders/skin_occluders.h) that face
 //           the eye, or (aggregate=on, the default) each skin box whole,
 //           its front faces one aggregate occluder. Each casts a shadow
 //           frustum from the eye, without a far plane: side planes through

@@ -7,9 +7,10 @@
 #include <optional>
 #include <vector>
 
+#include "occluders/shadow_occluders.h"
+#include "occluders/sources.h"
 #include "spatial/hierarchy.h"
 #include "strategies/hudson_shadow_frusta/shadow_frusta.h"
-#include "strategies/hudson_shadow_frusta/shadow_occluders.h"
 
 namespace occu::strategies {
 
@@ -97,8 +98,7 @@ StrategyFamily shadow_frustum_family()
     // shadow frustum: on the open route, where nothing is hidden, that costs
     // more than it saves, and the switch-off gives it back.
     f.traversal.switch_off = true;
-    f.settings = shadow_occluder_settings();
-    f.databases = {skin_database_need()};
+    f.occluder_sources = {{&shadow_occluder_source()}, {&skin_occluder_source()}};
     f.presets = {
         {"shadow-faces", "aggregate=off"},
     };

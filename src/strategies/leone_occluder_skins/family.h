@@ -3,7 +3,7 @@
 // Software Occlusion Culling for Real-Time Applications": occlusion
 // culling on the CPU against a downscaled depth buffer.
 //   occluders=skins  the occluder skins of section 4 (a few boxes inside
-//                    each mesh, preprocessed: occluder_skins.h),
+//                    each mesh, preprocessed: occluders/occluder_skins.h),
 //                    frustum-culled, the largest on screen first, their
 //                    faces that face the eye rasterized as quads (section 5);
 //   occluders=drawn  the triangles of the leaves already drawn this frame,

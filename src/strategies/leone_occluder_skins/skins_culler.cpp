@@ -4,9 +4,10 @@
 #include <memory>
 #include <optional>
 
+#include "occluders/skin_occluders.h"
+#include "occluders/sources.h"
 #include "raster/depth_rasterizer.h"
 #include "spatial/hierarchy.h"
-#include "strategies/leone_occluder_skins/skin_occluders.h"
 
 namespace occu::strategies {
 
@@ -116,12 +117,10 @@ StrategyFamily occluder_skins_family()
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),
     };
-    for (SettingSpec &s : skin_settings())
-        f.settings.push_back(std::move(s));
-    f.settings.push_back(occluder_triangles_setting());
-    f.settings.push_back(coverage_setting());
-    f.databases = {skin_database_need()};
-    f.databases[0].read_by = [](const Settings &s) { return s.text("occluders") != "drawn"; };
+    f.occluder_sources = {
+        {&skin_occluder_source(), [](const Settings &s) { return s.text("occluders") != "drawn"; }},
+        {&triangle_occluder_source()},
+    };
     f.presets = {
         {"skins-drawn", "occluders=drawn"},
         {"skins-both", "occluders=both"},

@@ -4,7 +4,7 @@
 // Culling Algorithms", section "The HOM Algorithm", describe it.
 //   hom  (hierarchical_occlusion_map_culler.cpp) occluders chosen by size
 //        and distance from an occluder set (the skins of
-//        strategies/leone_occluder_skins/: large, few polygons, tight
+//        occluders/skin_occluders.h: large, few polygons, tight
 //        boxes, the criteria the chapter gives), a budget of them per
 //        frame that may adapt to how much is culled, rendered white on
 //        black at the frame's resolution on the CPU

@@ -8,8 +8,9 @@
 #include <optional>
 #include <vector>
 
+#include "occluders/skin_occluders.h"
+#include "occluders/sources.h"
 #include "raster/depth_rasterizer.h"
-#include "strategies/leone_occluder_skins/skin_occluders.h"
 #include "strategies/zhang_hierarchical_occlusion_maps/hierarchical_occlusion_map.h"
 
 namespace occu::strategies {
@@ -143,11 +144,7 @@ StrategyFamily hierarchical_occlusion_map_family()
         integer_setting("map-divisor", 4, 1, 64, Role::cost, "frame pixels per occlusion-map pixel at level 0, each way"),
         integer_setting("depth-regions", 64, 1, 4096, Role::cost, "depth estimation buffer regions, each way"),
     };
-    for (SettingSpec &s : skin_settings())
-        f.settings.push_back(std::move(s));
-    f.settings.push_back(occluder_triangles_setting());
-    f.settings.push_back(coverage_setting());
-    f.databases = {skin_database_need()};
+    f.occluder_sources = {{&skin_occluder_source()}, {&triangle_occluder_source()}};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalOcclusionMapCuller>(context, settings);
     };

@@ -1,6 +1,6 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# skin-source=brushes (scene/quake3_bsp.h, Quake3BrushOccluders::BoxBrush): the skin
+# skin-source=brushes (occluders/brush_occluders.h, LevelBrushOccluders::BoxBrush): the skin
 # families with a Quake III level's box brushes as occluders, on random eyes
 # in Debian's OpenArena levels (openarena-088-data, which tools/deps.sh test
 # installs), every frame compared pixel for pixel with the unculled frame:

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "occluders/brush_occluders.h"
 #include "scene/scene_file.h"
 
 using namespace occu;
@@ -489,7 +490,7 @@ TEST(Quake3Bsp, BoxBrushSidesCountAsDrawnOnlyWhereTheLevelsOwnFacesCoverThem)
     add_box_brush(f, {100, 0, -32}, {132, 32, 0}, 1, 1);
 
     const Scene s = read(f);
-    const Quake3BrushOccluders level = quake3_brush_occluders(s);
+    const LevelBrushOccluders level = level_brush_occluders(s);
     const auto &boxes = level.box_brushes;
     ASSERT_EQ(boxes.size(), 3u);
     // Quake's up is occu's +y: side 2 * 1 + 1, down side 2 * 1.

@@ -2,14 +2,15 @@
 // The occluders of object-space shadow culling (Moeller and Haines,
 // "Occlusion Culling Algorithms", section "Shadow Culling": "select a
 // small set of large occluders and discard the objects behind [them]"),
-// shared by the `shadow` strategy (Hudson et al., this folder) and the
-// `planes` strategy (strategies/coorg_teller_supporting_planes/).
+// shared by the `shadow` strategy (Hudson et al.) and the `planes`
+// strategy (Coorg and Teller): occluders/sources.h, shadow_occluder_source.
 //
 // Occluders are large planar convex polygons: the faces of the scene's
-// occluder skins (strategies/leone_occluder_skins/skin_occluders.h; boxes
+// occluder skins (occluders/skin_occluders.h; boxes
 // inside each mesh), one quad each, or (aggregate) each skin box whole, its
 // faces that face the eye acting as one occluder (Coorg and Teller's
-// aggregate occluders: polygons sharing edges; shadow_frusta.h for its
+// aggregate occluders: polygons sharing edges;
+// strategies/hudson_shadow_frusta/shadow_frusta.h for its
 // shadow).
 //
 // Per frame, over the skins in the view frustum: a face counts when it
@@ -35,8 +36,8 @@
 #include <vector>
 
 #include "culling/culler.h"
+#include "occluders/skin_occluders.h"
 #include "scene/scene.h"
-#include "strategies/leone_occluder_skins/skin_occluders.h"
 
 namespace occu {
 
@@ -49,7 +50,8 @@ struct ShadowOccluder {
 
 class ShadowOccluders {
 public:
-    // The skins as the strategy's settings ask (shadow_occluder_settings):
+    // The skins as the strategy's settings ask (occluders/sources.h,
+    // shadow_occluder_source and skin_occluder_source):
     // aggregate=on, boxes whole, else their faces.
     ShadowOccluders(const Scene &scene, const Settings &settings);
 
@@ -72,9 +74,5 @@ private:
     std::vector<std::pair<double, ShadowOccluder>> ranked_;
     std::vector<ShadowOccluder> chosen_;
 };
-
-// The settings of every strategy whose occluders these are: occluders,
-// aggregate, and skin_settings().
-std::vector<SettingSpec> shadow_occluder_settings();
 
 }  // namespace occu

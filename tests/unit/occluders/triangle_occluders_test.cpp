@@ -6,7 +6,7 @@
 // wall with no volume for skins, a triangle across the near plane, a wall
 // seen from behind, a see-through wall, and a heap of random triangles.
 // And the thin wall does hide what stands behind it, which skins alone do not.
-#include "strategies/leone_occluder_skins/skin_occluders.h"
+#include "occluders/skin_occluders.h"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +15,7 @@
 #include <random>
 #include <vector>
 
+#include "occluders/sources.h"
 #include "scene/city.h"
 
 using namespace occu;

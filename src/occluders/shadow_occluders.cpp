@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Occluders of shadow culling per frame: see shadow_occluders.h.
-#include "strategies/hudson_shadow_frusta/shadow_occluders.h"
+#include "occluders/shadow_occluders.h"
 
 #include <algorithm>
 #include <cmath>
@@ -77,20 +77,6 @@ const std::vector<ShadowOccluder> &ShadowOccluders::choose(const Frame &frame, s
         was_chosen_[r.second.id] = 1;
     }
     return chosen_;
-}
-
-std::vector<SettingSpec> shadow_occluder_settings()
-{
-    std::vector<SettingSpec> specs = {
-        integer_setting("occluders", 8, 1, 1 << 16, SettingSpec::Role::cost,
-                        "occluders per frame, by the solid-angle metric (Hudson et al.: about eight)"),
-        on_off_setting("aggregate", true, SettingSpec::Role::choice,
-                       "each skin box whole, its faces that face the eye one occluder (Coorg and Teller's "
-                       "aggregate); off: each face alone"),
-    };
-    for (SettingSpec &s : skin_settings())
-        specs.push_back(std::move(s));
-    return specs;
 }
 
 }  // namespace occu

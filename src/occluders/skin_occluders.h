@@ -3,7 +3,8 @@
 // scene's meshes (occluder_skins.h), frustum-culled each
 // frame, the largest on screen first, and their faces that face the eye
 // rasterized as quads into a CPU depth buffer (raster/depth_rasterizer.h).
-// Shared by the strategies that take their occluders from skins.
+// Shared by the strategies that take their occluders from skins
+// (occluders/sources.h: skin_occluder_source, triangle_occluder_source).
 //
 // Where a mesh has no volume for skins (thin walls, open meshes), the
 // scene's own large triangles can join them (occluder-triangles): those of
@@ -24,11 +25,10 @@
 #include <vector>
 
 #include "culling/culler.h"
-#include "culling/registry.h"
 #include "culling/settings.h"
-#include "strategies/leone_occluder_skins/occluder_skins.h"
+#include "occluders/brush_occluders.h"
+#include "occluders/occluder_skins.h"
 #include "raster/depth_rasterizer.h"
-#include "scene/quake3_bsp.h"
 #include "scene/scene.h"
 
 namespace occu {
@@ -41,7 +41,8 @@ public:
     // its first `boxes_per_mesh` boxes (the largest first).
     SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh,
                   const SkinOptions &options = {});
-    // As its strategy's settings (skin_settings below) ask.
+    // As its strategy's settings ask (occluders/sources.h: the skin source's
+    // settings, and occluder-triangles and coverage where the family has them).
     SkinOccluders(const Scene &scene, const Settings &settings);
 
     // Renders the usable skins in `frame`'s frustum into `raster` (begun
@@ -67,7 +68,7 @@ public:
     // eye inside the mesh sees its walls from behind, where back-face
     // culling drops them: in both GL shows what the skin would hide.
     // With skin-source=brushes (a Quake III level's box brushes,
-    // scene/quake3_bsp.h, Quake3BrushOccluders::BoxBrush) also only where every
+    // occluders/brush_occluders.h, LevelBrushOccluders::BoxBrush) also only where every
     // side of the box whose outer half-space holds the eye is drawn all
     // over (a ray enters the box through such a side and must meet a drawn
     // face there), and no solid brush comes nearer the eye than the near
@@ -88,7 +89,7 @@ private:
     // skin-source=brushes: every solid brush's bounds, and whether the eye
     // of the frame last asked about is clear of them.
     bool brushes_ = false;
-    Quake3BrushOccluders brush_occluders_;
+    LevelBrushOccluders brush_occluders_;
     std::vector<Aabb> solids_;
     bool eye_clear(const Frame &frame) const;
     mutable glm::mat4 clear_view_projection_{0.0f};
@@ -102,29 +103,5 @@ private:
     std::vector<std::pair<float, std::uint32_t>> chosen_triangles_;
     std::vector<std::uint32_t> drawn_indices_;
 };
-
-// The settings of every strategy whose occluders are skins: skin-source,
-// skin-boxes, skin-voxel and skin-database.
-std::vector<SettingSpec> skin_settings();
-
-// The setting of the strategies that rasterize skins into a depth buffer
-// (SkinOccluders::render_all): occluder-triangles, the scene's own largest
-// triangles added per frame (0: skins alone).
-SettingSpec occluder_triangles_setting();
-
-// The coverage rule of those strategies' depth buffer (coverage): `whole`,
-// a polygon writes only the depth pixels it covers wholly (occluders fuse
-// in the buffer, Leone section 3); `merged`, partial coverage of a depth
-// pixel's samples also fuses across polygons, as in Masked Occlusion
-// Culling (raster/depth_rasterizer.h), so that a mesh's triangles leave no
-// seam of empty pixels along their shared edges.
-SettingSpec coverage_setting();
-// Whether `settings` ask for merged coverage; throws std::invalid_argument
-// naming the setting where the rasterizer's divisor is above 8.
-bool merges_partial_coverage(const Settings &settings, int divisor);
-
-// The skin database those strategies read (skin-database): made with the
-// settings' skin-voxel, for the scene's meshes (culling/databases.h makes it).
-DatabaseNeed skin_database_need();
 
 }  // namespace occu

@@ -4,7 +4,7 @@
 // the frustum would (a hidden skin has no pixel nearer than what is there);
 // a skin whose mesh the near plane cuts, or whose mesh holds the eye, is
 // not usable.
-#include "strategies/leone_occluder_skins/skin_occluders.h"
+#include "occluders/skin_occluders.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "camera/route.h"
+#include "occluders/occluder_skins.h"
 #include "scene/city.h"
-#include "strategies/leone_occluder_skins/occluder_skins.h"
 
 using namespace occu;
 

@@ -20,9 +20,9 @@
 
 #include <glm/glm.hpp>
 
+#include "occluders/occluder_skins.h"
 #include "scene/city.h"
 #include "scene/scene.h"
-#include "strategies/leone_occluder_skins/occluder_skins.h"
 
 using namespace occu;
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "strategies/leone_occluder_skins/skin_occluders.h"
+#include "occluders/skin_occluders.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,9 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "strategies/leone_occluder_skins/occluder_skins.h"
+#include "occluders/occluder_skins.h"
+#include "occluders/sources.h"
+#include "scene/quake3_bsp.h"
 
 namespace occu {
 
@@ -26,13 +28,6 @@ const SceneSkins &skins_of(const Scene &scene, const SkinOptions &options)
     if (it == made.end())
         it = made.emplace(key, scene_skins(scene, options)).first;
     return it->second;
-}
-
-SkinOptions skin_options(const Settings &settings)
-{
-    SkinOptions options;
-    options.voxel_size = float(settings.number("skin-voxel"));
-    return options;
 }
 
 }  // namespace
@@ -81,7 +76,7 @@ bool SkinOccluders::usable(std::size_t i, const Frame &frame) const
             return false;
     if (!brushes_)
         return true;
-    // Quake3BrushOccluders::BoxBrush: a ray from the eye enters the box through a
+    // LevelBrushOccluders::BoxBrush: a ray from the eye enters the box through a
     // side whose outer half-space holds the eye, and must meet a drawn face
     // there or before.
     if (!brush_occluders_.box_brushes[i].hides_from(frame.camera.position, brush_occluders_.opaque_brushes))
@@ -131,9 +126,9 @@ SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
         // level's designer made its solids as brushes.
         if (!scene.quake3)
             throw std::runtime_error("skin-source=brushes: the scene is not a Quake III level (it has no brushes)");
-        brush_occluders_ = quake3_brush_occluders(scene);
+        brush_occluders_ = level_brush_occluders(scene);
         boxes_.clear();
-        for (const Quake3BrushOccluders::BoxBrush &box : brush_occluders_.box_brushes)
+        for (const LevelBrushOccluders::BoxBrush &box : brush_occluders_.box_brushes)
             boxes_.push_back(box.bounds);
         mesh_bounds_ = boxes_;
         solids_ = scene.quake3->solid_brush_bounds;
@@ -161,65 +156,6 @@ SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
                 corners.push_back(scene.meshes[m].positions[scene.meshes[m].indices[first + std::uint32_t(v)]]);
         across_ = shared_edge_opposites(corners);
     }
-}
-
-SettingSpec occluder_triangles_setting()
-{
-    return integer_setting("occluder-triangles", 0, 0, 1 << 20, SettingSpec::Role::cost,
-                           "the scene's own triangles rasterized per frame beside the skins, the largest on screen "
-                           "first (for thin walls and open meshes, which have no volume for skins)",
-                           "0");
-}
-
-SettingSpec coverage_setting()
-{
-    return choice_setting("coverage", {"whole", "merged"},
-                          "depth pixels an occluder polygon covers wholly, or also samples of a pixel that "
-                          "several polygons cover together (Masked Occlusion Culling's merge; map divisor 8 or less)",
-                          SettingSpec::Role::cost);
-}
-
-bool merges_partial_coverage(const Settings &settings, int divisor)
-{
-    if (!settings.knows("coverage") || settings.text("coverage") != "merged")
-        return false;
-    if (divisor > 8)
-        throw std::invalid_argument("coverage=merged needs a depth buffer of at most 8 x 8 frame pixels a pixel "
-                                    "(map-divisor " + std::to_string(divisor) + " given)");
-    return true;
-}
-
-std::vector<SettingSpec> skin_settings()
-{
-    return {
-        choice_setting("skin-source", {"meshes", "brushes"},
-                       "where skins come from: boxes made inside each closed mesh, or a Quake III level's "
-                       "box brushes, each from the eyes that see only drawn faces of it (a level's meshes are "
-                       "open surfaces and have no skins)"),
-        integer_setting("skin-boxes", 8, 1, 1 << 16, SettingSpec::Role::cost, "skin boxes per mesh, the largest first"),
-        // Tighter than SkinOptions' default (95% of the city's buildings'
-        // bodies against 89%) for seven times its second: what benchmarks
-        // made their skin databases with, and made once by the database
-        // provider (culling/databases.h).
-        number_setting("skin-voxel", 0.25, 0.05, 10.0, SettingSpec::Role::choice,
-                       "voxel edge, metres, of the skins made at start or as a skin database (0.5: a seventh of "
-                       "the time, looser)"),
-        path_setting("skin-database", "the skin database (occu-preprocess skins); without one, skins are made at start"),
-    };
-}
-
-DatabaseNeed skin_database_need()
-{
-    DatabaseNeed need;
-    need.setting = "skin-database";
-    need.name = "skin database";
-    need.provenance = [](const DatabaseRequest &r) {
-        return OccluderSkinDatabase::provenance_for(r.context.scene, skin_options(r.settings));
-    };
-    need.make = [](const DatabaseRequest &r, const std::string &path) {
-        OccluderSkinDatabase::make(r.context.scene, skin_options(r.settings)).save(path);
-    };
-    return need;
 }
 
 std::size_t SkinOccluders::render(const Frame &frame, DepthRasterizer &raster, std::size_t limit)

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Occluder skins: Leone et al., section 4 (the steps are in the header).
-#include "strategies/leone_occluder_skins/occluder_skins.h"
+#include "occluders/occluder_skins.h"
 
 #include <algorithm>
 #include <array>

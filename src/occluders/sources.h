@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// The per-frame occluder sources several strategy families draw from,
+// each declared once here, with the settings and databases it reads
+// (culling/registry.h, OccluderSource). A family names the sources it
+// takes occluders from in its StrategyFamily::occluder_sources; the
+// registry adds their settings and databases to the family's own. They
+// belong to no one paper: the families of several papers share them.
+//
+//   skin_occluder_source      occluder skins (occluders/skin_occluders.h):
+//                             boxes inside each closed mesh (Leone et al.,
+//                             section 4: occluders/occluder_skins.h), or a
+//                             level's box brushes (skin-source=brushes:
+//                             occluders/brush_occluders.h); skin-source,
+//                             skin-boxes, skin-voxel, skin-database
+//   triangle_occluder_source  the scene's own largest triangles, added per
+//                             frame to a depth buffer beside the skins, and
+//                             the coverage rule of that buffer, which is
+//                             what lets the triangles of a mesh fuse along
+//                             their shared edges; occluder-triangles,
+//                             coverage
+//   shadow_occluder_source    a few large occluders per frame from the skins,
+//                             for culling in object space
+//                             (occluders/shadow_occluders.h); occluders,
+//                             aggregate (with the skin source for the skins)
+#pragma once
+
+#include <vector>
+
+#include "culling/registry.h"
+#include "culling/settings.h"
+#include "occluders/occluder_skins.h"
+
+namespace occu {
+
+const OccluderSource &skin_occluder_source();
+const OccluderSource &triangle_occluder_source();
+const OccluderSource &shadow_occluder_source();
+
+// The skin source's settings and its database: skin-source, skin-boxes,
+// skin-voxel and skin-database, the database made with the settings'
+// skin-voxel for the scene's meshes (culling/databases.h makes it).
+std::vector<SettingSpec> skin_settings();
+DatabaseNeed skin_database_need();
+// The skins' construction options the settings ask for (skin-voxel).
+SkinOptions skin_options(const Settings &settings);
+
+// The triangle source's settings. occluder-triangles: the scene's own
+// largest triangles added per frame (0: skins alone). coverage: `whole`,
+// a polygon writes only the depth pixels it covers wholly (occluders fuse
+// in the buffer, Leone section 3); `merged`, partial coverage of a depth
+// pixel's samples also fuses across polygons, as in Masked Occlusion
+// Culling (raster/depth_rasterizer.h), so that a mesh's triangles leave no
+// seam of empty pixels along their shared edges.
+SettingSpec occluder_triangles_setting();
+SettingSpec coverage_setting();
+// Whether `settings` ask for merged coverage; throws std::invalid_argument
+// naming the setting where the rasterizer's divisor is above 8.
+bool merges_partial_coverage(const Settings &settings, int divisor);
+
+}  // namespace occu
