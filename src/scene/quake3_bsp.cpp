@@ -289,6 +289,432 @@ bool straight(const FileVertex *control, std::int64_t n, std::int64_t lines, std
 // Quadratic Bernstein weights at t.
 glm::vec3 bernstein2(float t) { return {(1 - t) * (1 - t), 2 * t * (1 - t), t * t}; }
 
+// Textures: the flags that decide what is drawn and what hides.
+void read_textures(const Reader &r, Quake3Level &level)
+{
+    for (std::size_t t = 0; t < r.count(textures_lump); ++t) {
+        const char *name = r.data() + r.at(textures_lump, t, 0);
+        Quake3Level::Texture tex;
+        tex.name.assign(name, static_cast<std::size_t>(std::find(name, name + 64, '\0') - name));
+        tex.surface_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 64)));
+        tex.content_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 68)));
+        tex.drawn = !(tex.surface_flags & (surf_nodraw | surf_sky));
+        tex.occluder = !(tex.content_flags & (contents_translucent | contents_water | contents_fog)) &&
+                       !(tex.surface_flags & surf_alphashadow);
+        level.textures.push_back(std::move(tex));
+    }
+}
+
+void read_planes(const Reader &r, Quake3Level &level)
+{
+    for (std::size_t i = 0; i < r.count(planes_lump); ++i) {
+        const glm::vec3 n = r.vec3(r.at(planes_lump, i, 0));
+        const float d = r.f32(r.at(planes_lump, i, 12));
+        if (!finite(n) || !std::isfinite(d))
+            r.refuse(planes_lump, i, "a normal or distance that is not finite");
+        // Rotated normal; the distance scales with the units.
+        level.planes.push_back({glm::vec3(n.x, n.z, -n.y), d * quake3_unit_metres});
+    }
+}
+
+void read_nodes(const Reader &r, Quake3Level &level)
+{
+    const std::size_t node_count = r.count(nodes_lump), leaf_count = r.count(leaves_lump);
+    for (std::size_t i = 0; i < node_count; ++i) {
+        Quake3Level::Node node;
+        node.plane = r.i32(r.at(nodes_lump, i, 0));
+        r.require_range(nodes_lump, i, "plane", node.plane, 1, planes_lump);
+        for (int c = 0; c < 2; ++c) {
+            const std::int32_t child = r.i32(r.at(nodes_lump, i, 4 + 4 * std::size_t(c)));
+            node.children[c] = child;
+            if (child >= 0 && (std::size_t(child) <= i || std::size_t(child) >= node_count))
+                r.refuse(nodes_lump, i, "child node " + std::to_string(child) +
+                                            " does not lie after it among the " + std::to_string(node_count) +
+                                            " nodes (the tree would not end)");
+            if (child < 0 && std::uint64_t(-(std::int64_t(child) + 1)) >= leaf_count)
+                r.refuse(nodes_lump, i, "child leaf " + std::to_string(-(std::int64_t(child) + 1)) +
+                                            " lies outside the " + std::to_string(leaf_count) + " leafs");
+        }
+        node.bounds = Aabb::of(quake3_to_occu(r.ivec3(r.at(nodes_lump, i, 12))),
+                               quake3_to_occu(r.ivec3(r.at(nodes_lump, i, 24))));
+        level.nodes.push_back(node);
+    }
+}
+
+// The clusters' bit vectors (read before the leaves, whose clusters index them).
+void read_visibility(const Reader &r, Quake3Level &level)
+{
+    if (r.length(visdata_lump) == 0)
+        return;
+    if (r.length(visdata_lump) < 8)
+        r.refuse(visdata_lump, std::to_string(r.length(visdata_lump)) +
+                                   " bytes, fewer than its two counts (8 bytes)");
+    const std::int32_t n = r.i32(r.offset(visdata_lump)), size = r.i32(r.offset(visdata_lump) + 4);
+    if (n < 0 || size < 0 || std::uint64_t(n) * std::uint64_t(size) > r.length(visdata_lump) - 8)
+        r.refuse(visdata_lump, std::to_string(n) + " clusters of " + std::to_string(size) +
+                                   " bytes do not fit its " + std::to_string(r.length(visdata_lump) - 8) +
+                                   " bytes of bit vectors");
+    if (std::int64_t(size) * 8 < n)
+        r.refuse(visdata_lump, "vectors of " + std::to_string(size) + " bytes cannot hold a bit for each of " +
+                                   std::to_string(n) + " clusters");
+    level.cluster_count = n;
+    level.bytes_per_cluster = size;
+    const auto *v = reinterpret_cast<const std::uint8_t *>(r.data() + r.offset(visdata_lump) + 8);
+    level.visibility.assign(v, v + std::size_t(n) * std::size_t(size));
+}
+
+// The leaves and the face numbers they list.
+void read_leaves(const Reader &r, Quake3Level &level)
+{
+    for (std::size_t i = 0; i < r.count(leaves_lump); ++i) {
+        Quake3Level::Leaf leaf;
+        leaf.cluster = r.i32(r.at(leaves_lump, i, 0));
+        leaf.area = r.i32(r.at(leaves_lump, i, 4));
+        if (leaf.cluster < -1 || (level.cluster_count > 0 && leaf.cluster >= level.cluster_count))
+            r.refuse(leaves_lump, i, "cluster " + std::to_string(leaf.cluster) + " is neither -1 (solid) nor one of the " +
+                                         std::to_string(level.cluster_count) + " clusters of the visdata");
+        leaf.bounds = Aabb::of(quake3_to_occu(r.ivec3(r.at(leaves_lump, i, 8))),
+                               quake3_to_occu(r.ivec3(r.at(leaves_lump, i, 20))));
+        const std::int32_t first = r.i32(r.at(leaves_lump, i, 32)), n = r.i32(r.at(leaves_lump, i, 36));
+        r.require_range(leaves_lump, i, "leaf faces", first, n, leaf_faces_lump);
+        r.require_range(leaves_lump, i, "leaf brushes", r.i32(r.at(leaves_lump, i, 40)), r.i32(r.at(leaves_lump, i, 44)),
+                        leaf_brushes_lump);
+        leaf.first_leaf_face = std::uint32_t(first);
+        leaf.leaf_face_count = std::uint32_t(n);
+        level.leaves.push_back(leaf);
+    }
+    for (std::size_t i = 0; i < r.count(leaf_faces_lump); ++i) {
+        const std::int32_t f = r.i32(r.at(leaf_faces_lump, i, 0));
+        r.require_range(leaf_faces_lump, i, "face", f, 1, faces_lump);
+        level.leaf_faces.push_back(std::uint32_t(f));
+    }
+}
+
+// The model of each face (-1: none). Each model (the world, then the brush
+// entities) owns a run of faces; the compiler writes them one after
+// another. Overlapping runs are refused: a face of two models means
+// nothing, and marking runs that overlap would cost models x faces.
+std::vector<std::int32_t> face_models(const Reader &r)
+{
+    std::vector<std::int32_t> face_model(r.count(faces_lump), -1);
+    std::vector<std::pair<std::int32_t, std::size_t>> runs;   // (first face, model) of non-empty runs
+    for (std::size_t m = 0; m < r.count(models_lump); ++m) {
+        const std::int32_t first = r.i32(r.at(models_lump, m, 24)), n = r.i32(r.at(models_lump, m, 28));
+        r.require_range(models_lump, m, "faces", first, n, faces_lump);
+        r.require_range(models_lump, m, "brushes", r.i32(r.at(models_lump, m, 32)), r.i32(r.at(models_lump, m, 36)),
+                        brushes_lump);
+        if (n > 0)
+            runs.emplace_back(first, m);
+    }
+    std::sort(runs.begin(), runs.end());
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        const std::size_t m = runs[k].second;
+        const std::int32_t first = runs[k].first, n = r.i32(r.at(models_lump, m, 28));
+        if (k + 1 < runs.size() && std::int64_t(first) + n > runs[k + 1].first)
+            r.refuse(models_lump, m, "faces " + std::to_string(first) + " to " + std::to_string(std::int64_t(first) + n) +
+                                         " overlap those of model " + std::to_string(runs[k + 1].second));
+        std::fill(face_model.begin() + first, face_model.begin() + first + n, std::int32_t(m));
+    }
+    return face_model;
+}
+
+// World brushes (model 0) that are opaque solids, in Quake's coordinates
+// (the file's planes; level.planes are occu's), and their bounds in occu's.
+void read_opaque_solids(const Reader &r, Quake3Level &level)
+{
+    constexpr std::uint32_t contents_solid = 0x1;
+    if (r.count(models_lump) == 0)
+        return;
+    const std::int32_t first = r.i32(r.at(models_lump, 0, 32)), n = r.i32(r.at(models_lump, 0, 36));
+    for (std::int32_t b = first; b < first + n; ++b) {
+        const std::size_t br = std::size_t(b);
+        const std::int32_t first_side = r.i32(r.at(brushes_lump, br, 0)), sides = r.i32(r.at(brushes_lump, br, 4));
+        const std::int32_t texture = r.i32(r.at(brushes_lump, br, 8));
+        r.require_range(brushes_lump, br, "brush sides", first_side, sides, brush_sides_lump);
+        r.require_range(brushes_lump, br, "texture", texture, 1, textures_lump);
+        const std::uint32_t contents = level.textures[std::size_t(texture)].content_flags;
+        if (!(contents & contents_solid) || (contents & (contents_translucent | contents_water | contents_fog)))
+            continue;
+        bool sky = false;
+        Quake3Level::Brush solid;
+        solid.number = b;
+        solid.lo = glm::vec3(-std::numeric_limits<float>::infinity());
+        solid.hi = glm::vec3(std::numeric_limits<float>::infinity());
+        for (std::int32_t k = first_side; k < first_side + sides; ++k) {
+            const std::size_t side = std::size_t(k);
+            const std::int32_t plane = r.i32(r.at(brush_sides_lump, side, 0));
+            const std::int32_t side_texture = r.i32(r.at(brush_sides_lump, side, 4));
+            r.require_range(brush_sides_lump, side, "plane", plane, 1, planes_lump);
+            r.require_range(brush_sides_lump, side, "texture", side_texture, 1, textures_lump);
+            sky = sky || (level.textures[std::size_t(side_texture)].surface_flags & surf_sky);
+            const glm::vec3 normal = r.vec3(r.at(planes_lump, std::size_t(plane), 0));
+            const float distance = r.f32(r.at(planes_lump, std::size_t(plane), 12));
+            // Sides are clipped as polygons (occluders/brush_occluders.h): within
+            // the compiler's world (q3map2: 65536 units either way).
+            if (!(std::abs(glm::length(normal) - 1.0f) < 1e-3f) || !(std::abs(distance) <= 1048576.0f))
+                r.refuse(planes_lump, std::size_t(plane),
+                         "a brush side's plane (normal length " + std::to_string(glm::length(normal)) +
+                             ", distance " + std::to_string(distance) + ") is not a unit normal within 2^20 units");
+            solid.planes.emplace_back(normal, distance);
+            for (int a = 0; a < 3; ++a) {
+                const glm::vec3 e(a == 0, a == 1, a == 2);
+                if (normal == e) solid.hi[a] = std::min(solid.hi[a], distance);
+                if (normal == -e) solid.lo[a] = std::max(solid.lo[a], -distance);
+            }
+        }
+        // Every brush the compiler writes carries its six axial (bevel) planes.
+        if (sky || !(solid.lo.x < solid.hi.x && solid.lo.y < solid.hi.y && solid.lo.z < solid.hi.z) ||
+            !finite(solid.lo) || !finite(solid.hi))
+            continue;
+        level.solid_brush_bounds.push_back(Aabb::of(quake3_to_occu(solid.lo), quake3_to_occu(solid.hi)));
+        level.opaque_solids.push_back(std::move(solid));
+    }
+}
+
+std::vector<FileVertex> read_vertices(const Reader &r)
+{
+    const std::size_t vertex_count = r.count(vertices_lump);
+    std::vector<FileVertex> vertices(vertex_count);
+    for (std::size_t i = 0; i < vertex_count; ++i) {
+        const glm::vec3 p = r.vec3(r.at(vertices_lump, i, 0));
+        if (!finite(p))
+            r.refuse(vertices_lump, i, "position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
+                                           std::to_string(p.z) + ") is not finite");
+        const glm::vec3 n = r.vec3(r.at(vertices_lump, i, 28));
+        vertices[i] = {quake3_to_occu(p), glm::vec3(n.x, n.z, -n.y)};
+    }
+    return vertices;
+}
+
+// One face record of the file, its numbers as read.
+struct FaceRecord {
+    std::size_t number;
+    std::int32_t first_vertex, n_vertices, first_meshvert, n_meshverts;
+};
+
+// What the faces make so far: the bound on vertices and indices.
+struct MadeSoFar {
+    std::uint64_t vertices = 0, indices = 0;
+};
+
+// A polygon's or mesh's triangles: the file vertex numbers its meshverts list.
+void polygon_triangles(const Reader &r, const FaceRecord &f, MadeSoFar &made, std::vector<std::uint32_t> &triangles)
+{
+    const std::size_t i = f.number;
+    if (f.n_meshverts % 3 != 0)
+        r.refuse(faces_lump, i, std::to_string(f.n_meshverts) + " meshverts are not whole triangles");
+    // Faces may share meshverts: what they make together is bounded, not the lump.
+    made.indices += std::uint64_t(f.n_meshverts);
+    if (made.indices > max_indices)
+        r.refuse(faces_lump, i, "the faces so far make more than " + std::to_string(max_indices / 3) + " triangles");
+    for (std::int32_t k = 0; k < f.n_meshverts; ++k) {
+        const std::int32_t offset = r.i32(r.at(meshverts_lump, std::size_t(f.first_meshvert + k), 0));
+        if (offset < 0 || offset >= f.n_vertices)
+            r.refuse(faces_lump, i, "meshvert " + std::to_string(f.first_meshvert + k) + " is " +
+                                        std::to_string(offset) + ", outside the face's " +
+                                        std::to_string(f.n_vertices) + " vertices");
+        triangles.push_back(std::uint32_t(f.first_vertex + offset));
+    }
+}
+
+// A patch of w x h control points tessellated at `segments` a piece: the
+// vertices it makes (`made`) and its triangles, indices into them.
+void patch_triangles(const Reader &r, const FaceRecord &f, const FileVertex *control, std::int32_t w, std::int32_t h,
+                     int segments, MadeSoFar &made_so_far, std::vector<FileVertex> &made,
+                     std::vector<std::uint32_t> &triangles)
+{
+    // A direction in which every piece is straight and evenly
+    // parameterized (each middle control point halfway between its
+    // neighbours) is exactly one segment a piece: more would add
+    // triangles, not shape.
+    const std::int64_t su = straight(control, w, h, 1, w) ? 1 : segments,
+                       sv = straight(control, h, w, w, 1) ? 1 : segments;
+    const std::int64_t columns = std::int64_t(w - 1) / 2 * su + 1, rows = std::int64_t(h - 1) / 2 * sv + 1;
+    made_so_far.vertices += std::uint64_t(columns * rows);
+    made_so_far.indices += 6 * std::uint64_t((columns - 1) * (rows - 1));
+    if (made_so_far.vertices > max_vertices || made_so_far.indices > max_indices)
+        r.refuse(faces_lump, f.number, "its patches at " + std::to_string(segments) +
+                                           " segments a piece make more than " + std::to_string(max_vertices) +
+                                           " vertices or " + std::to_string(max_indices / 3) +
+                                           " triangles (fewer segments make fewer)");
+    for (std::int64_t row = 0; row < rows; ++row) {
+        const std::int64_t pj = std::min<std::int64_t>(row / sv, (h - 1) / 2 - 1);
+        const glm::vec3 bv = bernstein2(float(row - pj * sv) / float(sv));
+        for (std::int64_t col = 0; col < columns; ++col) {
+            const std::int64_t pi = std::min<std::int64_t>(col / su, (w - 1) / 2 - 1);
+            const glm::vec3 bu = bernstein2(float(col - pi * su) / float(su));
+            FileVertex v{glm::vec3(0.0f), glm::vec3(0.0f)};
+            for (int b = 0; b < 3; ++b)
+                for (int a = 0; a < 3; ++a) {
+                    const FileVertex &c = control[(2 * pj + b) * w + 2 * pi + a];
+                    v.position += bu[a] * bv[b] * c.position;
+                    v.normal += bu[a] * bv[b] * c.normal;
+                }
+            made.push_back(v);
+        }
+    }
+    for (std::int64_t row = 0; row + 1 < rows; ++row)
+        for (std::int64_t col = 0; col + 1 < columns; ++col) {
+            const auto v00 = std::uint32_t(row * columns + col), v01 = v00 + 1, v10 = std::uint32_t(v00 + columns),
+                       v11 = v10 + 1;
+            triangles.insert(triangles.end(), {v00, v01, v11, v00, v11, v10});
+        }
+}
+
+// Front faces counter-clockwise: the winding of the triangles of `mesh`
+// from `first_index` on that agrees with their own vertex normals (the
+// compiler's, or a patch's control points' interpolated).
+void wind_counter_clockwise(Mesh &mesh, std::size_t first_index)
+{
+    float agreement = 0.0f;
+    for (std::size_t t = first_index; t < mesh.indices.size(); t += 3) {
+        const glm::vec3 &a = mesh.positions[mesh.indices[t]], &b = mesh.positions[mesh.indices[t + 1]],
+                        &c = mesh.positions[mesh.indices[t + 2]];
+        const glm::vec3 n =
+            mesh.normals[mesh.indices[t]] + mesh.normals[mesh.indices[t + 1]] + mesh.normals[mesh.indices[t + 2]];
+        const float d = glm::dot(glm::cross(b - a, c - a), n);
+        if (std::isfinite(d))
+            agreement += d;
+    }
+    if (agreement < 0.0f)
+        for (std::size_t t = first_index; t < mesh.indices.size(); t += 3)
+            std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+}
+
+// Normals of the face's vertices (from `base`) that the file leaves zero
+// or not finite: the face's own (the sum of its triangles' at the vertex,
+// its triangles from `first_index`). The others are made unit. Returns how
+// many it replaced.
+std::size_t replace_bad_normals(Mesh &mesh, std::size_t base, std::size_t first_index)
+{
+    std::size_t bad = 0;
+    std::vector<glm::vec3> own;
+    for (std::size_t v = base; v < mesh.normals.size(); ++v) {
+        glm::vec3 &n = mesh.normals[v];
+        const float length = glm::length(n);
+        if (length > 0.0f && std::isfinite(length)) {
+            n /= length;
+            continue;
+        }
+        ++bad;
+        if (own.empty()) {
+            own.assign(mesh.normals.size() - base, glm::vec3(0.0f));
+            for (std::size_t t = first_index; t < mesh.indices.size(); t += 3) {
+                const glm::vec3 &a = mesh.positions[mesh.indices[t]];
+                const glm::vec3 n3 =
+                    glm::cross(mesh.positions[mesh.indices[t + 1]] - a, mesh.positions[mesh.indices[t + 2]] - a);
+                for (int k = 0; k < 3; ++k)
+                    own[mesh.indices[t + std::size_t(k)] - base] += n3;
+            }
+        }
+        const float s = glm::length(own[v - base]);
+        n = s > 0.0f && std::isfinite(s) ? own[v - base] / s : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    return bad;
+}
+
+// The faces into meshes of `scene`, one a texture, each face recorded in
+// `level` (its mesh and range of indices, or mesh -1 where not drawn);
+// `face_model` the model of each (face_models), `vertices` the file's.
+// Returns how many vertex normals it replaced (replace_bad_normals).
+std::size_t read_faces(const Reader &r, const Quake3Options &options, const std::vector<std::int32_t> &face_model,
+                       const std::vector<FileVertex> &vertices, Quake3Level &level, Scene &scene)
+{
+    std::vector<std::int32_t> texture_mesh(level.textures.size(), -1);
+    MadeSoFar made_so_far;
+    std::size_t bad_normals = 0;
+    for (std::size_t i = 0; i < r.count(faces_lump); ++i) {
+        Quake3Level::Face face;
+        face.texture = r.i32(r.at(faces_lump, i, 0));
+        face.type = r.i32(r.at(faces_lump, i, 8));
+        face.model = face_model[i];
+        const FaceRecord record{i, r.i32(r.at(faces_lump, i, 12)), r.i32(r.at(faces_lump, i, 16)),
+                                r.i32(r.at(faces_lump, i, 20)), r.i32(r.at(faces_lump, i, 24))};
+        r.require_range(faces_lump, i, "texture", face.texture, 1, textures_lump);
+        if (face.type < face_polygon || face.type > face_billboard)
+            r.refuse(faces_lump, i, "type " + std::to_string(face.type) + " is none of 1 (polygon), 2 (patch), 3 (mesh), 4 (billboard)");
+        r.require_range(faces_lump, i, "vertices", record.first_vertex, record.n_vertices, vertices_lump);
+        if (face.type != face_billboard)
+            r.require_range(faces_lump, i, "meshverts", record.first_meshvert, record.n_meshverts, meshverts_lump);
+        const Quake3Level::Texture &texture = level.textures[std::size_t(face.texture)];
+
+        // The face's triangles (indices into the file's vertices) and, for
+        // a patch, the vertices it makes.
+        std::vector<FileVertex> made;
+        std::vector<std::uint32_t> triangles;   // into `made` when a patch, else file vertex numbers
+        if (face.type == face_polygon || face.type == face_mesh) {
+            polygon_triangles(r, record, made_so_far, triangles);
+        } else if (face.type == face_patch) {
+            ++level.patch_count;
+            const std::int32_t w = r.i32(r.at(faces_lump, i, 96)), h = r.i32(r.at(faces_lump, i, 100));
+            if (w < 3 || h < 3 || w % 2 == 0 || h % 2 == 0 || std::int64_t(w) * h != record.n_vertices)
+                r.refuse(faces_lump, i, "a patch of " + std::to_string(w) + " x " + std::to_string(h) +
+                                            " control points (odd sizes of at least 3, holding its " +
+                                            std::to_string(record.n_vertices) + " vertices, expected)");
+            if (!texture.drawn) {
+                // The compiler keeps patches it has made triangles of itself
+                // (q3map2 -patchmeta) as nodraw faces, for collision.
+                ++level.hidden_face_count;
+                level.faces.push_back(face);
+                continue;
+            }
+            patch_triangles(r, record, vertices.data() + record.first_vertex, w, h, options.patch_segments,
+                            made_so_far, made, triangles);
+        } else {
+            ++level.billboard_count;
+        }
+
+        if (!texture.drawn && face.type != face_billboard)
+            ++level.hidden_face_count;
+        if (face.type == face_billboard || !texture.drawn || triangles.empty()) {
+            level.faces.push_back(face);
+            continue;
+        }
+        if (!texture.occluder)
+            ++level.see_through_face_count;
+
+        std::int32_t &mesh_number = texture_mesh[std::size_t(face.texture)];
+        if (mesh_number < 0) {
+            mesh_number = std::int32_t(scene.meshes.size());
+            Mesh m;
+            m.name = texture.name;
+            m.color = building_colours(std::uint32_t(face.texture), 0.5f, 0.0f).wall;
+            m.occluder = texture.occluder;
+            scene.meshes.push_back(std::move(m));
+        }
+        Mesh &mesh = scene.meshes[std::size_t(mesh_number)];
+        face.mesh = mesh_number;
+        face.first_index = std::uint32_t(mesh.indices.size());
+        face.index_count = std::uint32_t(triangles.size());
+
+        // The face's vertices into the mesh (a polygon's or mesh's own
+        // range of the file's, a patch's made ones).
+        const auto base = std::uint32_t(mesh.positions.size());
+        if (face.type == face_patch) {
+            for (const FileVertex &v : made) {
+                mesh.positions.push_back(v.position);
+                mesh.normals.push_back(v.normal);
+            }
+            for (std::uint32_t t : triangles)
+                mesh.indices.push_back(base + t);
+        } else {
+            made_so_far.vertices += std::uint64_t(record.n_vertices);
+            if (made_so_far.vertices > max_vertices)
+                r.refuse(faces_lump, i, "the faces so far make more than " + std::to_string(max_vertices) + " vertices");
+            for (std::int32_t k = 0; k < record.n_vertices; ++k) {
+                mesh.positions.push_back(vertices[std::size_t(record.first_vertex + k)].position);
+                mesh.normals.push_back(vertices[std::size_t(record.first_vertex + k)].normal);
+            }
+            for (std::uint32_t t : triangles)
+                mesh.indices.push_back(base + t - std::uint32_t(record.first_vertex));
+        }
+        wind_counter_clockwise(mesh, face.first_index);
+        bad_normals += replace_bad_normals(mesh, base, face.first_index);
+        level.faces.push_back(face);
+    }
+    return bad_normals;
+}
+
 }  // namespace
 
 std::int32_t Quake3Level::leaf_at(const glm::vec3 &p) const
@@ -328,366 +754,22 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
         r.refuse("patch segments " + std::to_string(options.patch_segments) + " outside 1..64");
     r.read_header();
     auto level = std::make_shared<Quake3Level>();
+    read_textures(r, *level);
+    read_planes(r, *level);
+    read_nodes(r, *level);
+    read_visibility(r, *level);
+    read_leaves(r, *level);
+    const std::vector<std::int32_t> face_model = face_models(r);
+    read_opaque_solids(r, *level);
+    const std::vector<FileVertex> vertices = read_vertices(r);
 
-    // Textures: the flags that decide what is drawn and what hides.
-    for (std::size_t t = 0; t < r.count(textures_lump); ++t) {
-        const char *name = r.data() + r.at(textures_lump, t, 0);
-        Quake3Level::Texture tex;
-        tex.name.assign(name, static_cast<std::size_t>(std::find(name, name + 64, '\0') - name));
-        tex.surface_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 64)));
-        tex.content_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 68)));
-        tex.drawn = !(tex.surface_flags & (surf_nodraw | surf_sky));
-        tex.occluder = !(tex.content_flags & (contents_translucent | contents_water | contents_fog)) &&
-                       !(tex.surface_flags & surf_alphashadow);
-        level->textures.push_back(std::move(tex));
-    }
-
-    for (std::size_t i = 0; i < r.count(planes_lump); ++i) {
-        const glm::vec3 n = r.vec3(r.at(planes_lump, i, 0));
-        const float d = r.f32(r.at(planes_lump, i, 12));
-        if (!finite(n) || !std::isfinite(d))
-            r.refuse(planes_lump, i, "a normal or distance that is not finite");
-        // Rotated normal; the distance scales with the units.
-        level->planes.push_back({glm::vec3(n.x, n.z, -n.y), d * quake3_unit_metres});
-    }
-
-    const std::size_t node_count = r.count(nodes_lump), leaf_count = r.count(leaves_lump);
-    for (std::size_t i = 0; i < node_count; ++i) {
-        Quake3Level::Node node;
-        node.plane = r.i32(r.at(nodes_lump, i, 0));
-        r.require_range(nodes_lump, i, "plane", node.plane, 1, planes_lump);
-        for (int c = 0; c < 2; ++c) {
-            const std::int32_t child = r.i32(r.at(nodes_lump, i, 4 + 4 * std::size_t(c)));
-            node.children[c] = child;
-            if (child >= 0 && (std::size_t(child) <= i || std::size_t(child) >= node_count))
-                r.refuse(nodes_lump, i, "child node " + std::to_string(child) +
-                                            " does not lie after it among the " + std::to_string(node_count) +
-                                            " nodes (the tree would not end)");
-            if (child < 0 && std::uint64_t(-(std::int64_t(child) + 1)) >= leaf_count)
-                r.refuse(nodes_lump, i, "child leaf " + std::to_string(-(std::int64_t(child) + 1)) +
-                                            " lies outside the " + std::to_string(leaf_count) + " leafs");
-        }
-        node.bounds = Aabb::of(quake3_to_occu(r.ivec3(r.at(nodes_lump, i, 12))),
-                               quake3_to_occu(r.ivec3(r.at(nodes_lump, i, 24))));
-        level->nodes.push_back(node);
-    }
-
-    // Visibility before the leaves, whose clusters index it.
-    if (r.length(visdata_lump) > 0) {
-        if (r.length(visdata_lump) < 8)
-            r.refuse(visdata_lump, std::to_string(r.length(visdata_lump)) +
-                                       " bytes, fewer than its two counts (8 bytes)");
-        const std::int32_t n = r.i32(r.offset(visdata_lump)), size = r.i32(r.offset(visdata_lump) + 4);
-        if (n < 0 || size < 0 || std::uint64_t(n) * std::uint64_t(size) > r.length(visdata_lump) - 8)
-            r.refuse(visdata_lump, std::to_string(n) + " clusters of " + std::to_string(size) +
-                                       " bytes do not fit its " + std::to_string(r.length(visdata_lump) - 8) +
-                                       " bytes of bit vectors");
-        if (std::int64_t(size) * 8 < n)
-            r.refuse(visdata_lump, "vectors of " + std::to_string(size) + " bytes cannot hold a bit for each of " +
-                                       std::to_string(n) + " clusters");
-        level->cluster_count = n;
-        level->bytes_per_cluster = size;
-        const auto *v = reinterpret_cast<const std::uint8_t *>(r.data() + r.offset(visdata_lump) + 8);
-        level->visibility.assign(v, v + std::size_t(n) * std::size_t(size));
-    }
-
-    const std::size_t face_count = r.count(faces_lump);
-    for (std::size_t i = 0; i < leaf_count; ++i) {
-        Quake3Level::Leaf leaf;
-        leaf.cluster = r.i32(r.at(leaves_lump, i, 0));
-        leaf.area = r.i32(r.at(leaves_lump, i, 4));
-        if (leaf.cluster < -1 || (level->cluster_count > 0 && leaf.cluster >= level->cluster_count))
-            r.refuse(leaves_lump, i, "cluster " + std::to_string(leaf.cluster) + " is neither -1 (solid) nor one of the " +
-                                         std::to_string(level->cluster_count) + " clusters of the visdata");
-        leaf.bounds = Aabb::of(quake3_to_occu(r.ivec3(r.at(leaves_lump, i, 8))),
-                               quake3_to_occu(r.ivec3(r.at(leaves_lump, i, 20))));
-        const std::int32_t first = r.i32(r.at(leaves_lump, i, 32)), n = r.i32(r.at(leaves_lump, i, 36));
-        r.require_range(leaves_lump, i, "leaf faces", first, n, leaf_faces_lump);
-        r.require_range(leaves_lump, i, "leaf brushes", r.i32(r.at(leaves_lump, i, 40)), r.i32(r.at(leaves_lump, i, 44)),
-                        leaf_brushes_lump);
-        leaf.first_leaf_face = std::uint32_t(first);
-        leaf.leaf_face_count = std::uint32_t(n);
-        level->leaves.push_back(leaf);
-    }
-    for (std::size_t i = 0; i < r.count(leaf_faces_lump); ++i) {
-        const std::int32_t f = r.i32(r.at(leaf_faces_lump, i, 0));
-        r.require_range(leaf_faces_lump, i, "face", f, 1, faces_lump);
-        level->leaf_faces.push_back(std::uint32_t(f));
-    }
-
-    // Each model (the world, then the brush entities) owns a run of faces;
-    // the compiler writes them one after another. Overlapping runs are
-    // refused: a face of two models means nothing, and marking runs that
-    // overlap would cost models x faces.
-    std::vector<std::int32_t> face_model(face_count, -1);
-    std::vector<std::pair<std::int32_t, std::size_t>> runs;   // (first face, model) of non-empty runs
-    for (std::size_t m = 0; m < r.count(models_lump); ++m) {
-        const std::int32_t first = r.i32(r.at(models_lump, m, 24)), n = r.i32(r.at(models_lump, m, 28));
-        r.require_range(models_lump, m, "faces", first, n, faces_lump);
-        r.require_range(models_lump, m, "brushes", r.i32(r.at(models_lump, m, 32)), r.i32(r.at(models_lump, m, 36)),
-                        brushes_lump);
-        if (n > 0)
-            runs.emplace_back(first, m);
-    }
-    std::sort(runs.begin(), runs.end());
-    for (std::size_t k = 0; k < runs.size(); ++k) {
-        const std::size_t m = runs[k].second;
-        const std::int32_t first = runs[k].first, n = r.i32(r.at(models_lump, m, 28));
-        if (k + 1 < runs.size() && std::int64_t(first) + n > runs[k + 1].first)
-            r.refuse(models_lump, m, "faces " + std::to_string(first) + " to " + std::to_string(std::int64_t(first) + n) +
-                                         " overlap those of model " + std::to_string(runs[k + 1].second));
-        std::fill(face_model.begin() + first, face_model.begin() + first + n, std::int32_t(m));
-    }
-
-    // World brushes (model 0) that are opaque solids, in Quake's
-    // coordinates (the file's planes; level->planes are occu's).
-    constexpr std::uint32_t contents_solid = 0x1;
-    if (r.count(models_lump) > 0) {
-        const std::int32_t first = r.i32(r.at(models_lump, 0, 32)), n = r.i32(r.at(models_lump, 0, 36));
-        for (std::int32_t b = first; b < first + n; ++b) {
-            const std::size_t br = std::size_t(b);
-            const std::int32_t first_side = r.i32(r.at(brushes_lump, br, 0)), sides = r.i32(r.at(brushes_lump, br, 4));
-            const std::int32_t texture = r.i32(r.at(brushes_lump, br, 8));
-            r.require_range(brushes_lump, br, "brush sides", first_side, sides, brush_sides_lump);
-            r.require_range(brushes_lump, br, "texture", texture, 1, textures_lump);
-            const std::uint32_t contents = level->textures[std::size_t(texture)].content_flags;
-            if (!(contents & contents_solid) || (contents & (contents_translucent | contents_water | contents_fog)))
-                continue;
-            bool sky = false;
-            Quake3Level::Brush solid;
-            solid.number = b;
-            solid.lo = glm::vec3(-std::numeric_limits<float>::infinity());
-            solid.hi = glm::vec3(std::numeric_limits<float>::infinity());
-            for (std::int32_t k = first_side; k < first_side + sides; ++k) {
-                const std::size_t side = std::size_t(k);
-                const std::int32_t plane = r.i32(r.at(brush_sides_lump, side, 0));
-                const std::int32_t side_texture = r.i32(r.at(brush_sides_lump, side, 4));
-                r.require_range(brush_sides_lump, side, "plane", plane, 1, planes_lump);
-                r.require_range(brush_sides_lump, side, "texture", side_texture, 1, textures_lump);
-                sky = sky || (level->textures[std::size_t(side_texture)].surface_flags & surf_sky);
-                const glm::vec3 normal = r.vec3(r.at(planes_lump, std::size_t(plane), 0));
-                const float distance = r.f32(r.at(planes_lump, std::size_t(plane), 12));
-                // Sides are clipped as polygons (occluders/brush_occluders.h): within
-                // the compiler's world (q3map2: 65536 units either way).
-                if (!(std::abs(glm::length(normal) - 1.0f) < 1e-3f) || !(std::abs(distance) <= 1048576.0f))
-                    r.refuse(planes_lump, std::size_t(plane),
-                             "a brush side's plane (normal length " + std::to_string(glm::length(normal)) +
-                                 ", distance " + std::to_string(distance) + ") is not a unit normal within 2^20 units");
-                solid.planes.emplace_back(normal, distance);
-                for (int a = 0; a < 3; ++a) {
-                    const glm::vec3 e(a == 0, a == 1, a == 2);
-                    if (normal == e) solid.hi[a] = std::min(solid.hi[a], distance);
-                    if (normal == -e) solid.lo[a] = std::max(solid.lo[a], -distance);
-                }
-            }
-            // Every brush the compiler writes carries its six axial (bevel) planes.
-            if (sky || !(solid.lo.x < solid.hi.x && solid.lo.y < solid.hi.y && solid.lo.z < solid.hi.z) ||
-                !finite(solid.lo) || !finite(solid.hi))
-                continue;
-            level->solid_brush_bounds.push_back(Aabb::of(quake3_to_occu(solid.lo), quake3_to_occu(solid.hi)));
-            level->opaque_solids.push_back(std::move(solid));
-        }
-    }
-
-    const std::size_t vertex_count = r.count(vertices_lump);
-    std::vector<FileVertex> vertices(vertex_count);
-    for (std::size_t i = 0; i < vertex_count; ++i) {
-        const glm::vec3 p = r.vec3(r.at(vertices_lump, i, 0));
-        if (!finite(p))
-            r.refuse(vertices_lump, i, "position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
-                                           std::to_string(p.z) + ") is not finite");
-        const glm::vec3 n = r.vec3(r.at(vertices_lump, i, 28));
-        vertices[i] = {quake3_to_occu(p), glm::vec3(n.x, n.z, -n.y)};
-    }
-
-    // Faces into meshes, one a texture.
     Scene scene;
-    std::vector<std::int32_t> texture_mesh(level->textures.size(), -1);
-    const int segments = options.patch_segments;
-    std::uint64_t made_vertices = 0, made_indices = 0;
-    std::size_t bad_normals = 0;
-    for (std::size_t i = 0; i < face_count; ++i) {
-        Quake3Level::Face face;
-        face.texture = r.i32(r.at(faces_lump, i, 0));
-        face.type = r.i32(r.at(faces_lump, i, 8));
-        face.model = face_model[i];
-        const std::int32_t first_vertex = r.i32(r.at(faces_lump, i, 12)), n_vertices = r.i32(r.at(faces_lump, i, 16));
-        const std::int32_t first_meshvert = r.i32(r.at(faces_lump, i, 20)), n_meshverts = r.i32(r.at(faces_lump, i, 24));
-        r.require_range(faces_lump, i, "texture", face.texture, 1, textures_lump);
-        if (face.type < face_polygon || face.type > face_billboard)
-            r.refuse(faces_lump, i, "type " + std::to_string(face.type) + " is none of 1 (polygon), 2 (patch), 3 (mesh), 4 (billboard)");
-        r.require_range(faces_lump, i, "vertices", first_vertex, n_vertices, vertices_lump);
-        if (face.type != face_billboard)
-            r.require_range(faces_lump, i, "meshverts", first_meshvert, n_meshverts, meshverts_lump);
-        const Quake3Level::Texture &texture = level->textures[std::size_t(face.texture)];
-
-        // The face's triangles (indices into the file's vertices) and, for
-        // a patch, the vertices it makes.
-        std::vector<FileVertex> made;
-        std::vector<std::uint32_t> triangles;   // into `made` when a patch, else file vertex numbers
-        if (face.type == face_polygon || face.type == face_mesh) {
-            if (n_meshverts % 3 != 0)
-                r.refuse(faces_lump, i, std::to_string(n_meshverts) + " meshverts are not whole triangles");
-            // Faces may share meshverts: what they make together is bounded, not the lump.
-            made_indices += std::uint64_t(n_meshverts);
-            if (made_indices > max_indices)
-                r.refuse(faces_lump, i, "the faces so far make more than " + std::to_string(max_indices / 3) + " triangles");
-            for (std::int32_t k = 0; k < n_meshverts; ++k) {
-                const std::int32_t offset = r.i32(r.at(meshverts_lump, std::size_t(first_meshvert + k), 0));
-                if (offset < 0 || offset >= n_vertices)
-                    r.refuse(faces_lump, i, "meshvert " + std::to_string(first_meshvert + k) + " is " +
-                                                std::to_string(offset) + ", outside the face's " +
-                                                std::to_string(n_vertices) + " vertices");
-                triangles.push_back(std::uint32_t(first_vertex + offset));
-            }
-        } else if (face.type == face_patch) {
-            ++level->patch_count;
-            const std::int32_t w = r.i32(r.at(faces_lump, i, 96)), h = r.i32(r.at(faces_lump, i, 100));
-            if (w < 3 || h < 3 || w % 2 == 0 || h % 2 == 0 || std::int64_t(w) * h != n_vertices)
-                r.refuse(faces_lump, i, "a patch of " + std::to_string(w) + " x " + std::to_string(h) +
-                                            " control points (odd sizes of at least 3, holding its " +
-                                            std::to_string(n_vertices) + " vertices, expected)");
-            if (!texture.drawn) {
-                // The compiler keeps patches it has made triangles of itself
-                // (q3map2 -patchmeta) as nodraw faces, for collision.
-                ++level->hidden_face_count;
-                level->faces.push_back(face);
-                continue;
-            }
-            const FileVertex *control = vertices.data() + first_vertex;
-            // A direction in which every piece is straight and evenly
-            // parameterized (each middle control point halfway between its
-            // neighbours) is exactly one segment a piece: more would add
-            // triangles, not shape.
-            const std::int64_t su = straight(control, w, h, 1, w) ? 1 : segments,
-                               sv = straight(control, h, w, w, 1) ? 1 : segments;
-            const std::int64_t columns = std::int64_t(w - 1) / 2 * su + 1, rows = std::int64_t(h - 1) / 2 * sv + 1;
-            made_vertices += std::uint64_t(columns * rows);
-            made_indices += 6 * std::uint64_t((columns - 1) * (rows - 1));
-            if (made_vertices > max_vertices || made_indices > max_indices)
-                r.refuse(faces_lump, i, "its patches at " + std::to_string(segments) +
-                                            " segments a piece make more than " + std::to_string(max_vertices) +
-                                            " vertices or " + std::to_string(max_indices / 3) +
-                                            " triangles (fewer segments make fewer)");
-            for (std::int64_t row = 0; row < rows; ++row) {
-                const std::int64_t pj = std::min<std::int64_t>(row / sv, (h - 1) / 2 - 1);
-                const glm::vec3 bv = bernstein2(float(row - pj * sv) / float(sv));
-                for (std::int64_t col = 0; col < columns; ++col) {
-                    const std::int64_t pi = std::min<std::int64_t>(col / su, (w - 1) / 2 - 1);
-                    const glm::vec3 bu = bernstein2(float(col - pi * su) / float(su));
-                    FileVertex v{glm::vec3(0.0f), glm::vec3(0.0f)};
-                    for (int b = 0; b < 3; ++b)
-                        for (int a = 0; a < 3; ++a) {
-                            const FileVertex &c = control[(2 * pj + b) * w + 2 * pi + a];
-                            v.position += bu[a] * bv[b] * c.position;
-                            v.normal += bu[a] * bv[b] * c.normal;
-                        }
-                    made.push_back(v);
-                }
-            }
-            for (std::int64_t row = 0; row + 1 < rows; ++row)
-                for (std::int64_t col = 0; col + 1 < columns; ++col) {
-                    const auto v00 = std::uint32_t(row * columns + col), v01 = v00 + 1,
-                               v10 = std::uint32_t(v00 + columns), v11 = v10 + 1;
-                    triangles.insert(triangles.end(), {v00, v01, v11, v00, v11, v10});
-                }
-        } else {
-            ++level->billboard_count;
-        }
-
-        if (!texture.drawn && face.type != face_billboard)
-            ++level->hidden_face_count;
-        if (face.type == face_billboard || !texture.drawn || triangles.empty()) {
-            level->faces.push_back(face);
-            continue;
-        }
-        if (!texture.occluder)
-            ++level->see_through_face_count;
-
-        std::int32_t &mesh_number = texture_mesh[std::size_t(face.texture)];
-        if (mesh_number < 0) {
-            mesh_number = std::int32_t(scene.meshes.size());
-            Mesh m;
-            m.name = texture.name;
-            m.color = building_colours(std::uint32_t(face.texture), 0.5f, 0.0f).wall;
-            m.occluder = texture.occluder;
-            scene.meshes.push_back(std::move(m));
-        }
-        Mesh &mesh = scene.meshes[std::size_t(mesh_number)];
-        face.mesh = mesh_number;
-        face.first_index = std::uint32_t(mesh.indices.size());
-        face.index_count = std::uint32_t(triangles.size());
-
-        // The face's vertices into the mesh (a polygon's or mesh's own
-        // range of the file's, a patch's made ones).
-        const auto base = std::uint32_t(mesh.positions.size());
-        if (face.type == face_patch) {
-            for (const FileVertex &v : made) {
-                mesh.positions.push_back(v.position);
-                mesh.normals.push_back(v.normal);
-            }
-            for (std::uint32_t t : triangles)
-                mesh.indices.push_back(base + t);
-        } else {
-            made_vertices += std::uint64_t(n_vertices);
-            if (made_vertices > max_vertices)
-                r.refuse(faces_lump, i, "the faces so far make more than " + std::to_string(max_vertices) + " vertices");
-            for (std::int32_t k = 0; k < n_vertices; ++k) {
-                mesh.positions.push_back(vertices[std::size_t(first_vertex + k)].position);
-                mesh.normals.push_back(vertices[std::size_t(first_vertex + k)].normal);
-            }
-            for (std::uint32_t t : triangles)
-                mesh.indices.push_back(base + t - std::uint32_t(first_vertex));
-        }
-
-        // Front faces counter-clockwise: the winding that agrees with the
-        // face's own vertex normals (the compiler's, or a patch's control
-        // points' interpolated).
-        float agreement = 0.0f;
-        for (std::size_t t = face.first_index; t < mesh.indices.size(); t += 3) {
-            const glm::vec3 &a = mesh.positions[mesh.indices[t]], &b = mesh.positions[mesh.indices[t + 1]],
-                            &c = mesh.positions[mesh.indices[t + 2]];
-            const glm::vec3 n = mesh.normals[mesh.indices[t]] + mesh.normals[mesh.indices[t + 1]] +
-                                mesh.normals[mesh.indices[t + 2]];
-            const float d = glm::dot(glm::cross(b - a, c - a), n);
-            if (std::isfinite(d))
-                agreement += d;
-        }
-        if (agreement < 0.0f)
-            for (std::size_t t = face.first_index; t < mesh.indices.size(); t += 3)
-                std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
-
-        // Normals the file leaves zero or not finite: the face's own (the
-        // sum of its triangles' at the vertex).
-        std::vector<glm::vec3> own;
-        for (std::size_t v = base; v < mesh.normals.size(); ++v) {
-            glm::vec3 &n = mesh.normals[v];
-            const float length = glm::length(n);
-            if (length > 0.0f && std::isfinite(length)) {
-                n /= length;
-                continue;
-            }
-            ++bad_normals;
-            if (own.empty()) {
-                own.assign(mesh.normals.size() - base, glm::vec3(0.0f));
-                for (std::size_t t = face.first_index; t < mesh.indices.size(); t += 3) {
-                    const glm::vec3 &a = mesh.positions[mesh.indices[t]];
-                    const glm::vec3 n3 = glm::cross(mesh.positions[mesh.indices[t + 1]] - a,
-                                                    mesh.positions[mesh.indices[t + 2]] - a);
-                    for (int k = 0; k < 3; ++k)
-                        own[mesh.indices[t + std::size_t(k)] - base] += n3;
-                }
-            }
-            const float s = glm::length(own[v - base]);
-            n = s > 0.0f && std::isfinite(s) ? own[v - base] / s : glm::vec3(0.0f, 1.0f, 0.0f);
-        }
-        level->faces.push_back(face);
-    }
+    const std::size_t bad_normals = read_faces(r, options, face_model, vertices, *level, scene);
     if (bad_normals)
         warnings.push_back("scene '" + source + "': " + std::to_string(bad_normals) +
                            " vertex normals of the level are zero or not finite; the faces' own instead");
     if (scene.meshes.empty())
-        r.refuse(faces_lump, "none of its " + std::to_string(face_count) + " faces is drawn");
+        r.refuse(faces_lump, "none of its " + std::to_string(r.count(faces_lump)) + " faces is drawn");
 
     level->spawns = spawns_of(r, parse_entities(r));
     scene.update_bounds();
