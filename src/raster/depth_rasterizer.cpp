@@ -458,37 +458,32 @@ void DepthRasterizer::add_transform_error(const glm::dmat4 &m, const glm::dvec3 
     e.depth = std::max(e.depth, 0.5 * (bound.z + std::abs(c.z / c.w) * bound.w) / w);
 }
 
-void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
-                                    const glm::vec3 *across, TransformError error)
-{
-    if (!(error.window < 1.0 && error.depth < 1e-2))
-        return;   // GL may put the polygon a pixel away: its samples say nothing
-    const int k = options_.divisor;
-    const double first = 0.5 / k, last = (k - 0.5) / k;
-    const double extent = guard * std::max(width_, height_) + tile_size;
-
-    // The edges as rasterize sets them up, with the same margins, but
-    // tested at each sample rather than folded to a pixel's worst one:
-    // held where a u + b v + held_c >= 0, the edge function at least the
-    // margin.
-    double ea[max_edges], eb[max_edges], held_c[max_edges], margin[max_edges];
-    for (int e = 0; e < n; ++e) {
-        const glm::dvec2 p(window[e]), q(window[e + 1 == n ? 0 : e + 1]);
-        const double a = p.y - q.y, b = q.x - p.x, c = -(a * p.x + b * p.y);
-        margin[e] = (std::abs(a) + std::abs(b)) * (edge_margin / k + error.window) +
-                    float_error * ((std::abs(a) + std::abs(b)) * extent + std::abs(c));
-        ea[e] = a;
-        eb[e] = b;
-        held_c[e] = c - margin[e];
-    }
-
+// The polygon's edges as rasterize sets them up, with the same margins,
+// but tested at each sample rather than folded to a pixel's worst one
+// (merge_partial), and the triangle across each edge where the caller
+// named one.
+struct DepthRasterizer::PartialEdges {
+    const glm::vec2 *window;
+    const float *depth;
+    int n;
+    const glm::vec3 *across;
+    TransformError error;
+    int k;
+    double first, last, extent;
+    // Held where a u + b v + held_c >= 0, the edge function at least the
+    // margin; reach_c: the constant below which no sample is held at all
+    // (the margin beyond a shared edge, inside it elsewhere).
+    double ea[raster::max_edges], eb[raster::max_edges], held_c[raster::max_edges], margin[raster::max_edges],
+        reach_c[raster::max_edges];
+    // Sample offsets within a depth pixel.
+    double offset[8];
     // The triangle across each edge, where the caller named one GL draws
     // whole (between the near and far planes, inside the guard band) and
     // both face the eye by more than twice the margin: a sample within
     // the margin of the shared edge, inside the other edges of both, is
     // drawn by one of the two. Its two other edges, and its depth plane.
-    // Set up on first need: most triangles of a detailed mesh have no
-    // sample in the margin of an edge.
+    // Set up on first need (set_up_across): most triangles of a detailed
+    // mesh have no sample in the margin of an edge.
     struct Across {
         int state = 0;   // 0: not yet looked at; 1: usable; -1: not
         double ea[2], eb[2], held_c[2];
@@ -496,118 +491,194 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         raster::PolygonSetup depth;
     } neighbour[3];
     bool candidate[3] = {false, false, false}, any_candidate = false;
-    if (across && n == 3)
-        for (int e = 0; e < 3; ++e) {
-            candidate[e] = std::isfinite(across[e].x + across[e].y + across[e].z);
-            any_candidate = any_candidate || candidate[e];
-        }
-    const auto usable = [&](int e) {
-        Across &x = neighbour[e];
-        if (x.state != 0)
-            return x.state > 0;
-        x.state = -1;
-        const TransformError far = transform_error(&across[e], 1);
-        if (!(far.window <= error.window && far.depth <= error.depth) &&
-            !(far.window < 1.0 && far.depth < 1e-2))
-            return false;
-        const double extra = std::max(far.window, error.window);
-        x.depth_error = std::max(far.depth, error.depth);
-        const glm::vec4 c = clip_position(view_projection_, across[e]);
-        const float g = float(guard) * c.w;
-        if (!(c.w > 0.0f && c.z > -c.w && c.z < c.w && std::abs(c.x) <= g && std::abs(c.y) <= g))
-            return false;
-        const float sx = 0.5f * float(frame_width_) / float(k), sy = 0.5f * float(frame_height_) / float(k);
-        const float inv = 1.0f / c.w;
-        const glm::vec2 r{(c.x * inv + 1.0f) * sx, (c.y * inv + 1.0f) * sy};
-        const float r_depth = c.z * inv * 0.5f + 0.5f;
-        // Room to spare: the third corners of both triangles lie at least
-        // twice the margin from the shared edge, on either side.
-        const double length = std::hypot(ea[e], eb[e]);
-        const glm::dvec2 own(window[(e + 2) % 3]);
-        const double raw_c = held_c[e] + margin[e];
-        const double own_side = ea[e] * own.x + eb[e] * own.y + raw_c;
-        const double other_side = -(ea[e] * double(r.x) + eb[e] * double(r.y) + raw_c);
-        const double room = 2.0 * margin[e] + 2.0 * length * (edge_margin / k + extra);
-        if (!(own_side > room && other_side > room))
-            return false;
-        // The triangle across, counter-clockwise: q, p, r for the edge
-        // p -> q; its edges p -> r and r -> q.
-        const glm::vec2 p = window[e], q = window[(e + 1) % 3];
-        const glm::vec2 tri[3] = {q, p, r};
-        const float tri_depth[3] = {depth[(e + 1) % 3], depth[e], r_depth};
-        for (int j = 0; j < 2; ++j) {
-            const glm::dvec2 from(tri[j + 1]), to(tri[(j + 2) % 3]);
-            const double ta = from.y - to.y, tb = to.x - from.x, tc = -(ta * from.x + tb * from.y);
-            const double m = (std::abs(ta) + std::abs(tb)) * (edge_margin / k + extra) +
-                             float_error * ((std::abs(ta) + std::abs(tb)) * extent + std::abs(tc));
-            x.ea[j] = ta;
-            x.eb[j] = tb;
-            x.held_c[j] = tc - m;
-        }
-        depth_plane(tri, tri_depth, 3, first, last, extent, options_.per_pixel_depth, x.depth);
-        x.state = 1;
-        return true;
-    };
-
     // The depth pixels holding a sample the polygon may reach, one more
     // each way where a sample beyond a shared edge may count.
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *window, const float *depth, int n,
+                                                             const glm::vec3 *across, TransformError error) const
+{
+    PartialEdges p;
+    p.window = window;
+    p.depth = depth;
+    p.n = n;
+    p.across = across;
+    p.error = error;
+    const int k = p.k = options_.divisor;
+    p.first = 0.5 / k;
+    p.last = (k - 0.5) / k;
+    p.extent = guard * std::max(width_, height_) + tile_size;
+    for (int e = 0; e < n; ++e) {
+        const glm::dvec2 a_point(window[e]), b_point(window[e + 1 == n ? 0 : e + 1]);
+        const double a = a_point.y - b_point.y, b = b_point.x - a_point.x, c = -(a * a_point.x + b * a_point.y);
+        p.margin[e] = (std::abs(a) + std::abs(b)) * (edge_margin / k + error.window) +
+                      float_error * ((std::abs(a) + std::abs(b)) * p.extent + std::abs(c));
+        p.ea[e] = a;
+        p.eb[e] = b;
+        p.held_c[e] = c - p.margin[e];
+    }
+    if (across && n == 3)
+        for (int e = 0; e < 3; ++e) {
+            p.candidate[e] = std::isfinite(across[e].x + across[e].y + across[e].z);
+            p.any_candidate = p.any_candidate || p.candidate[e];
+        }
     glm::vec2 lo = window[0], hi = window[0];
     for (int i = 1; i < n; ++i) {
         lo = glm::min(lo, window[i]);
         hi = glm::max(hi, window[i]);
     }
-    const int grow = any_candidate ? 1 : 0;
-    const int x0 = std::max(0, int(std::ceil(double(lo.x) - last)) - grow);
-    const int y0 = std::max(0, int(std::ceil(double(lo.y) - last)) - grow);
-    const int x1 = std::min(width_, int(std::floor(double(hi.x) - first)) + 1 + grow);
-    const int y1 = std::min(height_, int(std::floor(double(hi.y) - first)) + 1 + grow);
-    if (x0 >= x1 || y0 >= y1)
-        return;
-
-    // The edge constants below which no sample is held at all: the margin
-    // beyond a shared edge, inside it elsewhere.
-    double reach_c[max_edges];
+    const int grow = p.any_candidate ? 1 : 0;
+    p.x0 = std::max(0, int(std::ceil(double(lo.x) - p.last)) - grow);
+    p.y0 = std::max(0, int(std::ceil(double(lo.y) - p.last)) - grow);
+    p.x1 = std::min(width_, int(std::floor(double(hi.x) - p.first)) + 1 + grow);
+    p.y1 = std::min(height_, int(std::floor(double(hi.y) - p.first)) + 1 + grow);
     for (int e = 0; e < n; ++e)
-        reach_c[e] = held_c[e] + (e < 3 && candidate[e] ? 2.0 * margin[e] : 0.0);
-    double offset[8];
+        p.reach_c[e] = p.held_c[e] + (e < 3 && p.candidate[e] ? 2.0 * p.margin[e] : 0.0);
     for (int i = 0; i < k; ++i)
-        offset[i] = (i + 0.5) / k;
+        p.offset[i] = (i + 0.5) / k;
+    return p;
+}
 
+bool DepthRasterizer::set_up_across(PartialEdges &p, int e) const
+{
+    PartialEdges::Across &x = p.neighbour[e];
+    if (x.state != 0)
+        return x.state > 0;
+    x.state = -1;
+    const int k = p.k;
+    const TransformError far = transform_error(&p.across[e], 1);
+    if (!(far.window <= p.error.window && far.depth <= p.error.depth) && !(far.window < 1.0 && far.depth < 1e-2))
+        return false;
+    const double extra = std::max(far.window, p.error.window);
+    x.depth_error = std::max(far.depth, p.error.depth);
+    const glm::vec4 c = clip_position(view_projection_, p.across[e]);
+    const float g = float(guard) * c.w;
+    if (!(c.w > 0.0f && c.z > -c.w && c.z < c.w && std::abs(c.x) <= g && std::abs(c.y) <= g))
+        return false;
+    const float sx = 0.5f * float(frame_width_) / float(k), sy = 0.5f * float(frame_height_) / float(k);
+    const float inv = 1.0f / c.w;
+    const glm::vec2 r{(c.x * inv + 1.0f) * sx, (c.y * inv + 1.0f) * sy};
+    const float r_depth = c.z * inv * 0.5f + 0.5f;
+    // Room to spare: the third corners of both triangles lie at least
+    // twice the margin from the shared edge, on either side.
+    const double length = std::hypot(p.ea[e], p.eb[e]);
+    const glm::dvec2 own(p.window[(e + 2) % 3]);
+    const double raw_c = p.held_c[e] + p.margin[e];
+    const double own_side = p.ea[e] * own.x + p.eb[e] * own.y + raw_c;
+    const double other_side = -(p.ea[e] * double(r.x) + p.eb[e] * double(r.y) + raw_c);
+    const double room = 2.0 * p.margin[e] + 2.0 * length * (edge_margin / k + extra);
+    if (!(own_side > room && other_side > room))
+        return false;
+    // The triangle across, counter-clockwise: q, p, r for the edge
+    // p -> q; its edges p -> r and r -> q.
+    const glm::vec2 from_corner = p.window[e], to_corner = p.window[(e + 1) % 3];
+    const glm::vec2 tri[3] = {to_corner, from_corner, r};
+    const float tri_depth[3] = {p.depth[(e + 1) % 3], p.depth[e], r_depth};
+    for (int j = 0; j < 2; ++j) {
+        const glm::dvec2 from(tri[j + 1]), to(tri[(j + 2) % 3]);
+        const double ta = from.y - to.y, tb = to.x - from.x, tc = -(ta * from.x + tb * from.y);
+        const double m = (std::abs(ta) + std::abs(tb)) * (edge_margin / k + extra) +
+                         float_error * ((std::abs(ta) + std::abs(tb)) * p.extent + std::abs(tc));
+        x.ea[j] = ta;
+        x.eb[j] = tb;
+        x.held_c[j] = tc - m;
+    }
+    depth_plane(tri, tri_depth, 3, p.first, p.last, p.extent, options_.per_pixel_depth, x.depth);
+    x.state = 1;
+    return true;
+}
+
+bool DepthRasterizer::partial_row_spans(const PartialEdges &p, int y, int spans[2][2]) const
+{
+    // Each edge function's largest and least value over a pixel's samples
+    // is linear in the pixel's column, so both sets (the pixels some
+    // sample of which the polygon may hold, and those it holds wholly)
+    // are spans, found here one pixel wider (the reach) and narrower (the
+    // whole pixels) than the double arithmetic says; the samples decide.
+    const auto clamp_column = [&](double x) { return std::max(double(p.x0 - 2), std::min(double(p.x1 + 1), x)); };
+    const double first = p.first, last = p.last;
+    double reach_lo = p.x0, reach_hi = p.x1 - 1, whole_lo = p.x0, whole_hi = p.x1 - 1;
+    bool reached = true, whole = true;
+    for (int e = 0; e < p.n && reached; ++e) {
+        const double ea = p.ea[e], eb = p.eb[e];
+        const double largest = ea * (ea > 0.0 ? last : first) + eb * (y + (eb > 0.0 ? last : first)) + p.reach_c[e];
+        const double least = ea * (ea > 0.0 ? first : last) + eb * (y + (eb > 0.0 ? first : last)) + p.held_c[e];
+        if (ea > 0.0) {
+            reach_lo = std::max(reach_lo, std::ceil(clamp_column(-largest / ea)) - 1.0);
+            whole_lo = std::max(whole_lo, std::ceil(clamp_column(-least / ea)) + 1.0);
+        } else if (ea < 0.0) {
+            reach_hi = std::min(reach_hi, std::floor(clamp_column(largest / -ea)) + 1.0);
+            whole_hi = std::min(whole_hi, std::floor(clamp_column(least / -ea)) - 1.0);
+        } else {
+            reached = largest >= 0.0;
+            whole = whole && least >= 0.0;
+        }
+        if (!(reach_lo <= reach_hi))
+            reached = false;   // NaN included
+    }
+    if (!reached)
+        return false;
+    if (!(whole && whole_lo <= whole_hi))
+        whole_lo = reach_hi + 1, whole_hi = reach_hi;   // no whole pixel: the reach is all partial
+    spans[0][0] = int(reach_lo);
+    spans[0][1] = int(std::min(whole_lo, reach_hi + 1));
+    spans[1][0] = int(std::max(whole_hi + 1, reach_lo));
+    spans[1][1] = int(reach_hi) + 1;
+    return true;
+}
+
+std::uint64_t DepthRasterizer::partial_sample_mask(PartialEdges &p, int x, int y, bool used[3]) const
+{
+    const int k = p.k, n = p.n;
+    std::uint64_t mask = 0, bit = 1;
+    for (int j = 0; j < k; ++j)
+        for (int i = 0; i < k; ++i, bit <<= 1) {
+            const double u = x + p.offset[i], v = y + p.offset[j];
+            double value[raster::max_edges];
+            int failed = -1, failures = 0;
+            for (int e = 0; e < n; ++e) {
+                value[e] = p.ea[e] * u + p.eb[e] * v;
+                if (value[e] + p.held_c[e] < 0.0) {
+                    failed = e;
+                    ++failures;
+                }
+            }
+            if (failures == 0) {
+                mask |= bit;
+                continue;
+            }
+            // Within the margin beyond one shared edge only, and inside
+            // the triangle across.
+            if (failures > 1 || failed > 2 || !p.candidate[failed] || value[failed] + p.reach_c[failed] < 0.0 ||
+                !set_up_across(p, failed))
+                continue;
+            const PartialEdges::Across &other = p.neighbour[failed];
+            if (other.ea[0] * u + other.eb[0] * v + other.held_c[0] >= 0.0 &&
+                other.ea[1] * u + other.eb[1] * v + other.held_c[1] >= 0.0) {
+                mask |= bit;
+                used[failed] = true;
+            }
+        }
+    return mask;
+}
+
+void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
+                                    const glm::vec3 *across, TransformError error)
+{
+    if (!(error.window < 1.0 && error.depth < 1e-2))
+        return;   // GL may put the polygon a pixel away: its samples say nothing
+    PartialEdges p = partial_edges(window, depth, n, across, error);
+    if (p.x0 >= p.x1 || p.y0 >= p.y1)
+        return;
     // Row by row, only the pixels some sample of which the polygon may
     // hold and not all of which it holds: those it holds wholly the fill
-    // took. Each edge function's largest and least value over a pixel's
-    // samples is linear in the pixel's column, so both sets are spans,
-    // found here one pixel wider (the reach) and narrower (the whole
-    // pixels) than the double arithmetic says; the samples decide.
+    // took (partial_row_spans).
     bool wrote = false;
-    const auto clamp_column = [&](double x) { return std::max(double(x0 - 2), std::min(double(x1 + 1), x)); };
-    for (int y = y0; y < y1; ++y) {
-        double reach_lo = x0, reach_hi = x1 - 1, whole_lo = x0, whole_hi = x1 - 1;
-        bool reached = true, whole = true;
-        for (int e = 0; e < n && reached; ++e) {
-            const double largest = ea[e] * (ea[e] > 0.0 ? last : first) + eb[e] * (y + (eb[e] > 0.0 ? last : first)) +
-                                   reach_c[e];
-            const double least = ea[e] * (ea[e] > 0.0 ? first : last) + eb[e] * (y + (eb[e] > 0.0 ? first : last)) +
-                                 held_c[e];
-            if (ea[e] > 0.0) {
-                reach_lo = std::max(reach_lo, std::ceil(clamp_column(-largest / ea[e])) - 1.0);
-                whole_lo = std::max(whole_lo, std::ceil(clamp_column(-least / ea[e])) + 1.0);
-            } else if (ea[e] < 0.0) {
-                reach_hi = std::min(reach_hi, std::floor(clamp_column(largest / -ea[e])) + 1.0);
-                whole_hi = std::min(whole_hi, std::floor(clamp_column(least / -ea[e])) - 1.0);
-            } else {
-                reached = largest >= 0.0;
-                whole = whole && least >= 0.0;
-            }
-            if (!(reach_lo <= reach_hi))
-                reached = false;   // NaN included
-        }
-        if (!reached)
+    for (int y = p.y0; y < p.y1; ++y) {
+        int spans[2][2];
+        if (!partial_row_spans(p, y, spans))
             continue;
-        if (!(whole && whole_lo <= whole_hi))
-            whole_lo = reach_hi + 1, whole_hi = reach_hi;   // no whole pixel: the reach is all partial
-        const int spans[2][2] = {{int(reach_lo), int(std::min(whole_lo, reach_hi + 1))},
-                                 {int(std::max(whole_hi + 1, reach_lo)), int(reach_hi) + 1}};
         const float depth_term = s.zb * float(y) + s.zc;
         const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
         for (int span = 0; span < 2; ++span)
@@ -624,46 +695,18 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
                                          2.0f);
                 if (!(z < tiles_[index]))
                     continue;
-                std::uint64_t mask = 0, bit = 1;
                 bool used[3] = {false, false, false};
-                for (int j = 0; j < k; ++j)
-                    for (int i = 0; i < k; ++i, bit <<= 1) {
-                        const double u = x + offset[i], v = y + offset[j];
-                        double value[max_edges];
-                        int failed = -1, failures = 0;
-                        for (int e = 0; e < n; ++e) {
-                            value[e] = ea[e] * u + eb[e] * v;
-                            if (value[e] + held_c[e] < 0.0) {
-                                failed = e;
-                                ++failures;
-                            }
-                        }
-                        if (failures == 0) {
-                            mask |= bit;
-                            continue;
-                        }
-                        // Within the margin beyond one shared edge only,
-                        // and inside the triangle across.
-                        if (failures > 1 || failed > 2 || !candidate[failed] ||
-                            value[failed] + reach_c[failed] < 0.0 || !usable(failed))
-                            continue;
-                        const Across &other = neighbour[failed];
-                        if (other.ea[0] * u + other.eb[0] * v + other.held_c[0] >= 0.0 &&
-                            other.ea[1] * u + other.eb[1] * v + other.held_c[1] >= 0.0) {
-                            mask |= bit;
-                            used[failed] = true;
-                        }
-                    }
+                const std::uint64_t mask = partial_sample_mask(p, x, y, used);
                 if (!mask)
                     continue;
                 // And the depth of the triangle across an edge some
                 // sample needed.
                 for (int e = 0; e < 3; ++e)
                     if (used[e]) {
-                        const raster::PolygonSetup &d = neighbour[e].depth;
+                        const raster::PolygonSetup &d = p.neighbour[e].depth;
                         z = std::max(z, std::nextafter(float(double(std::min(d.za * float(x) + (d.zb * float(y) + d.zc),
                                                                              d.zcap)) +
-                                                             neighbour[e].depth_error),
+                                                             p.neighbour[e].depth_error),
                                                        2.0f));
                     }
                 if (!(z < tiles_[index]))
