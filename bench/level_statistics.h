@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "scene/quake3_bsp.h"
+#include "scene/level.h"
 #include "scene/scene.h"
 
 namespace occu {
@@ -38,10 +38,10 @@ struct LevelStatistics {
     }
 };
 
-// The statistics of `scene`, a level (scene.quake3 set).
+// The statistics of `scene`, a level (scene.level set).
 inline LevelStatistics level_statistics(const Scene &scene)
 {
-    const Quake3Level &level = *scene.quake3;
+    const Level &level = *scene.level;
     LevelStatistics s;
     s.triangles = scene.triangle_count();
     s.meshes = scene.meshes.size();
@@ -51,14 +51,14 @@ inline LevelStatistics level_statistics(const Scene &scene)
             s.see_through_triangles += m.triangle_count();
         }
     s.faces = level.faces.size();
-    for (const Quake3Level::Face &f : level.faces)
+    for (const Level::Face &f : level.faces)
         s.drawn_patches += f.type == 2 && f.mesh >= 0;
     s.patches = level.patch_count;
     s.see_through_faces = level.see_through_face_count;
     s.billboards = level.billboard_count;
     s.hidden_faces = level.hidden_face_count;
     s.leaves = level.leaves.size();
-    for (const Quake3Level::Leaf &l : level.leaves)
+    for (const Level::Leaf &l : level.leaves)
         s.open_leaves += l.cluster >= 0;
     s.clusters = level.cluster_count;
     s.spawns = level.spawns.size();

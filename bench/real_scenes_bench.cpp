@@ -163,7 +163,7 @@ Options parse(int argc, char **argv)
     return o;
 }
 
-bool is_level(const Scene &scene) { return scene.quake3 != nullptr; }
+bool is_level(const Scene &scene) { return scene.level != nullptr; }
 
 // A scene's short name: a level's NAME of maps/NAME.bsp, a file's name.
 std::string short_name(const std::string &scene)

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "cli/number_fields.h"
-#include "scene/quake3_bsp.h"
+#include "scene/level.h"
 
 namespace occu {
 
@@ -22,7 +22,7 @@ constexpr int max_eye_tries = 100000;
 // its bounds has no room a camera could stand in anyway.
 constexpr int max_inside_eye_tries = 20000;
 
-bool in_open_leaf(const Quake3Level &level, const glm::vec3 &p)
+bool in_open_leaf(const Level &level, const glm::vec3 &p)
 {
     const std::int32_t leaf = level.leaf_at(p);
     return leaf >= 0 && level.leaves[std::size_t(leaf)].cluster >= 0;
@@ -127,7 +127,7 @@ std::vector<Camera> overhead_route(const Aabb &bounds, int frames, float aspect)
 // leaves of cluster -1, where no player can stand and a camera sees the
 // backs of walls. In a model with an inside test (a building read from a
 // file), an eye is drawn again until the test keeps it: eyes in rooms.
-std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, float aspect, const Quake3Level *level,
+std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, float aspect, const Level *level,
                                  const EyeTest &eye_inside)
 {
     std::istringstream in(name.substr(std::string("random:").size()));
@@ -176,7 +176,7 @@ std::vector<Camera> random_route(const std::string &name, const Aabb &bounds, fl
 // turns), level. The lens: Quake III's default field of view (cg_fov 90,
 // horizontal), its near plane (4 units), a far plane that takes in the
 // whole level.
-std::vector<Camera> spawn_route(const std::string &name, const Aabb &bounds, float aspect, const Quake3Level *level)
+std::vector<Camera> spawn_route(const std::string &name, const Aabb &bounds, float aspect, const Level *level)
 {
     long views = 8;
     if (name != "spawn") {
@@ -191,7 +191,7 @@ std::vector<Camera> spawn_route(const std::string &name, const Aabb &bounds, flo
                                     "info_player_start, team_CTF_*player, team_CTF_*spawn)");
     const float fovy = 2.0f * std::atan(std::tan(glm::radians(45.0f)) / aspect);
     std::vector<Camera> route;
-    for (const Quake3Spawn &spawn : level->spawns)
+    for (const LevelSpawn &spawn : level->spawns)
         for (long k = 0; k < views; ++k) {
             // Turning left about +y: a yaw added in Quake turns the same way
             // in occu (the map from Quake's frame is a rotation).
@@ -222,7 +222,7 @@ Camera street_level_lens(const Aabb &bounds, float aspect)
 }
 
 std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, const CityOptions &city, int frames,
-                               float aspect, const Quake3Level *level, const EyeTest &eye_inside)
+                               float aspect, const Level *level, const EyeTest &eye_inside)
 {
     const bool built_in = name == "dense" || name == "street" || name == "medium" || name == "open" ||
                           name == "orbit" || name == "overhead" || name.rfind("random:", 0) == 0 ||
@@ -285,7 +285,7 @@ std::vector<Camera> make_route(const std::string &name, const Aabb &bounds, cons
 }
 
 std::vector<Camera> random_views(const Aabb &bounds, long count, unsigned long seed, float aspect, float fov_min,
-                                 float fov_max, const Quake3Level *level, const EyeTest &eye_inside)
+                                 float fov_max, const Level *level, const EyeTest &eye_inside)
 {
     if (!(fov_min >= 1.0f && fov_max <= 170.0f && fov_min <= fov_max))
         throw std::invalid_argument("fields of view must lie in 1..170 degrees, the least first");

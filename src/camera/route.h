@@ -25,7 +25,7 @@
 //                  inside it: rays in 14 directions from the eye all hit
 //                  the model (spatial/inside_points.h), so eyes lie in its
 //                  rooms, never outside it.
-// Routes for Quake III levels (scene/quake3_bsp.h):
+// Routes for levels (scene/level.h; Quake III levels, scene/quake3_bsp.h):
 //   spawn, spawn:K  every player spawn point of the level in turn, from the
 //                  eye of a player standing there, looking along its angle
 //                  and then turning through 360 degrees about the vertical,
@@ -45,7 +45,7 @@
 
 namespace occu {
 
-struct Quake3Level;
+struct Level;
 
 // Whether a random eye may stand at a point (route random:N:SEED in a
 // model: inside_model of spatial/inside_points.h); empty: anywhere.
@@ -66,7 +66,7 @@ Camera street_level_lens(const Aabb &bounds, float aspect);
 // parse, naming the file and line; a number that is not a finite float,
 // or a camera whose view direction is not, is refused).
 std::vector<Camera> make_route(const std::string &name, const Aabb &scene_bounds, const CityOptions &city,
-                               int frames, float aspect, const Quake3Level *level = nullptr,
+                               int frames, float aspect, const Level *level = nullptr,
                                const EyeTest &eye_inside = {});
 
 // Whether the cameras of route `name` are unrelated views (random:N:SEED):
@@ -82,6 +82,6 @@ bool unrelated_views(const std::string &name);
 // that eyes and directions are the route's. Throws as make_route does, and
 // std::invalid_argument for a field of view outside [1, 170] or fov_min > fov_max.
 std::vector<Camera> random_views(const Aabb &scene_bounds, long count, unsigned long seed, float aspect, float fov_min,
-                                 float fov_max, const Quake3Level *level = nullptr, const EyeTest &eye_inside = {});
+                                 float fov_max, const Level *level = nullptr, const EyeTest &eye_inside = {});
 
 }  // namespace occu

@@ -51,7 +51,7 @@ EyeTest SceneSetup::eye_inside() const
     // A level has its open leaves; the city and the field are generated
     // with streets and gaps to stand in. A model read from a file is a
     // building or an object: random eyes go inside it.
-    if (scene_->quake3 || generated_scene_name(name_))
+    if (scene_->level || generated_scene_name(name_))
         return {};
     const std::shared_ptr<const Scene> scene = scene_;
     const std::shared_ptr<const Hierarchy> hierarchy = hierarchy_;
@@ -60,13 +60,13 @@ EyeTest SceneSetup::eye_inside() const
 
 std::vector<Camera> SceneSetup::route(const std::string &route, int frames, float aspect) const
 {
-    return make_route(route, scene_->bounds, city_, frames, aspect, scene_->quake3.get(), eye_inside());
+    return make_route(route, scene_->bounds, city_, frames, aspect, scene_->level.get(), eye_inside());
 }
 
 std::vector<Camera> SceneSetup::random_views(long count, unsigned long seed, float fov_min, float fov_max,
                                              float aspect) const
 {
-    return occu::random_views(scene_->bounds, count, seed, aspect, fov_min, fov_max, scene_->quake3.get(),
+    return occu::random_views(scene_->bounds, count, seed, aspect, fov_min, fov_max, scene_->level.get(),
                               eye_inside());
 }
 

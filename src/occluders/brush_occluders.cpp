@@ -10,7 +10,7 @@
 
 #include <polyclipping/clipper.hpp>
 
-#include "scene/quake3_bsp.h"
+#include "scene/level.h"
 
 namespace occu {
 
@@ -104,9 +104,9 @@ int dominant_axis(const glm::dvec3 &n)
 
 LevelBrushOccluders level_brush_occluders(const Scene &scene)
 {
-    if (!scene.quake3)
+    if (!scene.level)
         throw std::runtime_error("the scene is not a Quake III level (it has no brushes)");
-    const std::vector<Quake3Level::Brush> &solids = scene.quake3->opaque_solids;
+    const std::vector<Level::Brush> &solids = scene.level->opaque_solids;
     const std::vector<Mesh> &meshes = scene.meshes;
     LevelBrushOccluders level;
     // The opaque triangles, by plane (normal to 1/1024, distance to 1/16
@@ -136,7 +136,7 @@ LevelBrushOccluders level_brush_occluders(const Scene &scene)
     std::vector<std::vector<ClipperLib::Paths>> open(solids.size());
     level.opaque_brushes.resize(solids.size());
     for (std::size_t s = 0; s < solids.size(); ++s) {
-        const Quake3Level::Brush &solid = solids[s];
+        const Level::Brush &solid = solids[s];
         LevelBrushOccluders::OpaqueBrush &brush = level.opaque_brushes[s];
         for (std::size_t k = 0; k < solid.planes.size(); ++k) {
             const glm::dvec3 n(solid.planes[k]);
@@ -176,7 +176,7 @@ LevelBrushOccluders level_brush_occluders(const Scene &scene)
     // The boxes: six axial sides on the integer grid, at least a unit
     // thick within the one-unit inset.
     for (std::size_t s = 0; s < solids.size(); ++s) {
-        const Quake3Level::Brush &solid = solids[s];
+        const Level::Brush &solid = solids[s];
         bool box = solid.planes.size() == 6;
         for (const glm::vec4 &p : solid.planes)
             box = box && std::abs(p.x) + std::abs(p.y) + std::abs(p.z) == 1.0f && p.w == std::round(p.w);
@@ -206,7 +206,7 @@ LevelBrushOccluders level_brush_occluders(const Scene &scene)
             const double at = solid.planes[k].w * (high ? 1.0 : -1.0), out_sign = high ? 1.0 : -1.0;
             ClipperLib::Paths rest = open[s][k], against;
             for (std::size_t o = 0; o < solids.size() && !rest.empty(); ++o) {
-                const Quake3Level::Brush &other = solids[o];
+                const Level::Brush &other = solids[o];
                 const int u = (a + 1) % 3, v = (a + 2) % 3;
                 if (o == s || !(other.lo[a] <= at + out_sign * 0.5 && at + out_sign * 0.5 <= other.hi[a]) ||
                     !(other.lo[a] <= at && at <= other.hi[a]) || !(other.lo[u] < solid.hi[u] && solid.lo[u] < other.hi[u]) ||

@@ -2,8 +2,8 @@
 // A level's brushes as occluders: the skins of skin-source=brushes
 // (occluders/skin_occluders.h). Leone et al., section 4, take occluders
 // made by hand as the best; a level's designer made its solids as
-// brushes. Derived from the level's opaque solid brushes (scene/quake3_bsp.h,
-// Quake3Level::opaque_solids, in Quake's units, where the rules below
+// brushes. Derived from the level's opaque solid brushes (scene/level.h,
+// Level::opaque_solids, in Quake's units, where the rules below
 // measure their slivers) and the scene's opaque triangles, by the
 // strategies that ask for them, not by the loader.
 #pragma once
@@ -47,7 +47,7 @@ struct LevelBrushOccluders {
             return true;
         }
     };
-    // One per opaque solid brush, in the order of Quake3Level::opaque_solids.
+    // One per opaque solid brush, in the order of Level::opaque_solids.
     std::vector<OpaqueBrush> opaque_brushes;
     struct BoxBrush {
         Aabb bounds;   // one unit inside the brush's sides, occu's coordinates
@@ -86,7 +86,7 @@ struct LevelBrushOccluders {
     std::vector<BoxBrush> box_brushes;
 };
 
-// The box brushes of a level (Scene::quake3) and what they hide from which
+// The box brushes of a level (Scene::level) and what they hide from which
 // eyes, from its opaque solid brushes and the scene's opaque triangles.
 // Clips every brush side against the triangles in its plane: about 0.1 to
 // 0.3 s a level, so made only for the strategies that ask

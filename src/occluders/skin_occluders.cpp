@@ -10,7 +10,7 @@
 
 #include "occluders/occluder_skins.h"
 #include "occluders/sources.h"
-#include "scene/quake3_bsp.h"
+#include "scene/level.h"
 
 namespace occu {
 
@@ -91,9 +91,9 @@ bool SkinOccluders::eye_clear(const Frame &frame) const
     clear_view_projection_ = frame.view_projection;
     clear_ = false;
     const glm::dvec3 eye(frame.camera.position);
-    if (scene_->quake3) {
-        const std::int32_t leaf = scene_->quake3->leaf_at(frame.camera.position);
-        if (leaf < 0 || scene_->quake3->leaves[std::size_t(leaf)].cluster < 0)
+    if (scene_->level) {
+        const std::int32_t leaf = scene_->level->leaf_at(frame.camera.position);
+        if (leaf < 0 || scene_->level->leaves[std::size_t(leaf)].cluster < 0)
             return false;   // in a solid or outside the level
     }
     // The near rectangle's farthest corner from the eye: every point of
@@ -124,14 +124,14 @@ SkinOccluders::SkinOccluders(const Scene &scene, const Settings &settings)
     if (settings.text("skin-source") == "brushes") {
         // Leone et al., section 4: occluders made by hand are the best; a
         // level's designer made its solids as brushes.
-        if (!scene.quake3)
+        if (!scene.level)
             throw std::runtime_error("skin-source=brushes: the scene is not a Quake III level (it has no brushes)");
         brush_occluders_ = level_brush_occluders(scene);
         boxes_.clear();
         for (const LevelBrushOccluders::BoxBrush &box : brush_occluders_.box_brushes)
             boxes_.push_back(box.bounds);
         mesh_bounds_ = boxes_;
-        solids_ = scene.quake3->solid_brush_bounds;
+        solids_ = scene.level->solid_brush_bounds;
         brushes_ = true;
     }
     if (settings.knows("occluder-triangles"))

@@ -226,11 +226,11 @@ bool numbers(const std::string &text, float *values, int n)
     return *p == '\0';
 }
 
-std::vector<Quake3Spawn> spawns_of(const Reader &r, const std::vector<Entity> &entities)
+std::vector<LevelSpawn> spawns_of(const Reader &r, const std::vector<Entity> &entities)
 {
     static const char *const spawn_classes[] = {"info_player_deathmatch", "info_player_start", "team_CTF_redplayer",
                                                 "team_CTF_blueplayer", "team_CTF_redspawn", "team_CTF_bluespawn"};
-    std::vector<Quake3Spawn> out;
+    std::vector<LevelSpawn> out;
     for (std::size_t i = 0; i < entities.size(); ++i) {
         const std::string *classname = entities[i].value("classname");
         if (!classname || std::none_of(std::begin(spawn_classes), std::end(spawn_classes),
@@ -249,7 +249,7 @@ std::vector<Quake3Spawn> spawns_of(const Reader &r, const std::vector<Entity> &e
         } else if (const std::string *a1 = entities[i].value("angle"); a1 && !numbers(*a1, &yaw, 1)) {
             r.refuse(entities_lump, what + ": angle '" + a1->substr(0, 60) + "' is not a finite number");
         }
-        Quake3Spawn s;
+        LevelSpawn s;
         s.classname = *classname;
         const glm::vec3 q(origin[0], origin[1], origin[2]);
         s.origin = quake3_to_occu(q);
@@ -289,23 +289,32 @@ bool straight(const FileVertex *control, std::int64_t n, std::int64_t lines, std
 // Quadratic Bernstein weights at t.
 glm::vec3 bernstein2(float t) { return {(1 - t) * (1 - t), 2 * t * (1 - t), t * t}; }
 
-// Textures: the flags that decide what is drawn and what hides.
-void read_textures(const Reader &r, Quake3Level &level)
+// A texture of the file: the flags that decide what is drawn and what hides.
+struct Texture {
+    std::string name;
+    std::uint32_t surface_flags, content_flags;
+    bool drawn;       // not SURF_NODRAW nor SURF_SKY
+    bool occluder;    // not see-through (scene/quake3_bsp.h)
+};
+
+std::vector<Texture> read_textures(const Reader &r)
 {
+    std::vector<Texture> textures;
     for (std::size_t t = 0; t < r.count(textures_lump); ++t) {
         const char *name = r.data() + r.at(textures_lump, t, 0);
-        Quake3Level::Texture tex;
+        Texture tex;
         tex.name.assign(name, static_cast<std::size_t>(std::find(name, name + 64, '\0') - name));
         tex.surface_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 64)));
         tex.content_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 68)));
         tex.drawn = !(tex.surface_flags & (surf_nodraw | surf_sky));
         tex.occluder = !(tex.content_flags & (contents_translucent | contents_water | contents_fog)) &&
                        !(tex.surface_flags & surf_alphashadow);
-        level.textures.push_back(std::move(tex));
+        textures.push_back(std::move(tex));
     }
+    return textures;
 }
 
-void read_planes(const Reader &r, Quake3Level &level)
+void read_planes(const Reader &r, Level &level)
 {
     for (std::size_t i = 0; i < r.count(planes_lump); ++i) {
         const glm::vec3 n = r.vec3(r.at(planes_lump, i, 0));
@@ -317,11 +326,11 @@ void read_planes(const Reader &r, Quake3Level &level)
     }
 }
 
-void read_nodes(const Reader &r, Quake3Level &level)
+void read_nodes(const Reader &r, Level &level)
 {
     const std::size_t node_count = r.count(nodes_lump), leaf_count = r.count(leaves_lump);
     for (std::size_t i = 0; i < node_count; ++i) {
-        Quake3Level::Node node;
+        Level::Node node;
         node.plane = r.i32(r.at(nodes_lump, i, 0));
         r.require_range(nodes_lump, i, "plane", node.plane, 1, planes_lump);
         for (int c = 0; c < 2; ++c) {
@@ -342,7 +351,7 @@ void read_nodes(const Reader &r, Quake3Level &level)
 }
 
 // The clusters' bit vectors (read before the leaves, whose clusters index them).
-void read_visibility(const Reader &r, Quake3Level &level)
+void read_visibility(const Reader &r, Level &level)
 {
     if (r.length(visdata_lump) == 0)
         return;
@@ -364,10 +373,10 @@ void read_visibility(const Reader &r, Quake3Level &level)
 }
 
 // The leaves and the face numbers they list.
-void read_leaves(const Reader &r, Quake3Level &level)
+void read_leaves(const Reader &r, Level &level)
 {
     for (std::size_t i = 0; i < r.count(leaves_lump); ++i) {
-        Quake3Level::Leaf leaf;
+        Level::Leaf leaf;
         leaf.cluster = r.i32(r.at(leaves_lump, i, 0));
         leaf.area = r.i32(r.at(leaves_lump, i, 4));
         if (leaf.cluster < -1 || (level.cluster_count > 0 && leaf.cluster >= level.cluster_count))
@@ -420,7 +429,7 @@ std::vector<std::int32_t> face_models(const Reader &r)
 
 // World brushes (model 0) that are opaque solids, in Quake's coordinates
 // (the file's planes; level.planes are occu's), and their bounds in occu's.
-void read_opaque_solids(const Reader &r, Quake3Level &level)
+void read_opaque_solids(const Reader &r, const std::vector<Texture> &textures, Level &level)
 {
     constexpr std::uint32_t contents_solid = 0x1;
     if (r.count(models_lump) == 0)
@@ -432,11 +441,11 @@ void read_opaque_solids(const Reader &r, Quake3Level &level)
         const std::int32_t texture = r.i32(r.at(brushes_lump, br, 8));
         r.require_range(brushes_lump, br, "brush sides", first_side, sides, brush_sides_lump);
         r.require_range(brushes_lump, br, "texture", texture, 1, textures_lump);
-        const std::uint32_t contents = level.textures[std::size_t(texture)].content_flags;
+        const std::uint32_t contents = textures[std::size_t(texture)].content_flags;
         if (!(contents & contents_solid) || (contents & (contents_translucent | contents_water | contents_fog)))
             continue;
         bool sky = false;
-        Quake3Level::Brush solid;
+        Level::Brush solid;
         solid.number = b;
         solid.lo = glm::vec3(-std::numeric_limits<float>::infinity());
         solid.hi = glm::vec3(std::numeric_limits<float>::infinity());
@@ -446,7 +455,7 @@ void read_opaque_solids(const Reader &r, Quake3Level &level)
             const std::int32_t side_texture = r.i32(r.at(brush_sides_lump, side, 4));
             r.require_range(brush_sides_lump, side, "plane", plane, 1, planes_lump);
             r.require_range(brush_sides_lump, side, "texture", side_texture, 1, textures_lump);
-            sky = sky || (level.textures[std::size_t(side_texture)].surface_flags & surf_sky);
+            sky = sky || (textures[std::size_t(side_texture)].surface_flags & surf_sky);
             const glm::vec3 normal = r.vec3(r.at(planes_lump, std::size_t(plane), 0));
             const float distance = r.f32(r.at(planes_lump, std::size_t(plane), 12));
             // Sides are clipped as polygons (occluders/brush_occluders.h): within
@@ -617,14 +626,15 @@ std::size_t replace_bad_normals(Mesh &mesh, std::size_t base, std::size_t first_
 // `level` (its mesh and range of indices, or mesh -1 where not drawn);
 // `face_model` the model of each (face_models), `vertices` the file's.
 // Returns how many vertex normals it replaced (replace_bad_normals).
-std::size_t read_faces(const Reader &r, const Quake3Options &options, const std::vector<std::int32_t> &face_model,
-                       const std::vector<FileVertex> &vertices, Quake3Level &level, Scene &scene)
+std::size_t read_faces(const Reader &r, const Quake3Options &options, const std::vector<Texture> &textures,
+                       const std::vector<std::int32_t> &face_model, const std::vector<FileVertex> &vertices, Level &level,
+                       Scene &scene)
 {
-    std::vector<std::int32_t> texture_mesh(level.textures.size(), -1);
+    std::vector<std::int32_t> texture_mesh(textures.size(), -1);
     MadeSoFar made_so_far;
     std::size_t bad_normals = 0;
     for (std::size_t i = 0; i < r.count(faces_lump); ++i) {
-        Quake3Level::Face face;
+        Level::Face face;
         face.texture = r.i32(r.at(faces_lump, i, 0));
         face.type = r.i32(r.at(faces_lump, i, 8));
         face.model = face_model[i];
@@ -636,7 +646,7 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
         r.require_range(faces_lump, i, "vertices", record.first_vertex, record.n_vertices, vertices_lump);
         if (face.type != face_billboard)
             r.require_range(faces_lump, i, "meshverts", record.first_meshvert, record.n_meshverts, meshverts_lump);
-        const Quake3Level::Texture &texture = level.textures[std::size_t(face.texture)];
+        const Texture &texture = textures[std::size_t(face.texture)];
 
         // The face's triangles (indices into the file's vertices) and, for
         // a patch, the vertices it makes.
@@ -717,30 +727,6 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
 
 }  // namespace
 
-std::int32_t Quake3Level::leaf_at(const glm::vec3 &p) const
-{
-    if (leaves.empty())
-        return -1;
-    if (nodes.empty())
-        return 0;
-    std::int32_t n = 0;
-    for (;;) {
-        const Node &node = nodes[std::size_t(n)];
-        const Plane &plane = planes[std::size_t(node.plane)];
-        const std::int32_t child = node.children[glm::dot(plane.normal, p) - plane.distance >= 0.0f ? 0 : 1];
-        if (child < 0)
-            return -(child + 1);
-        n = child;   // after n: the reader checked, so this ends
-    }
-}
-
-bool Quake3Level::cluster_sees(std::int32_t from, std::int32_t to) const
-{
-    if (from < 0 || to < 0 || cluster_count == 0 || from >= cluster_count || to >= cluster_count)
-        return true;
-    return (visibility[std::size_t(from) * std::size_t(bytes_per_cluster) + std::size_t(to) / 8] >> (to % 8)) & 1;
-}
-
 bool looks_like_ibsp(const std::vector<char> &bytes)
 {
     return bytes.size() >= 4 && std::memcmp(bytes.data(), "IBSP", 4) == 0;
@@ -753,18 +739,18 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
     if (options.patch_segments < 1 || options.patch_segments > 64)
         r.refuse("patch segments " + std::to_string(options.patch_segments) + " outside 1..64");
     r.read_header();
-    auto level = std::make_shared<Quake3Level>();
-    read_textures(r, *level);
+    auto level = std::make_shared<Level>();
+    const std::vector<Texture> textures = read_textures(r);
     read_planes(r, *level);
     read_nodes(r, *level);
     read_visibility(r, *level);
     read_leaves(r, *level);
     const std::vector<std::int32_t> face_model = face_models(r);
-    read_opaque_solids(r, *level);
+    read_opaque_solids(r, textures, *level);
     const std::vector<FileVertex> vertices = read_vertices(r);
 
     Scene scene;
-    const std::size_t bad_normals = read_faces(r, options, face_model, vertices, *level, scene);
+    const std::size_t bad_normals = read_faces(r, options, textures, face_model, vertices, *level, scene);
     if (bad_normals)
         warnings.push_back("scene '" + source + "': " + std::to_string(bad_normals) +
                            " vertex normals of the level are zero or not finite; the faces' own instead");
@@ -773,7 +759,7 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
 
     level->spawns = spawns_of(r, parse_entities(r));
     scene.update_bounds();
-    scene.quake3 = std::move(level);
+    scene.level = std::move(level);
     return scene;
 }
 

@@ -52,7 +52,7 @@
 // right-handed, y up, in metres (geometry/aabb.h). A Quake point
 // (x, y, z) is occu's 0.0254 * (x, z, -y): a rotation (it keeps windings
 // and handedness) and a scale. Every position, plane, box and spawn point
-// of a Quake3Level is in occu's coordinates. Triangles are wound
+// of the Level it makes (scene/level.h) is in occu's coordinates. Triangles are wound
 // counter-clockwise seen from their front (occu's convention; the file's
 // meshverts are clockwise, as Quake III's renderer culls).
 #pragma once
@@ -63,18 +63,10 @@
 
 #include <glm/glm.hpp>
 
-#include "geometry/aabb.h"
+#include "scene/level.h"
 #include "scene/scene.h"
 
 namespace occu {
-
-// Metres per Quake unit.
-inline constexpr float quake3_unit_metres = 0.0254f;
-// A Quake point (x, y, z) in occu's coordinates.
-inline glm::vec3 quake3_to_occu(const glm::vec3 &q)
-{
-    return quake3_unit_metres * glm::vec3(q.x, q.z, -q.y);
-}
 
 struct Quake3Options {
     // Quads along each direction of each 3x3 biquadratic patch piece,
@@ -85,96 +77,11 @@ struct Quake3Options {
     int patch_segments = 8;
 };
 
-// A player spawn point (info_player_deathmatch, info_player_start and the
-// team spawns team_CTF_redplayer, team_CTF_blueplayer, team_CTF_redspawn,
-// team_CTF_bluespawn).
-struct Quake3Spawn {
-    std::string classname;
-    glm::vec3 origin;      // the entity's origin
-    glm::vec3 eye;         // where the game puts a player's eye: 9 units above the origin
-                           // (its spawn lift) plus the view height, 26 units
-    float yaw_degrees = 0; // "angle" (or the yaw of "angles"): counter-clockwise about Quake's z from its +x
-    glm::vec3 direction;   // the horizontal unit vector the yaw names
-};
-
-// The level's BSP, in occu's coordinates (planes: dot(normal, p) = distance).
-struct Quake3Level {
-    struct Plane {
-        glm::vec3 normal;
-        float distance;
-    };
-    struct Node {
-        std::int32_t plane;
-        // A child >= 0 is a node (always after its parent); < 0 is the leaf
-        // -(child + 1). Child 0 is in front of the plane, child 1 behind.
-        std::int32_t children[2];
-        Aabb bounds;
-    };
-    struct Leaf {
-        std::int32_t cluster;   // < 0: outside the level or inside a solid
-        std::int32_t area;
-        Aabb bounds;
-        std::uint32_t first_leaf_face, leaf_face_count;   // into leaf_faces
-    };
-    // Where a face of the file went: `mesh` of the scene (-1: not drawn) and
-    // its triangles' indices there, [first_index, first_index + index_count).
-    struct Face {
-        std::int32_t type;      // 1 polygon, 2 patch, 3 mesh, 4 billboard
-        std::int32_t texture;
-        std::int32_t model;     // 0: the world; others: brush entities
-        std::int32_t mesh = -1;
-        std::uint32_t first_index = 0, index_count = 0;
-    };
-    struct Texture {
-        std::string name;
-        std::uint32_t surface_flags, content_flags;
-        bool drawn;       // not SURF_NODRAW nor SURF_SKY
-        bool occluder;    // not see-through (the rule above)
-    };
-
-    std::vector<Texture> textures;
-    std::vector<Plane> planes;
-    std::vector<Node> nodes;        // nodes[0] the root of the world
-    std::vector<Leaf> leaves;
-    std::vector<std::uint32_t> leaf_faces;   // face indices
-    std::vector<Face> faces;
-    std::vector<Quake3Spawn> spawns;
-    // The compiler's potentially visible set: cluster_count bit vectors of
-    // bytes_per_cluster bytes. Empty (cluster_count 0) when the level was
-    // not vis'ed: then every cluster sees every other.
-    std::int32_t cluster_count = 0;
-    std::int32_t bytes_per_cluster = 0;
-    std::vector<std::uint8_t> visibility;
-
-    // The world's (model 0's) opaque solid brushes: CONTENTS_SOLID (0x1),
-    // none of the see-through contents above, no sky side. Their bounds,
-    // in occu's coordinates: an eye must keep clear of every one.
-    std::vector<Aabb> solid_brush_bounds;
-    // The same brushes in Quake's coordinates (the file's planes, inside
-    // where dot(normal, p) <= w), for a level's brushes as occluders
-    // (occluders/brush_occluders.h).
-    struct Brush {
-        std::vector<glm::vec4> planes;
-        glm::vec3 lo, hi;          // bounds, from its axial (bevel) sides
-        std::int32_t number = 0;   // in the brushes lump
-    };
-    std::vector<Brush> opaque_solids;
-
-    // Counts, for statistics.
-    std::size_t patch_count = 0, billboard_count = 0, hidden_face_count = 0, see_through_face_count = 0;
-
-    // The leaf holding `p`, by descending the tree from the root.
-    std::int32_t leaf_at(const glm::vec3 &p) const;
-    // Whether cluster `to` is in the PVS of cluster `from` (true when
-    // either is < 0 or the level has no visibility data).
-    bool cluster_sees(std::int32_t from, std::int32_t to) const;
-};
-
 // Reads a level from `bytes` (a .bsp file's, or a pk3 member's). `source`
 // names it in messages ("maps/x.bsp", "pak.pk3:maps/x.bsp"). Returns its
 // drawn faces as meshes of `scene` (one a texture, named by it, coloured
 // by the palette, `occluder` false for see-through textures; bounds
-// updated) and sets scene.quake3 to the level. Throws std::runtime_error
+// updated) and sets scene.level to the level (scene/level.h). Throws std::runtime_error
 // beginning "cannot read scene '<source>': Quake III BSP: " and naming the
 // lump. Warnings (normals replaced) go to `warnings`.
 Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes, const Quake3Options &options,

@@ -47,7 +47,7 @@ struct PrismOccluder {
     double bottom = 0.0, top = 0.0;
 };
 
-struct Quake3Level;
+struct Level;
 
 struct Scene {
     std::vector<Mesh> meshes;
@@ -55,9 +55,10 @@ struct Scene {
     // The 2.5D occluders a generator knows (the city's buildings); empty
     // for a loaded scene, whose solids nothing tells apart.
     std::vector<PrismOccluder> prism_occluders;
-    // A Quake III level's BSP tree, leaves, clusters, visibility and spawn
-    // points (scene/quake3_bsp.h), where the scene is one; null otherwise.
-    std::shared_ptr<const Quake3Level> quake3;
+    // A level's BSP tree, leaves, clusters, visibility, brushes and spawn
+    // points (scene/level.h: a Quake III level's, scene/quake3_bsp.h), where
+    // the scene is one; null otherwise.
+    std::shared_ptr<const Level> level;
 
     std::size_t triangle_count() const;
     void update_bounds();

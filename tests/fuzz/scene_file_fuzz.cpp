@@ -70,20 +70,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
                 require(i < m.positions.size(), "an index outside its mesh");
         }
         require(finite(scene.bounds.min) && finite(scene.bounds.max), "bounds not finite");
-        if (scene.quake3) {
-            const occu::Quake3Level &level = *scene.quake3;
-            for (const occu::Quake3Level::Face &f : level.faces)
+        if (scene.level) {
+            const occu::Level &level = *scene.level;
+            for (const occu::Level::Face &f : level.faces)
                 require(f.mesh < 0 || (std::size_t(f.mesh) < scene.meshes.size() &&
                                        std::size_t(f.first_index) + f.index_count <= scene.meshes[std::size_t(f.mesh)].indices.size()),
                         "a face's triangles outside its mesh");
-            for (const occu::Quake3Spawn &s : level.spawns) {
+            for (const occu::LevelSpawn &s : level.spawns) {
                 require(finite(s.eye) && finite(s.direction), "a spawn point not finite");
                 const std::int32_t leaf = level.leaf_at(s.eye);
                 require(leaf < std::int32_t(level.leaves.size()), "a spawn point's leaf outside the leaves");
                 if (leaf >= 0)
                     level.cluster_sees(level.leaves[std::size_t(leaf)].cluster, 0);
             }
-            for (const occu::Quake3Level::Leaf &l : level.leaves)
+            for (const occu::Level::Leaf &l : level.leaves)
                 require(std::size_t(l.first_leaf_face) + l.leaf_face_count <= level.leaf_faces.size(),
                         "a leaf's faces outside the leaf faces");
         }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/quake3_bsp.h"
+#include "scene/level.h"
 #include "scene/scene.h"
 #include "spatial/hierarchy.h"
 
@@ -16,7 +16,7 @@ namespace occu::strategies {
 namespace {
 
 // Which clusters each hierarchy leaf's triangles lie in: a triangle's
-// face (Quake3Level::Face: a mesh's range of indices), the BSP leaves that
+// face (Level::Face: a mesh's range of indices), the BSP leaves that
 // list the face (leaf_faces: a face crossing a splitting plane is listed
 // by every leaf it lies in) and their clusters.
 struct LeafClusters {
@@ -27,10 +27,10 @@ struct LeafClusters {
 
 LeafClusters leaf_clusters(const Scene &scene, const Hierarchy &hierarchy)
 {
-    const Quake3Level &level = *scene.quake3;
+    const Level &level = *scene.level;
     // Per face, the clusters of the leaves listing it (sorted, unique).
     std::vector<std::vector<std::int32_t>> face_clusters(level.faces.size());
-    for (const Quake3Level::Leaf &leaf : level.leaves) {
+    for (const Level::Leaf &leaf : level.leaves) {
         if (leaf.cluster < 0)
             continue;
         for (std::uint32_t k = leaf.first_leaf_face; k < leaf.first_leaf_face + leaf.leaf_face_count; ++k) {
@@ -43,7 +43,7 @@ LeafClusters leaf_clusters(const Scene &scene, const Hierarchy &hierarchy)
     // Per mesh, its faces by the first index of their triangles.
     std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> faces_of_mesh(scene.meshes.size());
     for (std::uint32_t f = 0; f < level.faces.size(); ++f) {
-        const Quake3Level::Face &face = level.faces[f];
+        const Level::Face &face = level.faces[f];
         if (face.mesh >= 0 && std::size_t(face.mesh) < scene.meshes.size() && face.index_count)
             faces_of_mesh[std::size_t(face.mesh)].push_back({face.first_index, f});
     }
@@ -89,7 +89,7 @@ LeafClusters leaf_clusters(const Scene &scene, const Hierarchy &hierarchy)
 class BspPvsCuller final : public Culler {
 public:
     explicit BspPvsCuller(const StrategyContext &context)
-        : level_(*context.scene.quake3), hierarchy_(context.hierarchy),
+        : level_(*context.scene.level), hierarchy_(context.hierarchy),
           leaves_(leaf_clusters(context.scene, context.hierarchy))
     {
         for (const HierarchyNode &n : hierarchy_.nodes())
@@ -164,7 +164,7 @@ public:
     }
 
 private:
-    const Quake3Level &level_;
+    const Level &level_;
     const Hierarchy &hierarchy_;
     LeafClusters leaves_;
     std::optional<Frustum> frustum_;
@@ -188,7 +188,7 @@ StrategyFamily bsp_pvs_family()
     f.conservative = false;
     f.scene_requirements = {{"a Quake III level's BSP tree, clusters and visibility data (--scene "
                              "PAK.pk3:maps/NAME.bsp or NAME.bsp)",
-                             [](const Scene &scene) { return scene.quake3 != nullptr; }}};
+                             [](const Scene &scene) { return scene.level != nullptr; }}};
     f.make = [](const StrategyContext &context, const Settings &) -> std::unique_ptr<Culler> {
         return std::make_unique<BspPvsCuller>(context);
     };

@@ -10,7 +10,7 @@
 // renderer finds the eye's cluster by descending the BSP tree and draws a
 // surface when it lies in a leaf of a cluster that cluster sees.
 //   bsp-pvs   does the same over occu's hierarchy: the eye's leaf by
-//             descending the tree (scene/quake3_bsp.h: Quake3Level::leaf_at),
+//             descending the tree (scene/level.h: Level::leaf_at),
 //             its cluster's row of the visibility data, and a hierarchy node
 //             drawn (opened) when one of its triangles belongs to a face that
 //             lies in a leaf of a visible cluster; the rest is occluded, and
@@ -32,7 +32,7 @@
 //             players stand. So the family is not declared conservative, and
 //             runs compare its frames with the unculled ones. The run's
 //             summary counts the frames of each kind.
-// Needs a Quake III level (scene.quake3); refuses other scenes.
+// Needs a Quake III level (scene.level); refuses other scenes.
 #pragma once
 
 #include "culling/registry.h"

@@ -11,7 +11,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "scene/quake3_bsp.h"
+#include "scene/level.h"
 
 using namespace occu;
 
@@ -19,13 +19,13 @@ namespace {
 
 // A level of two leaves split by the plane x = 0: in front of it (x >= 0)
 // open space, cluster 0; behind it solid, cluster -1. Two spawn points.
-Quake3Level half_open_level()
+Level half_open_level()
 {
-    Quake3Level level;
+    Level level;
     level.planes = {{{1, 0, 0}, 0.0f}};
     level.nodes = {{0, {-1, -2}, Aabb::of({-10, 0, -10}, {10, 5, 10})}};
     level.leaves = {{0, 0, Aabb::of({0, 0, -10}, {10, 5, 10}), 0, 0}, {-1, 0, Aabb::of({-10, 0, -10}, {0, 5, 10}), 0, 0}};
-    Quake3Spawn east, north;
+    LevelSpawn east, north;
     east.classname = "info_player_deathmatch";
     east.origin = {2, 1, 0};
     east.eye = {2, 1.5f, 0};
@@ -226,7 +226,7 @@ TEST(Route, FileCameraWhoseViewDirectionOverflowsIsRefused)
 
 TEST(Route, SpawnRouteTurnsAtEverySpawnPointFromItsAngle)
 {
-    const Quake3Level level = half_open_level();
+    const Level level = half_open_level();
     const Aabb box = Aabb::of({-10, 0, -10}, {10, 5, 10});
     const auto route = make_route("spawn:4", box, CityOptions{}, 1, 1.0f, &level);
     ASSERT_EQ(route.size(), 8u) << "4 views at each of the 2 spawn points, whatever the frame count";
@@ -253,17 +253,17 @@ TEST(Route, SpawnRouteNeedsALevelWithSpawnPoints)
 {
     const Aabb box = Aabb::of({-10, 0, -10}, {10, 5, 10});
     EXPECT_THROW(make_route("spawn", box, CityOptions{}, 1, 1.0f), std::invalid_argument);
-    Quake3Level empty = half_open_level();
+    Level empty = half_open_level();
     empty.spawns.clear();
     EXPECT_THROW(make_route("spawn", box, CityOptions{}, 1, 1.0f, &empty), std::invalid_argument);
-    const Quake3Level level = half_open_level();
+    const Level level = half_open_level();
     for (const char *bad : {"spawn:0", "spawn:x", "spawn:", "spawn:4:2", "spawn:361"})
         EXPECT_THROW(make_route(bad, box, CityOptions{}, 1, 1.0f, &level), std::invalid_argument) << bad;
 }
 
 TEST(Route, RandomEyesInALevelLieInItsOpenLeaves)
 {
-    const Quake3Level level = half_open_level();
+    const Level level = half_open_level();
     const Aabb box = Aabb::of({-10, 0, -10}, {10, 5, 10});
     const auto route = make_route("random:200:3", box, CityOptions{}, 1, 1.0f, &level);
     ASSERT_EQ(route.size(), 200u);
@@ -278,7 +278,7 @@ TEST(Route, RandomEyesInALevelLieInItsOpenLeaves)
     for (const Camera &c : random_views(box, 50, 3, 1.0f, 30.0f, 90.0f, &level))
         EXPECT_GE(c.position.x, 0.0f);
     // A level all solid: refused, not an endless search.
-    Quake3Level solid = level;
+    Level solid = level;
     solid.leaves[0].cluster = -1;
     EXPECT_THROW(make_route("random:5:3", box, CityOptions{}, 1, 1.0f, &solid), std::invalid_argument);
 }

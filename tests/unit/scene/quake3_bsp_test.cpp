@@ -270,7 +270,7 @@ TEST(Quake3Bsp, EveryFaceTypeAndTextureRule)
         EXPECT_TRUE(wall->occluder);
         EXPECT_EQ(glass->triangle_count(), 2u);
         EXPECT_FALSE(glass->occluder) << "CONTENTS_TRANSLUCENT: drawn, never an occluder";
-        const Quake3Level &level = *s.quake3;
+        const Level &level = *s.level;
         ASSERT_EQ(level.faces.size(), 7u);
         EXPECT_EQ(level.patch_count, 1u);
         EXPECT_EQ(level.billboard_count, 1u);
@@ -293,10 +293,10 @@ TEST(Quake3Bsp, TrianglesAreCounterClockwiseSeenFromTheirFront)
 {
     const Scene s = read(minimal_level());
     const Mesh &wall = *mesh_named(s, "textures/test/wall");
-    const Quake3Level &level = *s.quake3;
+    const Level &level = *s.level;
     // The floor and the patch face up (occu's +y), the ceiling down.
     for (int f : {0, 1, 2}) {
-        const Quake3Level::Face &face = level.faces[std::size_t(f)];
+        const Level::Face &face = level.faces[std::size_t(f)];
         const glm::vec3 front = f == 1 ? glm::vec3(0, -1, 0) : glm::vec3(0, 1, 0);
         ASSERT_GT(face.index_count, 0u);
         for (std::uint32_t t = face.first_index; t < face.first_index + face.index_count; t += 3) {
@@ -312,7 +312,7 @@ TEST(Quake3Bsp, PatchVerticesLieOnTheBiquadraticBezierSurface)
     const int segments = 4;
     const Scene s = read(minimal_level(), Quake3Options{segments});
     const Mesh &wall = *mesh_named(s, "textures/test/wall");
-    const Quake3Level::Face &patch = s.quake3->faces[2];
+    const Level::Face &patch = s.level->faces[2];
     auto bezier = [](float u, float v) {
         const float bu[3] = {(1 - u) * (1 - u), 2 * u * (1 - u), u * u};
         const float bv[3] = {(1 - v) * (1 - v), 2 * v * (1 - v), v * v};
@@ -354,7 +354,7 @@ TEST(Quake3Bsp, PatchOfTwoPiecesSharesItsMiddleColumn)
     f.vertices.insert(f.vertices.end(), control.begin(), control.end());
     f.faces[2] = {0, 2, first, 15, 0, 0, {0, 0, 1}, 5, 3};
     const Scene s = read(f, Quake3Options{2});
-    const Quake3Level::Face &patch = s.quake3->faces[2];
+    const Level::Face &patch = s.level->faces[2];
     EXPECT_EQ(patch.index_count, 2u * 2u * 2u * 2u * 3u) << "two pieces of 2 x 2 quads";
     // (4 + 1) x (2 + 1) grid vertices, none twice.
     const Mesh &wall = *mesh_named(s, "textures/test/wall");
@@ -374,9 +374,9 @@ TEST(Quake3Bsp, PatchStraightOneWayIsOneSegmentThatWay)
         for (int col = 0; col < 3; ++col)
             f.vertices[std::size_t(7 + row * 3 + col)].position = {32.0f * col, 32.0f * row, col == 1 ? 64.0f : 0.0f};
     const Scene s = read(f, Quake3Options{8});
-    EXPECT_EQ(s.quake3->faces[2].index_count, 8u * 1u * 6u) << "8 segments across the curve, 1 along the straight way";
+    EXPECT_EQ(s.level->faces[2].index_count, 8u * 1u * 6u) << "8 segments across the curve, 1 along the straight way";
     const Mesh &wall = *mesh_named(s, "textures/test/wall");
-    const Quake3Level::Face &patch = s.quake3->faces[2];
+    const Level::Face &patch = s.level->faces[2];
     for (std::uint32_t t = patch.first_index; t < patch.first_index + patch.index_count; ++t) {
         // On the parabola z = 64 * 2u(1 - u), u = x / 64, whatever y.
         const glm::vec3 p = wall.positions[wall.indices[t]] / quake3_unit_metres;
@@ -388,7 +388,7 @@ TEST(Quake3Bsp, PatchStraightOneWayIsOneSegmentThatWay)
 TEST(Quake3Bsp, TreeLeavesClustersAndVisibility)
 {
     const Scene s = read(minimal_level());
-    const Quake3Level &level = *s.quake3;
+    const Level &level = *s.level;
     ASSERT_EQ(level.nodes.size(), 1u);
     ASSERT_EQ(level.leaves.size(), 2u);
     EXPECT_EQ(level.leaf_at(q(48, 10, 10)), 0) << "in front of x = 32";
@@ -412,14 +412,14 @@ TEST(Quake3Bsp, LevelWithoutVisibilitySeesEverything)
     BspFile f = minimal_level();
     f.visdata.clear();
     const Scene s = read(f);
-    EXPECT_EQ(s.quake3->cluster_count, 0);
-    EXPECT_TRUE(s.quake3->cluster_sees(0, 1));
+    EXPECT_EQ(s.level->cluster_count, 0);
+    EXPECT_TRUE(s.level->cluster_sees(0, 1));
 }
 
 TEST(Quake3Bsp, SpawnPointsAtEyeHeightLookingAlongTheirAngle)
 {
     const Scene s = read(minimal_level());
-    const std::vector<Quake3Spawn> &spawns = s.quake3->spawns;
+    const std::vector<LevelSpawn> &spawns = s.level->spawns;
     ASSERT_EQ(spawns.size(), 2u) << "worldspawn and light are no spawn points";
     EXPECT_EQ(spawns[0].classname, "info_player_deathmatch");
     expect_near(spawns[0].origin, q(16, 16, 24));
@@ -520,8 +520,8 @@ TEST(Quake3Bsp, BoxBrushSidesCountAsDrawnOnlyWhereTheLevelsOwnFacesCoverThem)
     EXPECT_TRUE(boxes[2].hides_from(q(116, 16, 100), level.opaque_brushes));
     EXPECT_FALSE(boxes[2].hides_from(q(116, 16, 100) + q(100, 0, 0), level.opaque_brushes));
     // Every opaque solid brush (not the glass, not the sky one) bounds the eye.
-    EXPECT_EQ(s.quake3->solid_brush_bounds.size(), 5u);
-    EXPECT_EQ(s.quake3->opaque_solids.size(), 5u);
+    EXPECT_EQ(s.level->solid_brush_bounds.size(), 5u);
+    EXPECT_EQ(s.level->opaque_solids.size(), 5u);
     EXPECT_EQ(level.opaque_brushes.size(), 5u);
 }
 
@@ -702,8 +702,8 @@ TEST(Quake3Bsp, LoadSceneReadsALevelFromAPk3OrAFile)
     for (const std::string &name : {pk3 + ":maps/test.bsp", pk3 + ":MAPS/Test.BSP", bsp}) {
         const Scene s = load_scene(name);
         EXPECT_EQ(s.triangle_count(), 3u + 128u + 2u) << name;
-        ASSERT_TRUE(s.quake3) << name;
-        EXPECT_EQ(s.quake3->spawns.size(), 2u) << name;
+        ASSERT_TRUE(s.level) << name;
+        EXPECT_EQ(s.level->spawns.size(), 2u) << name;
     }
     Quake3Options coarse;
     coarse.patch_segments = 2;
@@ -739,8 +739,8 @@ TEST(Quake3Bsp, OpenArenaLevelFromDebian)
     const std::string pk3 = "/usr/share/games/openarena/baseoa/pak6-patch088.pk3";
     ASSERT_TRUE(std::ifstream(pk3).good()) << pk3 << " is missing: tools/deps.sh test installs openarena-088-data";
     const Scene s = load_scene(pk3 + ":maps/aggressor.bsp");
-    ASSERT_TRUE(s.quake3);
-    const Quake3Level &level = *s.quake3;
+    ASSERT_TRUE(s.level);
+    const Level &level = *s.level;
     EXPECT_GT(s.triangle_count(), 1000u);
     EXPECT_LT(s.triangle_count(), 1000000u);
     // A player is about 1.4 m tall in the level's metres; an arena is tens of metres across.
@@ -748,7 +748,7 @@ TEST(Quake3Bsp, OpenArenaLevelFromDebian)
     EXPECT_GT(std::min(extent.x, extent.z), 10.0f);
     EXPECT_LT(std::max({extent.x, extent.y, extent.z}), 1000.0f);
     ASSERT_FALSE(level.spawns.empty());
-    for (const Quake3Spawn &spawn : level.spawns) {
+    for (const LevelSpawn &spawn : level.spawns) {
         EXPECT_TRUE(s.bounds.contains(spawn.eye));
         const std::int32_t leaf = level.leaf_at(spawn.eye);
         ASSERT_GE(leaf, 0);
@@ -760,13 +760,13 @@ TEST(Quake3Bsp, OpenArenaLevelFromDebian)
     for (std::int32_t c = 0; c < level.cluster_count; ++c)
         EXPECT_TRUE(level.cluster_sees(c, c)) << "cluster " << c;
     std::size_t open = 0;
-    for (const Quake3Level::Leaf &leaf : level.leaves) {
+    for (const Level::Leaf &leaf : level.leaves) {
         EXPECT_LT(leaf.cluster, level.cluster_count);
         open += leaf.cluster >= 0;
     }
     EXPECT_GT(open, 0u);
     // Every drawn face's triangles lie in its mesh.
-    for (const Quake3Level::Face &face : level.faces) {
+    for (const Level::Face &face : level.faces) {
         if (face.mesh >= 0) {
             EXPECT_LE(face.first_index + face.index_count, s.meshes[std::size_t(face.mesh)].indices.size());
         }

@@ -18,7 +18,7 @@
 
 #include "gl/offscreen_context.h"
 #include "render/scene_renderer.h"
-#include "scene/quake3_bsp.h"
+#include "scene/level.h"
 #include "spatial/hierarchy.h"
 
 using namespace occu;
@@ -35,7 +35,7 @@ constexpr int crossing_face = 4, brush_face = 5, unlisted_face = 6;
 struct TestLevel {
     explicit TestLevel(bool with_visibility = true)
     {
-        auto level = std::make_shared<Quake3Level>();
+        auto level = std::make_shared<Level>();
         Mesh mesh;
         mesh.name = "wall";
         // A small wall (two triangles) facing -x at x, centred at (y, z).
@@ -48,7 +48,7 @@ struct TestLevel {
             }
             for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u})
                 mesh.indices.push_back(base + i);
-            Quake3Level::Face f{1, 0, 0, 0, first, 6};
+            Level::Face f{1, 0, 0, 0, first, 6};
             level->faces.push_back(f);
         };
         for (int r = 0; r < 4; ++r)
@@ -77,7 +77,7 @@ struct TestLevel {
             level->bytes_per_cluster = 1;
             level->visibility = {0b0011, 0b0111, 0b1110, 0b1100};
         }
-        scene.quake3 = level;
+        scene.level = level;
         hierarchy.emplace(Hierarchy::build(scene, HierarchyOptions{2, 20}));
         renderer.emplace(scene, *hierarchy);
     }
@@ -156,7 +156,7 @@ TEST(BspPvs, EachHierarchyLeafHoldsOneFace)
 TEST(BspPvs, EyeClusterByDescendingTheTree)
 {
     const TestLevel t;
-    const Quake3Level &level = *t.scene.quake3;
+    const Level &level = *t.scene.level;
     EXPECT_EQ(level.leaf_at({5, 0, 0}), 0);
     EXPECT_EQ(level.leaf_at({15, 0, 0}), 1);
     EXPECT_EQ(level.leaf_at({25, 0, 0}), 2);
@@ -194,7 +194,7 @@ TEST(BspPvs, LevelWithoutVisibilityDataDrawsEverythingInTheFrustum)
 TEST(BspPvs, VisibilityBitsAreReadPerCluster)
 {
     TestLevel t;
-    std::vector<std::uint8_t> &rows = std::const_pointer_cast<Quake3Level>(t.scene.quake3)->visibility;
+    std::vector<std::uint8_t> &rows = std::const_pointer_cast<Level>(t.scene.level)->visibility;
     // Room 1's row is 0b0111; its bit 3 set, room 3 is visible from room 1.
     rows[1] |= 0b1000;
     EXPECT_EQ(drawn_faces(t, eye_at(11)), (std::set<int>{1, 2, 3, crossing_face, brush_face}));
