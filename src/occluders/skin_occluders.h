@@ -4,19 +4,9 @@
 // frame, the largest on screen first, and their faces that face the eye
 // rasterized as quads into a CPU depth buffer (raster/depth_rasterizer.h).
 // Shared by the strategies that take their occluders from skins
-// (occluders/sources.h: skin_occluder_source, triangle_occluder_source).
-//
-// Where a mesh has no volume for skins (thin walls, open meshes), the
-// scene's own large triangles can join them (occluder-triangles): those of
-// occluder meshes only, chosen per frame by projected area, the largest
-// first up to a budget, and rasterized by the same conservative
-// rasterizer, as Intel's Masked Occlusion Culling takes a game's own
-// meshes. A front-facing triangle in the frustum is drawn by GL wherever
-// nothing nearer hides it, and what hides it hides what lies behind it,
-// so its farthest depth over a fully covered depth pixel is a safe
-// occluder (Leone, section 3: occluders fuse in the buffer). A triangle
-// across the near plane is clipped there by the rasterizer (the part GL
-// draws), never dropped nor taken whole.
+// (occluders/sources.h: skin_occluder_source).
+// The scene's own triangles join them in occluders/triangle_occluders.h,
+// both in occluders/depth_occluders.h.
 #pragma once
 
 #include <cstddef>
@@ -41,8 +31,8 @@ public:
     // its first `boxes_per_mesh` boxes (the largest first).
     SkinOccluders(const Scene &scene, const std::string &database, int boxes_per_mesh,
                   const SkinOptions &options = {});
-    // As its strategy's settings ask (occluders/sources.h: the skin source's
-    // settings, and occluder-triangles and coverage where the family has them).
+    // As its strategy's settings ask (occluders/sources.h: the skin
+    // source's settings).
     SkinOccluders(const Scene &scene, const Settings &settings);
 
     // Renders the usable skins in `frame`'s frustum into `raster` (begun
@@ -50,16 +40,6 @@ public:
     // their boxes subtend, drawn nearest first, skipping those the ones
     // before already hide. Returns how many it drew.
     std::size_t render(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
-
-    // Renders into `raster` at most `limit` of the scene's occluder
-    // triangles that face the eye in `frame`'s frustum, the largest
-    // projected area first, drawn nearest first. Returns how many it drew.
-    // Needs the scene given to the constructor (kept by reference).
-    std::size_t render_triangles(const Frame &frame, DepthRasterizer &raster, std::size_t limit);
-
-    // Both, as the settings asked: skins, then the triangle budget.
-    std::size_t render_all(const Frame &frame, DepthRasterizer &raster, std::size_t skin_limit);
-    std::size_t triangle_budget() const { return triangle_budget_; }
 
     // Whether skin `i` may stand for its mesh in `frame`: only where the
     // mesh's bounding box lies wholly beyond the near plane. A skin hides
@@ -95,13 +75,8 @@ private:
     mutable glm::mat4 clear_view_projection_{0.0f};
     mutable bool clear_ = false;
 
-    // Occluder triangles: mesh and first index of each, from occluder meshes only.
+    // The scene, whose level (scene/level.h) eye_clear reads.
     const Scene *scene_ = nullptr;
-    std::size_t triangle_budget_ = 0;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> triangles_;
-    std::vector<glm::vec3> across_;   // coverage=merged: 3 per triangle (shared_edge_opposites)
-    std::vector<std::pair<float, std::uint32_t>> chosen_triangles_;
-    std::vector<std::uint32_t> drawn_indices_;
 };
 
 }  // namespace occu

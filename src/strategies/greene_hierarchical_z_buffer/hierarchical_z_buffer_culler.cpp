@@ -10,7 +10,7 @@
 
 #include "gl/framebuffer.h"
 #include "gl/state.h"
-#include "occluders/skin_occluders.h"
+#include "occluders/depth_occluders.h"
 #include "occluders/sources.h"
 #include "raster/depth_rasterizer.h"
 #include "render/scene_renderer.h"
@@ -31,7 +31,7 @@ public:
         options_.per_pixel_depth = settings.text("depth") == "pixel";
         options_.merge_partial_coverage = merges_partial_coverage(settings, options_.divisor);
         if (!last_frame_)
-            skins_.emplace(context.scene, settings);
+            occluders_.emplace(context.scene, settings);
     }
 
     void begin_frame(const Frame &frame) override
@@ -41,7 +41,7 @@ public:
             last_frame_depth(frame);
         } else {
             raster_.begin(frame.view_projection, frame.width, frame.height, options_);
-            skins_->render_all(frame, raster_, limit_);
+            occluders_->render(frame, raster_, limit_);
             raster_.read(depth_);
             pyramid_.build(raster_.width(), raster_.height(), depth_.data());
         }
@@ -117,7 +117,7 @@ private:
     std::size_t limit_;
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
-    std::optional<SkinOccluders> skins_;
+    std::optional<DepthOccluders> occluders_;
     std::optional<gl::Framebuffer> target_;
     std::vector<float> full_, depth_;
     std::vector<std::uint32_t> drawn_, previous_;

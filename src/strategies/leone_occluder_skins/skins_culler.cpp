@@ -4,7 +4,7 @@
 #include <memory>
 #include <optional>
 
-#include "occluders/skin_occluders.h"
+#include "occluders/depth_occluders.h"
 #include "occluders/sources.h"
 #include "raster/depth_rasterizer.h"
 #include "spatial/hierarchy.h"
@@ -24,15 +24,15 @@ public:
         options_.per_pixel_depth = settings.text("depth") == "pixel";
         options_.merge_partial_coverage = merges_partial_coverage(settings, options_.divisor);
         if (settings.text("occluders") != "drawn")
-            skins_.emplace(context.scene, settings);
+            occluders_.emplace(context.scene, settings);
     }
 
     void begin_frame(const Frame &frame) override
     {
         frame_.emplace(frame);
         raster_.begin(frame.view_projection, frame.width, frame.height, options_);
-        if (skins_)
-            skins_->render_all(frame, raster_, limit_);
+        if (occluders_)
+            occluders_->render(frame, raster_, limit_);
         stats_.passes = 1;
     }
 
@@ -90,7 +90,7 @@ private:
     bool triangle_test_;
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
-    std::optional<SkinOccluders> skins_;
+    std::optional<DepthOccluders> occluders_;
     std::optional<Frame> frame_;
     CullerStats stats_;
 };

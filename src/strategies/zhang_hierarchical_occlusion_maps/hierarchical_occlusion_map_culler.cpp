@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "occluders/skin_occluders.h"
+#include "occluders/depth_occluders.h"
 #include "occluders/sources.h"
 #include "raster/depth_rasterizer.h"
 #include "strategies/zhang_hierarchical_occlusion_maps/hierarchical_occlusion_map.h"
@@ -20,7 +20,7 @@ namespace {
 class HierarchicalOcclusionMapCuller final : public Culler {
 public:
     HierarchicalOcclusionMapCuller(const StrategyContext &context, const Settings &settings)
-        : skins_(context.scene, settings),
+        : occluders_(context.scene, settings),
           threshold_(float(1.0 - settings.number("tolerance"))), budget_(double(settings.integer("occluders"))),
           max_budget_(double(settings.integer("occluders"))), adapt_(settings.on("adapt-budget")),
           deb_(int(settings.integer("depth-regions")), int(settings.integer("depth-regions")))
@@ -46,7 +46,7 @@ public:
         adapt();
         frame_.emplace(frame);
         raster_.begin(frame.view_projection, frame.width, frame.height, options_);
-        skins_.render_all(frame, raster_, std::size_t(std::lround(budget_)));
+        occluders_.render(frame, raster_, std::size_t(std::lround(budget_)));
         raster_.read(depth_);
         const int w = raster_.width(), h = raster_.height(), k = divisor_;
         const int mw = (w + k - 1) / k, mh = (h + k - 1) / k;
@@ -109,7 +109,7 @@ private:
             budget_ = std::max(4.0, budget_ * 0.9);
     }
 
-    SkinOccluders skins_;
+    DepthOccluders occluders_;
     float threshold_;
     double budget_, max_budget_;
     bool adapt_;

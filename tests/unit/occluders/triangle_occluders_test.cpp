@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The scene's own triangles as occluders (SkinOccluders::render_triangles):
+// The scene's own triangles as occluders (occluders/triangle_occluders.h):
 // against a brute-force ray cast, no box with a point the eye sees past
 // every front-facing occluder triangle (the part of it beyond the near
 // plane, as GL draws it) through some pixel centre ever reads occluded, on hand-made scenes: a thin
 // wall with no volume for skins, a triangle across the near plane, a wall
 // seen from behind, a see-through wall, and a heap of random triangles.
 // And the thin wall does hide what stands behind it, which skins alone do not.
-#include "occluders/skin_occluders.h"
+#include "occluders/depth_occluders.h"
 
 #include <gtest/gtest.h>
 
@@ -130,7 +130,7 @@ Counts check(const Scene &scene, const Camera &camera, const std::vector<Aabb> &
     Settings settings("test", &s);
     settings.set("occluder-triangles", std::to_string(budget));
     settings.set("coverage", merged ? "merged" : "whole");
-    SkinOccluders occluders(scene, settings);
+    DepthOccluders occluders(scene, settings);
     const int size = 96;
     const Frame frame(camera, size, size);
     Counts counts;
@@ -138,7 +138,7 @@ Counts check(const Scene &scene, const Camera &camera, const std::vector<Aabb> &
         DepthRasterizer raster;
         raster.begin(frame.view_projection, size, size,
                      {divisor, true, merges_partial_coverage(settings, divisor)});
-        occluders.render_all(frame, raster, 0);
+        occluders.render(frame, raster, 0);
         for (const Aabb &box : boxes) {
             const auto f = frame.footprint(box);
             if (!f || f->rect.empty())

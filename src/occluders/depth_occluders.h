@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+// The occluders of the strategies that rasterize occluders into a CPU
+// depth buffer (raster/depth_rasterizer.h) each frame: the skins
+// (occluders/skin_occluders.h), then the scene's own triangles up to their
+// budget (occluders/triangle_occluders.h), as the settings of the two
+// sources ask (occluders/sources.h: skin_occluder_source and
+// triangle_occluder_source).
+#pragma once
+
+#include <cstddef>
+
+#include "culling/culler.h"
+#include "culling/settings.h"
+#include "occluders/skin_occluders.h"
+#include "occluders/triangle_occluders.h"
+#include "raster/depth_rasterizer.h"
+#include "scene/scene.h"
+
+namespace occu {
+
+class DepthOccluders {
+public:
+    // Keeps `scene` by reference.
+    DepthOccluders(const Scene &scene, const Settings &settings) : skins_(scene, settings), triangles_(scene, settings)
+    {
+    }
+
+    // Renders into `raster` (begun for the frame) at most `skin_limit`
+    // skins (0: all), then the triangle budget. Returns how many of both
+    // it drew.
+    std::size_t render(const Frame &frame, DepthRasterizer &raster, std::size_t skin_limit)
+    {
+        return skins_.render(frame, raster, skin_limit) + triangles_.render(frame, raster);
+    }
+
+    const SkinOccluders &skins() const { return skins_; }
+
+private:
+    SkinOccluders skins_;
+    TriangleOccluders triangles_;
+};
+
+}  // namespace occu
