@@ -121,10 +121,12 @@ TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIn
         SCOPED_TRACE(chc.label + ", frame " + std::to_string(f.index));
         EXPECT_EQ(differing_pixels(f), 0u);
         for (std::uint32_t leaf : cluster) {
-            if (f.index >= 2 && f.index < 4)
+            if (f.index >= 2 && f.index < 4) {
                 EXPECT_FALSE(drew(f, leaf)) << "hidden leaf " << leaf << " drawn";
-            if (f.index == 4)
+            }
+            if (f.index == 4) {
                 EXPECT_TRUE(drew(f, leaf)) << "leaf " << leaf << ", hidden last frame, not drawn in the frame that sees it";
+            }
         }
     });
     for (const SessionStrategy &chc : session.strategies())

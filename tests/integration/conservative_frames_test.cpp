@@ -75,8 +75,9 @@ TEST(ConservativeCulling, EveryConservativeVariantEqualsUnculledFrames)
     ASSERT_GT(drawn[none], 0.0);
     ASSERT_LT(drawn[vfc], drawn[none]);
     for (const auto &[label, triangles] : drawn) {
-        if (label != none && label != vfc)
+        if (label != none && label != vfc) {
             EXPECT_LT(triangles, drawn[vfc]) << label << " culled no more than vfc";
+        }
         EXPECT_LE(drawn[ideal], triangles) << label << " drew less than the oracle sees";
     }
     EXPECT_GT(expect_declared_bounds(session, variants), 0u);
