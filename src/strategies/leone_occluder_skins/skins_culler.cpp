@@ -133,7 +133,8 @@ StrategyFamily occluder_skins_family()
     // The scene's own triangles beside the skins, in whole depth pixels and
     // merged (each culls at least what the one before it does); occludees
     // tested by their triangles where their box fails; the rectangle alone
-    // (section 6); the drawn leaves' triangles with the switch-off's probes.
+    // (section 6); one farthest depth per polygon (section 5); the drawn
+    // leaves' triangles with the switch-off's probes.
     f.test_variants = {
         StrategyTestVariant("skins:occluder-triangles=512"),
         StrategyTestVariant("skins:occluder-triangles=512:coverage=merged").drawing_at_most("skins:occluder-triangles=512"),
@@ -143,6 +144,7 @@ StrategyFamily occluder_skins_family()
         StrategyTestVariant("skins:occluder-triangles=1024:coverage=merged"),
         StrategyTestVariant("skins:occludee=triangles"),
         StrategyTestVariant("skins:occludee=rect"),
+        StrategyTestVariant("skins:depth=polygon"),
         StrategyTestVariant("skins-drawn:occludee=triangles"),
         StrategyTestVariant("skins-drawn").with_probing_switch_off(),
     };
