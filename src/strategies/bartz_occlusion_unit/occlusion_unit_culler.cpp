@@ -160,6 +160,21 @@ StrategyFamily occlusion_unit_family()
         {"occu-hier", "", true},
         {"occu-hier-shared", "passes=shared", true},
     };
+    // Every box tested (none taken as visible for its size), strictly front
+    // to back and in batches (section 3), culling more than half of what
+    // the unculled frame draws; leaves tested by their own triangles,
+    // which lie inside their box (culling at least what boxes do); shared
+    // passes with temporal coherence; the switch-off's probes. A tile
+    // counts only the fragments in its box's footprint (section 3.1), an
+    // HP query (scott_hp_occlusion_test) all of its grown box's: hp sees
+    // at least what ou sees, and culls about as much or less.
+    f.test_variants = {
+        StrategyTestVariant("ou:max-test-area=1").in_batches_of(1),
+        StrategyTestVariant("ou:max-test-area=1").drawing_at_most("none", 0.5).drawing_at_most("hp", 100.0 / 99.0),
+        StrategyTestVariant("ou:proxy=triangles:max-test-area=1").drawing_at_most("ou:max-test-area=1"),
+        StrategyTestVariant("ou-shared").in_batches_of(32).with_coherence(),
+        StrategyTestVariant("ou").with_probing_switch_off(),
+    };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<OcclusionUnitCuller>(context, settings);
     };

@@ -480,6 +480,8 @@ StrategyFamily coherent_hierarchical_culling_family()
                         "the pass on the GL (a scene of its own on llvmpipe)"),
     };
     f.presets = {{"chc-shared", "passes=shared"}};
+    // The switch-off's probes through the common traversal.
+    f.test_variants = {StrategyTestVariant("chc").with_probing_switch_off()};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<CoherentHierarchicalCuller>(context, settings);
     };

@@ -148,6 +148,9 @@ StrategyFamily hierarchical_occlusion_map_family()
     f.settings.push_back(occluder_triangles_setting());
     f.settings.push_back(coverage_setting());
     f.databases = {skin_database_need()};
+    // The scene's own triangles beside the skins in the occlusion map; the
+    // occluder count adapted from frame to frame along a route.
+    f.test_variants = {StrategyTestVariant("hom:occluder-triangles=512"), StrategyTestVariant("hom:adapt-budget=on")};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalOcclusionMapCuller>(context, settings);
     };
