@@ -174,6 +174,7 @@ StrategyFamily occlusion_unit_family()
         StrategyTestVariant("ou:proxy=triangles:max-test-area=1").drawing_at_most("ou:max-test-area=1"),
         StrategyTestVariant("ou-shared").in_batches_of(32).with_coherence(),
         StrategyTestVariant("ou").with_probing_switch_off(),
+        StrategyTestVariant("ou:answer=exact"),
     };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<OcclusionUnitCuller>(context, settings);

@@ -481,7 +481,7 @@ StrategyFamily coherent_hierarchical_culling_family()
     };
     f.presets = {{"chc-shared", "passes=shared"}};
     // The switch-off's probes through the common traversal.
-    f.test_variants = {StrategyTestVariant("chc").with_probing_switch_off()};
+    f.test_variants = {StrategyTestVariant("chc").with_probing_switch_off(), StrategyTestVariant("chc:answer=exact")};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<CoherentHierarchicalCuller>(context, settings);
     };
