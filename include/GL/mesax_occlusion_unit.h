@@ -48,3 +48,15 @@ typedef void (APIENTRYP PFNGLBEGINCONDITIONALRENDEROCCLUSIONTILEMESAXPROC)(GLuin
 typedef void (APIENTRYP PFNGLENDCONDITIONALRENDEROCCLUSIONTILEMESAXPROC)(void);
 
 #endif
+
+/*
+ * GL_MESAX_occlusion_unit_conservative: a pass whose records say only
+ * whether some fragment of a tile may have passed, as
+ * spec/MESAX_occlusion_unit_conservative.txt defines them.
+ */
+#ifndef GL_MESAX_occlusion_unit_conservative
+#define GL_MESAX_occlusion_unit_conservative 1
+
+#define GL_CONSERVATIVE_OCCLUSION_MESAX           0xFFEC
+
+#endif

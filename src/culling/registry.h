@@ -19,8 +19,10 @@
 // one's set too): its later stages test in every frame.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "culling/culler.h"
@@ -129,6 +131,54 @@ struct OccluderSourceUse {
     bool (*used_by)(const Settings &settings) = nullptr;
 };
 
+// A variant of a family that the registry-wide tests of conservative
+// culling draw beside the registry's names (tests/integration/
+// strategy_variants.h): on routes and hard cases every frame of it must
+// lose no visible pixel against the unculled frame, on both drivers. A
+// family declares the variants its settings need tested (a setting that
+// changes what is culled, a traversal it must survive), so that a new
+// setting is tested by an edit of the family's folder alone.
+struct StrategyTestVariant {
+    std::string spec;           // NAME[:key=value...], NAME the family or one of its presets
+    std::size_t batch = 16;     // nodes tested together
+    // Policies across the frames of a route (traversal/policies.h):
+    // temporal coherence; a switch-off that switches off after the first
+    // frame and probes as soon as it may (its probes test inner
+    // nodes only, and must stay exact).
+    bool coherence = false;
+    bool probing_switch_off = false;
+    // Claims on the triangles the variant draws over a test's frames: at
+    // most `share` times what `spec` draws (a registry name or a test
+    // variant, in batches of 16 without policies across frames).
+    struct Bound {
+        std::string spec;
+        double share = 1.0;
+    };
+    std::vector<Bound> draws_at_most;
+
+    explicit StrategyTestVariant(std::string spec_) : spec(std::move(spec_)) {}
+    StrategyTestVariant &in_batches_of(std::size_t nodes)
+    {
+        batch = nodes;
+        return *this;
+    }
+    StrategyTestVariant &with_coherence()
+    {
+        coherence = true;
+        return *this;
+    }
+    StrategyTestVariant &with_probing_switch_off()
+    {
+        probing_switch_off = true;
+        return *this;
+    }
+    StrategyTestVariant &drawing_at_most(std::string other, double share = 1.0)
+    {
+        draws_at_most.push_back({std::move(other), share});
+        return *this;
+    }
+};
+
 struct StrategyFamily {
     std::string name;
     std::string paper;     // the paper and sections it implements
@@ -143,6 +193,7 @@ struct StrategyFamily {
     // and databases join the two lists above (with_occluder_sources).
     std::vector<OccluderSourceUse> occluder_sources;
     std::vector<StrategyPreset> presets;
+    std::vector<StrategyTestVariant> test_variants;   // above; the family's names are tested without listing them
     std::unique_ptr<Culler> (*make)(const StrategyContext &context, const Settings &settings) = nullptr;
     // A chain's stages, first to last (above); empty for a registered family.
     std::vector<const StrategyFamily *> stages;

@@ -24,8 +24,9 @@
 // visibility. The reference above puts what the strategy drew first, so
 // such pixels are not lost; they are counted apart (`tied`) when the
 // common traversal's unculled frame is given: pixels that differ from it
-// but not from the reference. This is how tests/integration/frame_comparison.h
-// compares a strategy that orders the frame itself (chc), applied to all.
+// but not from the reference. The measurement session applies this rule
+// to every strategy it checks, for the programs and the integration tests
+// alike (tests/integration/strategy_variants.h).
 #pragma once
 
 #include <cstddef>

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
 
 #include "cli/progress.h"
 #include "gl/gl_headers.h"
@@ -136,13 +137,20 @@ SessionStrategy &MeasurementSession::add(const std::string &spec, const std::vec
     if (options_.databases)
         for (const std::string &s : options_.databases->settings_for(choice, context(), width_, height_))
             settings.push_back(s);
+    return add(make_strategy(spec, context(), settings), label.empty() ? spec : label, batch);
+}
+
+SessionStrategy &MeasurementSession::add(Strategy strategy, const std::string &label, std::size_t batch)
+{
+    const StrategyChoice &choice = strategy.choice;
+    if (choice.family->needs_truth && !oracle_)
+        throw std::invalid_argument(label + " needs the oracle");
     const bool checks_pixels =
         options_.lost_pixels == SessionOptions::PixelCheck::all ||
         (options_.lost_pixels == SessionOptions::PixelCheck::approximate && !choice.conservative());
-    SessionStrategy s{label.empty() ? spec : label, make_strategy(spec, context(), settings), {}, batch ? batch : options_.batch,
-                      checks_pixels, {}};
-    s.policies = TraversalPolicies(*s.strategy.choice.family, options_.coherence, options_.switch_off);
-    strategies_.push_back(std::move(s));
+    TraversalPolicies policies(*choice.family, options_.coherence, options_.switch_off);
+    strategies_.push_back(
+        {label, std::move(strategy), std::move(policies), batch ? batch : options_.batch, checks_pixels, {}});
     return strategies_.back();
 }
 

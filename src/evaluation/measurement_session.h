@@ -145,6 +145,12 @@ public:
     // that refuses its settings throws what it throws.
     SessionStrategy &add(const std::string &spec, const std::vector<std::string> &common = {},
                          const std::string &label = {}, std::size_t batch = 0);
+    // A strategy made by the caller (a culler of a test's own, such as one
+    // broken on purpose), named `label`, traversed `batch` nodes at a time
+    // (0: the options'); its choice says its family's policies and whether
+    // its pixels are checked. Throws std::invalid_argument when it needs
+    // the oracle and the session has none.
+    SessionStrategy &add(Strategy strategy, const std::string &label, std::size_t batch = 0);
     // add(), unless the strategy's family refuses the session's scene
     // (StrategyFamily::refusal): then it adds nothing and returns why
     // (empty: added), so that a run over several scenes leaves out, with

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <utility>
 
 #include "camera/route.h"
 #include "scene/pk3_archive.h"
@@ -31,6 +32,11 @@ std::shared_ptr<const Scene> make_scene(const SceneChoice &choice)
 
 SceneSetup::SceneSetup(const SceneChoice &choice)
     : SceneSetup(choice.name.empty() ? "city" : choice.name, choice.city, make_scene(choice), choice.hierarchy)
+{
+}
+
+SceneSetup::SceneSetup(Scene scene, const HierarchyOptions &options, std::string name)
+    : SceneSetup(std::move(name), CityOptions{}, std::make_shared<const Scene>(std::move(scene)), options)
 {
 }
 

@@ -47,6 +47,10 @@ public:
     // std::runtime_error naming a scene file it cannot read (and saying
     // when there is no such file) or whose contents it refuses.
     explicit SceneSetup(const SceneChoice &choice);
+    // A scene made by the caller (a test's own), named `name`, under a
+    // hierarchy of `options`; its random eyes lie inside its model, as a
+    // file's do.
+    SceneSetup(Scene scene, const HierarchyOptions &options, std::string name = "scene");
     // The same scene under a hierarchy of other options (a leaf size swept).
     SceneSetup with_hierarchy(const HierarchyOptions &options) const;
 

@@ -24,7 +24,25 @@ bool OcclusionUnit::async_available()
     return has_extension("GL_MESAX_occlusion_unit_async");
 }
 
+bool OcclusionUnit::conservative_available()
+{
+    return has_extension("GL_MESAX_occlusion_unit_conservative");
+}
+
 OcclusionUnit::OcclusionUnit() : OcclusionUnit(true) {}
+
+GLenum OcclusionUnit::render_mode(OcclusionMode mode) const
+{
+    switch (mode) {
+    case OcclusionMode::verbose:
+        return GL_VERBOSE_OCCLUSION_MESAX;
+    case OcclusionMode::conservative:
+        return conservative_ ? GL_CONSERVATIVE_OCCLUSION_MESAX : GL_BRIEF_OCCLUSION_MESAX;
+    case OcclusionMode::brief:
+        break;
+    }
+    return GL_BRIEF_OCCLUSION_MESAX;
+}
 
 OcclusionUnit::OcclusionUnit(bool allow_native_async)
 {
@@ -37,6 +55,7 @@ OcclusionUnit::OcclusionUnit(bool allow_native_async)
     GLint max = 0;
     glGetIntegerv(GL_MAX_OCCLUSION_TILES_MESAX, &max);
     max_tiles_ = max;
+    conservative_ = conservative_available();
     // The asynchronous entry points only where the context advertises them:
     // OSMesaGetProcAddress answers for names a driver does not implement
     // too (glapi's dispatch stubs), so a non-null pointer proves nothing.
@@ -98,6 +117,13 @@ void RecordBuffers::parse(std::vector<OcclusionRecord> &records) const
     for (std::size_t i = 0; i < tiles_; ++i) {
         const GLuint *w = words_.get() + offsets_[i];
         OcclusionRecord &r = records[i];
+        if (mode_ == OcclusionMode::conservative) {
+            // Word 0 only (a brief record where the context lacks the mode).
+            r = OcclusionRecord{};
+            r.nohc = w[0] != 0;
+            r.x_min = r.y_min = r.z_min = 0xFFFFFFFFu;
+            continue;
+        }
         r.nohc = w[0];
         r.phc = w[1];
         r.x_min = w[2];
@@ -145,7 +171,7 @@ OcclusionPass::OcclusionPass(const OcclusionUnit &unit, OcclusionMode mode, cons
     buffers_.bind(unit);
     const std::vector<GLint> rects = tile_rects(tiles);
     unit.Scissors_(GLsizei(tiles.size()), rects.empty() ? nullptr : rects.data());
-    glRenderMode(mode == OcclusionMode::brief ? GL_BRIEF_OCCLUSION_MESAX : GL_VERBOSE_OCCLUSION_MESAX);
+    glRenderMode(unit.render_mode(mode));
 }
 
 OcclusionPass::~OcclusionPass()
@@ -192,7 +218,7 @@ void AsyncOcclusionPass::begin(OcclusionMode mode, const std::vector<PixelRect> 
     buffers_.bind(unit_);
     const std::vector<GLint> rects = tile_rects(tiles);
     unit_.Scissors_(GLsizei(tiles.size()), rects.empty() ? nullptr : rects.data());
-    const GLenum gl_mode = mode == OcclusionMode::brief ? GL_BRIEF_OCCLUSION_MESAX : GL_VERBOSE_OCCLUSION_MESAX;
+    const GLenum gl_mode = unit_.render_mode(mode);
     if (name_)
         unit_.BeginPass_(gl_mode, name_);   // tiles and buffers captured here
     else

@@ -41,7 +41,15 @@
 
 namespace occu::gl {
 
-enum class OcclusionMode { brief, verbose };
+// brief: counts, extents and depth range; verbose: and the pixels that
+// passed; conservative: only whether some fragment passed
+// (GL_MESAX_occlusion_unit_conservative, spec/MESAX_occlusion_unit_conservative.txt):
+// the record's nohc is 1 where some fragment may have passed (the GL may
+// say so where none did, never the opposite) and 0 where none did, its
+// other fields are those of an empty record. On a context without that
+// extension a conservative pass runs as a brief one, which answers the
+// same question exactly.
+enum class OcclusionMode { brief, verbose, conservative };
 
 // One tile's record (spec, section 5.X: words 0..7, then the pixel list).
 struct OcclusionRecord {
@@ -70,6 +78,8 @@ public:
     int max_tiles() const { return max_tiles_; }
     // True when the current context advertises GL_MESAX_occlusion_unit_async.
     static bool async_available();
+    // True when the current context advertises GL_MESAX_occlusion_unit_conservative.
+    static bool conservative_available();
     // Whether asynchronous passes and conditional tile rendering use the
     // extension's entry points (the context advertises it and
     // `allow_native_async` was true) or the emulation on RenderMode.
@@ -86,6 +96,9 @@ private:
     friend class ConditionalTileRender;
     friend class RecordBuffers;
     void validate(std::size_t tiles, std::size_t list_sizes) const;
+    // The GL's render mode for `mode` on this context.
+    GLenum render_mode(OcclusionMode mode) const;
+    bool conservative_ = false;
     PFNGLSCISSORSMESAXPROC Scissors_ = nullptr;
     PFNGLOCCLUSIONBUFFERSMESAXPROC OcclusionBuffers_ = nullptr;
     int max_tiles_ = 0;

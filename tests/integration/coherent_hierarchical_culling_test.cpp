@@ -12,22 +12,24 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gl/occlusion_unit.h"
 
 #include "culling/registry.h"
+#include "evaluation/lost_pixels.h"
+#include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
 #include "scene/scene.h"
 #include "traversal/traversal.h"
 
-#include "frame_comparison.h"
+#include "strategy_variants.h"
 
 using namespace occu;
-using occu::integration::draw_frame;
-using occu::integration::DrawnFrame;
+using namespace occu::integration;
 
 namespace {
 
@@ -35,19 +37,28 @@ namespace {
 // small boxes around the origin: from (0, 0, 0) the wall hides them all;
 // from (12, 0, 0), looking at them, they are in plain view beside the wall.
 // Leaves of at most 12 triangles (a box's, or part of one).
+HierarchyOptions leaves_of_12_triangles()
+{
+    HierarchyOptions options;
+    options.max_leaf_triangles = 12;
+    return options;
+}
+
+Scene wall_and_cluster()
+{
+    Scene scene;
+    scene.meshes.emplace_back();
+    append_box(scene.meshes[0], Aabb::of({-3, -3, -5.5f}, {3, 3, -5}));
+    for (int i = 0; i < 4; ++i)
+        append_box(scene.meshes[0],
+                   Aabb::of({float(i) * 0.6f - 1.2f, -0.25f, -15.25f}, {float(i) * 0.6f - 0.8f, 0.25f, -14.75f}));
+    scene.update_bounds();
+    return scene;
+}
+
 struct WallAndCluster {
     WallAndCluster()
     {
-        scene.meshes.emplace_back();
-        append_box(scene.meshes[0], Aabb::of({-3, -3, -5.5f}, {3, 3, -5}));
-        for (int i = 0; i < 4; ++i)
-            append_box(scene.meshes[0], Aabb::of({float(i) * 0.6f - 1.2f, -0.25f, -15.25f},
-                                                 {float(i) * 0.6f - 0.8f, 0.25f, -14.75f}));
-        scene.update_bounds();
-        HierarchyOptions ho;
-        ho.max_leaf_triangles = 12;
-        h.emplace(Hierarchy::build(scene, ho));
-        renderer.emplace(scene, *h);
         glEnable(GL_DEPTH_TEST);
         glEnable(GL_CULL_FACE);
         glClearColor(0, 0, 0, 0);
@@ -55,16 +66,16 @@ struct WallAndCluster {
     // The leaves behind the wall.
     std::vector<std::uint32_t> cluster_leaves() const
     {
+        const Hierarchy &h = setup.hierarchy();
         std::vector<std::uint32_t> leaves;
-        for (std::uint32_t n = 0; n < h->nodes().size(); ++n)
-            if (h->nodes()[n].leaf() && h->nodes()[n].bounds.max.z < -10.0f)
+        for (std::uint32_t n = 0; n < h.nodes().size(); ++n)
+            if (h.nodes()[n].leaf() && h.nodes()[n].bounds.max.z < -10.0f)
                 leaves.push_back(n);
         return leaves;
     }
-    gl::OffscreenContext ctx{64, 64};
-    Scene scene;
-    std::optional<Hierarchy> h;
-    std::optional<SceneRenderer> renderer;
+    gl::OffscreenContext ctx{64, 64};   // first: the renderer needs it current
+    SceneSetup setup{wall_and_cluster(), leaves_of_12_triangles()};
+    SceneRenderer renderer{setup.scene(), setup.hierarchy()};
 };
 
 Camera looking(glm::vec3 from, glm::vec3 at)
@@ -75,9 +86,9 @@ Camera looking(glm::vec3 from, glm::vec3 at)
     return c;
 }
 
-bool drew(const DrawnFrame &f, std::uint32_t leaf)
+bool drew(const StrategyFrame &f, std::uint32_t leaf)
 {
-    return std::find(f.leaves.begin(), f.leaves.end(), leaf) != f.leaves.end();
+    return std::find(f.stats.drawn.begin(), f.stats.drawn.end(), leaf) != f.stats.drawn.end();
 }
 
 }  // namespace
@@ -87,41 +98,39 @@ bool drew(const DrawnFrame &f, std::uint32_t leaf)
 // the GL finds false: the next test).
 TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIntoView)
 {
-    const WallAndCluster s;
-    const StrategyContext context{s.scene, *s.h, *s.renderer};
-    const Strategy none = make_strategy("none", context);
+    WallAndCluster s;
+    const std::vector<std::uint32_t> cluster = s.cluster_leaves();
+    ASSERT_FALSE(cluster.empty());
     // period=1: visible leaves are re-tested every frame, so that the
     // cluster, which the first frame finds visible (its nodes are tested
     // in the pass that tests the wall, before the wall is drawn) and the
     // second draws untested, is hidden from the third frame on.
     // poll=0: results are asked for only when the traversal has nothing
     // else to do; the frames must be the same.
-    for (const char *poll : {"1", "0"}) {
-    SCOPED_TRACE(std::string("poll=") + poll);
-    Strategy chc = make_strategy("chc:max-test-area=1:period=1:conditional=off:poll=" + std::string(poll), context);
-    const std::vector<std::uint32_t> cluster = s.cluster_leaves();
-    ASSERT_FALSE(cluster.empty());
+    MeasurementSession session(s.setup, s.ctx, checking_session_options());
+    for (const char *poll : {"1", "0"})
+        add_variant(session, StrategyTestVariant("chc:max-test-area=1:period=1:conditional=off:poll=" + std::string(poll)));
 
-    const Frame behind(looking({0, 0, 0}, {0, 0, -15}), 64, 64);
-    const Frame beside(looking({12, 0, 0}, {0, 0, -15}), 64, 64);
     // Hidden for a few frames, so that nothing of the cluster is visible
-    // in the frame before it comes into view.
-    for (int f = 0; f < 4; ++f) {
-        const DrawnFrame culled = draw_frame(s.ctx, *s.renderer, *s.h, *chc.culler, behind, {});
-        EXPECT_TRUE(culled.pixels == draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, behind, {}).pixels);
-        for (std::uint32_t leaf : cluster)
-            EXPECT_TRUE(f < 2 || !drew(culled, leaf)) << "frame " << f << ": hidden leaf " << leaf << " drawn";
-    }
-    const DrawnFrame seen = draw_frame(s.ctx, *s.renderer, *s.h, *chc.culler, beside, {});
-    const DrawnFrame reference = draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, beside, {});
-    for (std::uint32_t leaf : cluster)
-        EXPECT_TRUE(drew(seen, leaf)) << "leaf " << leaf << ", hidden last frame, not drawn in the frame that sees it";
-    EXPECT_EQ(integration::differing_pixels(seen.pixels, reference.pixels), 0u);
-    // And back behind the wall: the cluster, visible last frame, is drawn
-    // untested (or re-tested); the frame is still the unculled one.
-    const DrawnFrame back = draw_frame(s.ctx, *s.renderer, *s.h, *chc.culler, behind, {});
-    EXPECT_EQ(integration::differing_pixels(back.pixels, draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, behind, {}).pixels), 0u);
-    }
+    // in the frame before it comes into view; then in view beside the
+    // wall; then back behind it, where the cluster, visible last frame, is
+    // drawn untested (or re-tested). Every frame is the unculled one.
+    const Camera behind = looking({0, 0, 0}, {0, 0, -15}), beside = looking({12, 0, 0}, {0, 0, -15});
+    const std::vector<Camera> cameras = {behind, behind, behind, behind, beside, behind};
+    session.walk(cameras, "chc", [&](const SessionStrategy &chc, const StrategyFrame &f) {
+        SCOPED_TRACE(chc.label + ", frame " + std::to_string(f.index));
+        EXPECT_EQ(differing_pixels(f), 0u);
+        for (std::uint32_t leaf : cluster) {
+            if (f.index >= 2 && f.index < 4) {
+                EXPECT_FALSE(drew(f, leaf)) << "hidden leaf " << leaf << " drawn";
+            }
+            if (f.index == 4) {
+                EXPECT_TRUE(drew(f, leaf)) << "leaf " << leaf << ", hidden last frame, not drawn in the frame that sees it";
+            }
+        }
+    });
+    for (const SessionStrategy &chc : session.strategies())
+        EXPECT_EQ(chc.measured.frames(), cameras.size()) << chc.label;
 }
 
 namespace {
@@ -137,12 +146,14 @@ public:
     {
         renderer_.draw_leaf(node);
         plain.push_back(node);
+        order.push_back(node);
     }
     void draw_leaf_conditionally(std::uint32_t node) override
     {
         renderer_.draw_leaf(node);
         mark(node);
         conditional.push_back(node);
+        order.push_back(node);
     }
     void cull(std::uint32_t node, Visibility) override { culled.push_back(node); }
     void tested(std::uint32_t) override {}
@@ -151,6 +162,7 @@ public:
     static int marker_x(std::uint32_t node) { return 2 * int(node) + 1; }
 
     std::vector<std::uint32_t> plain, conditional, culled;
+    std::vector<std::uint32_t> order;   // plain and conditional, as drawn
 
 private:
     static void mark(std::uint32_t node)
@@ -190,7 +202,6 @@ private:
 };
 
 struct MarkedFrame {
-    std::vector<std::uint8_t> pixels;
     MarkingSink sink;
     std::vector<std::uint8_t> stencil;   // one row: y = 1
 
@@ -201,21 +212,30 @@ struct MarkedFrame {
     }
 };
 
+// Leaves the frame in the context, its colour and depth.
 MarkedFrame draw_marked(const WallAndCluster &s, Culler &culler, const Frame &frame)
 {
-    MarkedFrame m{{}, MarkingSink(*s.renderer), {}};
+    MarkedFrame m{MarkingSink(s.renderer), {}};
     glClearStencil(0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     gl::load_camera(frame.camera);
     culler.begin_frame(frame);
     own_traversal(culler)->traverse(m.sink);
     glFinish();
-    const std::size_t n = std::size_t(s.ctx.width()) * std::size_t(s.ctx.height()) * 4;
-    m.pixels.assign(s.ctx.pixels(), s.ctx.pixels() + n);
     m.stencil.resize(std::size_t(s.ctx.width()));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 1, s.ctx.width(), 1, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, m.stencil.data());
     return m;
+}
+
+// The visible pixels that the marked frame `m`, still in the context, lost
+// (evaluation/lost_pixels.h): against the unculled frame drawn in chc's
+// order, conditional draws the GL skipped included. Overwrites the frame.
+std::uint64_t lost_pixels_of(const WallAndCluster &s, const MarkedFrame &m, const Camera &camera)
+{
+    const std::size_t pixels = std::size_t(s.ctx.width()) * std::size_t(s.ctx.height());
+    return count_lost_pixels(s.renderer, s.setup.hierarchy(), camera, m.sink.order, nullptr, s.ctx.pixels(), pixels)
+        .lost;
 }
 
 }  // namespace
@@ -225,7 +245,7 @@ MarkedFrame draw_marked(const WallAndCluster &s, Culler &culler, const Frame &fr
 // the wall, is tested every frame and its leaves are issued under
 // conditional rendering on their tiles; the GL draws none of them (their markers stay unset). When the
 // cluster comes into view the same conditional draws are executed, and the
-// frame is the unculled one.
+// frame loses no pixel (evaluation/lost_pixels.h).
 TEST(CoherentHierarchicalCulling, ConditionalDrawsOfPreviouslyHiddenLeavesAreDecidedByTheGL)
 {
     const WallAndCluster s;
@@ -236,8 +256,7 @@ TEST(CoherentHierarchicalCulling, ConditionalDrawsOfPreviouslyHiddenLeavesAreDec
     GLint stencil_bits = 0;
     glGetIntegerv(GL_STENCIL_BITS, &stencil_bits);
     ASSERT_GT(stencil_bits, 0);
-    const StrategyContext context{s.scene, *s.h, *s.renderer};
-    const Strategy none = make_strategy("none", context);
+    const StrategyContext context{s.setup.scene(), s.setup.hierarchy(), s.renderer};
     for (const char *conditional : {"waits", "always"}) {
     SCOPED_TRACE(std::string("conditional=") + conditional);
     const bool always = std::string(conditional) == "always";
@@ -254,7 +273,7 @@ TEST(CoherentHierarchicalCulling, ConditionalDrawsOfPreviouslyHiddenLeavesAreDec
     for (int f = 0; f < 5; ++f) {
         SCOPED_TRACE("frame " + std::to_string(f) + " behind the wall");
         const MarkedFrame m = draw_marked(s, *chc.culler, behind);
-        EXPECT_EQ(integration::differing_pixels(m.pixels, draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, behind, {}).pixels), 0u);
+        EXPECT_EQ(lost_pixels_of(s, m, behind.camera), 0u);
         if (f < 2)
             continue;
         std::size_t issued = 0;
@@ -271,8 +290,7 @@ TEST(CoherentHierarchicalCulling, ConditionalDrawsOfPreviouslyHiddenLeavesAreDec
             EXPECT_GT(issued, 0u) << "no leaf of the hidden cluster was drawn conditionally: the test shows nothing";
     }
     const MarkedFrame seen = draw_marked(s, *chc.culler, beside);
-    const DrawnFrame reference = draw_frame(s.ctx, *s.renderer, *s.h, *none.culler, beside, {});
-    EXPECT_EQ(integration::differing_pixels(seen.pixels, reference.pixels), 0u);
+    EXPECT_EQ(lost_pixels_of(s, seen, beside.camera), 0u);
     std::size_t issued = 0;
     for (std::uint32_t leaf : cluster) {
         if (!seen.conditional(leaf))
@@ -296,39 +314,36 @@ TEST(CoherentHierarchicalCulling, VisibleLeavesAreRetestedOncePerPeriod)
     for (int i = 0; i < 12; ++i)
         append_box(scene.meshes[0], Aabb::of({float(i) * 1.2f - 7.0f, 0, -20}, {float(i) * 1.2f - 6.4f, 1, -19}));
     scene.update_bounds();
-    HierarchyOptions ho;
-    ho.max_leaf_triangles = 12;
-    const Hierarchy h = Hierarchy::build(scene, ho);
-    const SceneRenderer renderer(scene, h);
-    glEnable(GL_DEPTH_TEST);
-    glEnable(GL_CULL_FACE);
-    const StrategyContext context{scene, h, renderer};
-    const Frame frame(looking({0, 0.5f, 0}, {0, 0.5f, -20}), 128, 128);
+    const SceneSetup setup(std::move(scene), leaves_of_12_triangles());
+    const std::uint32_t leaves = std::uint32_t(setup.hierarchy().leaf_count());
+    const Camera camera = looking({0, 0.5f, 0}, {0, 0.5f, -20});
+    // Counted, not drawn against references.
+    SessionOptions so = checking_session_options();
+    so.oracle = false;
+    so.lost_pixels = SessionOptions::PixelCheck::none;
 
     for (const char *passes : {"disjoint", "shared"})
     for (std::uint32_t period : {1u, 4u, 7u}) {
         SCOPED_TRACE(std::string(passes) + " passes, period " + std::to_string(period));
         const bool shared = std::string(passes) == "shared";
-        Strategy chc = make_strategy("chc:max-test-area=1:passes=" + std::string(passes) + ":period=" + std::to_string(period), context);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        gl::load_camera(frame.camera);
-        const FrameStats first = render_hierarchy(renderer, h, *chc.culler, frame);
-        const std::uint32_t leaves = std::uint32_t(h.leaf_count());
-        ASSERT_EQ(first.leaves_drawn, leaves) << "every box is in view";
-        ASSERT_GT(first.nodes_tested, 0u);
-        std::uint32_t tested = 0, passes = 0;
-        for (std::uint32_t f = 0; f < 2 * period; ++f) {
-            glClear(GL_DEPTH_BUFFER_BIT);
-            const FrameStats s = render_hierarchy(renderer, h, *chc.culler, frame);
-            EXPECT_EQ(s.leaves_drawn, leaves);
-            tested += s.nodes_tested;
-            passes += s.passes;
+        MeasurementSession session(setup, ctx, so);
+        add_variant(session, StrategyTestVariant("chc:max-test-area=1:passes=" + std::string(passes) +
+                                                 ":period=" + std::to_string(period)));
+        std::uint32_t tested = 0, passes_after_first = 0;
+        session.walk(std::vector<Camera>(2 * period + 1, camera), "chc", [&](const SessionStrategy &, const StrategyFrame &f) {
+            EXPECT_EQ(f.stats.leaves_drawn, leaves) << "frame " << f.index << ": every box is in view";
+            if (f.index == 0) {
+                EXPECT_GT(f.stats.nodes_tested, 0u);
+                return;
+            }
+            tested += f.stats.nodes_tested;
+            passes_after_first += f.stats.passes;
             if (period > 1)
-                EXPECT_LT(s.nodes_tested, leaves) << "frame " << f + 1 << " re-tested every leaf";
-        }
+                EXPECT_LT(f.stats.nodes_tested, leaves) << "frame " << f.index << " re-tested every leaf";
+        });
         EXPECT_EQ(tested, 2u * leaves) << "each visible leaf re-tested once per period, nothing else tested";
         if (shared)
-            EXPECT_LE(passes, 2u * period) << "at most one pass a frame: the re-tests share passes";
+            EXPECT_LE(passes_after_first, 2u * period) << "at most one pass a frame: the re-tests share passes";
     }
 }
 

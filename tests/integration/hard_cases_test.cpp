@@ -4,9 +4,10 @@
 // (the eye inside boxes, the near plane through them, far from the origin,
 // extreme depth ranges and fields of view, coplanar and degenerate
 // geometry, viewports of one pixel and of millions, a leaf of a million
-// triangles). In each, every
-// conservative strategy of the registry draws a frame equal, byte for
-// byte, to the unculled frame, as on the city's routes
+// triangles). In each, every conservative strategy of the registry and
+// every test variant its family declares (culling/registry.h) loses no
+// visible pixel against the unculled frame, as the measurement session
+// counts them (evaluation/lost_pixels.h), as on the city's routes
 // (conservative_frames_test.cpp). Strategies that require a database get
 // one made by the database provider (culling/databases.h) for each case's
 // scene and viewport, as small as their settings allow (common settings
@@ -35,19 +36,15 @@
 
 #include "culling/databases.h"
 #include "culling/registry.h"
+#include "evaluation/measurement_session.h"
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
 #include "scene/scene.h"
 #include "spatial/hierarchy.h"
-#include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
 
-#include "frame_comparison.h"
+#include "strategy_variants.h"
 
 using namespace occu;
-using occu::integration::differing_pixels;
-using occu::integration::draw_frame;
-using occu::integration::draw_unculled_after;
-using occu::integration::DrawnFrame;
 
 namespace {
 
@@ -618,11 +615,6 @@ const std::vector<NamedCase> hard_cases = {
     {"AllTrianglesInOnePoint", all_triangles_in_one_point_case},
 };
 
-struct Variant {
-    std::string spec;
-    std::size_t batch = 16;
-};
-
 // What a strategy is given to make the databases it requires small: a
 // database made for the frame size, of one view per heading.
 const std::vector<std::string> small_databases = {"database-grid=1", "database-layers=1", "database-headings=4"};
@@ -633,129 +625,86 @@ bool requires_a_database(const StrategyChoice &choice)
     return std::any_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->required; });
 }
 
-// Every conservative strategy of the registry, and the occlusion unit's
-// variants that test every box (none taken as visible for its size),
-// strictly front to back, and by the leaves' own triangles. The maps of
-// the strategies that require a database made for the frame size are kept
-// at most 128 pixels wide (a divisor above the default on large
-// viewports), so that making the database of a 4096-pixel case stays a
-// test's work; which map they use changes what is culled, never whether
-// the frame may lose a pixel.
-std::vector<Variant> conservative_variants(int width)
+// Every conservative strategy of the registry and every test variant its
+// family declares (strategy_variants.h). The maps of the strategies that
+// require a database made for the frame size are kept at most 128 pixels
+// wide (a divisor above their own on large viewports), so that making the
+// database of a 4096-pixel case stays a test's work; which map they use
+// changes what is culled, never whether the frame may lose a pixel.
+std::vector<StrategyTestVariant> hard_case_variants(int width)
 {
-    std::vector<Variant> variants;
-    for (const std::string &name : strategy_names()) {
-        const StrategyChoice choice = choose_strategy(name);
-        if (!choice.conservative())
-            continue;
+    std::vector<StrategyTestVariant> variants = integration::conservative_test_variants();
+    for (StrategyTestVariant &v : variants) {
+        const StrategyChoice choice = choose_strategy(v.spec);
         if (requires_a_database(choice) && choice.settings.knows("map-divisor")) {
             const long divisor = std::max(choice.settings.integer("map-divisor"), long(width + 127) / 128);
-            variants.push_back({name + ":map-divisor=" + std::to_string(divisor)});
-        } else {
-            variants.push_back({name});
+            v.spec += ":map-divisor=" + std::to_string(divisor);
         }
     }
-    variants.push_back({"ou:max-test-area=1", 1});
-    variants.push_back({"ou:max-test-area=1", 16});
-    variants.push_back({"ou:proxy=triangles:max-test-area=1", 16});
-    variants.push_back({"hp:proxy=triangles", 16});
-    variants.push_back({"skins:occluder-triangles=1024", 16});
-    variants.push_back({"skins:occluder-triangles=1024:coverage=merged", 16});
-    variants.push_back({"skins:occludee=triangles", 16});
-    variants.push_back({"skins-drawn:occludee=triangles", 16});
     return variants;
 }
 
-bool all_background(const std::vector<std::uint8_t> &pixels)
+bool all_background(const std::uint8_t *pixels, std::size_t bytes)
 {
-    for (std::uint8_t byte : pixels)
-        if (byte != 0)
-            return false;
-    return true;
-}
-
-// The leaves the oracle sees that `drawn` lacks, for a failure's message.
-std::string visible_leaves_not_drawn(const VisibilityTruth &truth, const std::vector<std::uint32_t> &drawn)
-{
-    const std::set<std::uint32_t> drawn_set(drawn.begin(), drawn.end());
-    std::ostringstream out;
-    for (std::uint32_t leaf : truth.visible)
-        if (!drawn_set.count(leaf))
-            out << ' ' << leaf;
-    return out.str().empty() ? " none" : out.str();
+    return std::all_of(pixels, pixels + bytes, [](std::uint8_t byte) { return byte == 0; });
 }
 
 class HardCaseTest : public ::testing::TestWithParam<NamedCase> {};
 
 }  // namespace
 
+// Each variant's frame through the measurement session, which compares it
+// with the unculled frame and, where they differ, with the unculled frame
+// drawn in the variant's own order, in which a culled leaf changes a pixel
+// only where it is strictly in front (evaluation/lost_pixels.h): culling
+// changes which nodes share a batch, and so the order leaves are drawn in,
+// and where faces tie in depth the leaf drawn first keeps the pixel
+// (measured: om-mos and pc-mos on the coplanar faces, every visible leaf
+// drawn, 1,014 tied pixels different). No variant may lose a pixel.
 TEST_P(HardCaseTest, EveryConservativeStrategyDrawsTheUnculledFrame)
 {
     const HardCase c = GetParam().make();
     gl::OffscreenContext ctx(c.width, c.height);
-    glEnable(GL_DEPTH_TEST);
-    glEnable(GL_CULL_FACE);
-    glClearColor(0, 0, 0, 0);
-    const Hierarchy h = Hierarchy::build(c.scene, c.hierarchy);
-    const SceneRenderer renderer(c.scene, h);
-    Oracle oracle(renderer, h);
-    const VisibilityTruth truth = oracle.see(c.camera, c.width, c.height);
-    const Frame frame(c.camera, c.width, c.height, &truth);
-    if (c.premise) {
-        ASSERT_TRUE(c.premise(h, frame));
-    }
-    if (c.hides_leaves) {
-        ASSERT_FALSE(truth.visible.empty()) << "the oracle sees nothing";
-        ASSERT_LT(truth.visible.size(), truth.in_frustum.size()) << "nothing in the frustum is hidden";
-    }
-
-    // The unculled frame, drawn by the same traversal in the same batches:
-    // where faces tie in depth the leaf drawn first keeps the pixel, and
-    // batches change which leaf that is (with batches of one, leaves are
-    // drawn in order of distance whatever is culled).
-    const StrategyContext context{c.scene, h, renderer};
-    const Strategy none = make_strategy("none", context);
-    std::map<std::size_t, DrawnFrame> unculled;
-    std::deque<DrawnFrame> ordered;
+    const SceneSetup setup(c.scene, c.hierarchy, GetParam().name);
     // Per process and case: meson runs this binary once per driver, at the same time.
     DatabaseProvider databases(::testing::TempDir() + "occu-hard-case-" + GetParam().name + "-" +
                                    std::to_string(getpid()),
                                DatabaseProvider::Makes::required, nullptr);
-    for (const Variant &v : conservative_variants(c.width)) {
+    MeasurementSession session(setup, ctx, integration::checking_session_options(&databases));
+    for (const StrategyTestVariant &v : hard_case_variants(c.width)) {
         const StrategyChoice choice = choose_strategy(v.spec, small_databases);
         if (const std::string why = choice.family->refusal(c.scene); !why.empty()) {
-            EXPECT_THROW(make_strategy(v.spec, context), std::invalid_argument) << v.spec << " must refuse: " << why;
+            EXPECT_THROW(integration::add_variant(session, v, small_databases), std::invalid_argument)
+                << v.spec << " must refuse: " << why;
             continue;
         }
-        TraversalOptions options;
-        options.batch = v.batch;
-        if (!unculled.count(v.batch)) {
-            unculled[v.batch] = draw_frame(ctx, renderer, h, *none.culler, frame, options);
-            ASSERT_EQ(all_background(unculled[v.batch].pixels), c.empty_frame)
+        integration::add_variant(session, v, small_databases);
+    }
+
+    // The premise and what the oracle sees, checked on the session's frame
+    // before its first strategy's result is judged.
+    bool premise_checked = false;
+    const std::size_t bytes = std::size_t(c.width) * std::size_t(c.height) * 4;
+    session.measure(0, c.camera, [&](const SessionStrategy &s, const StrategyFrame &f) {
+        if (!premise_checked) {
+            premise_checked = true;
+            if (c.premise) {
+                EXPECT_TRUE(c.premise(setup.hierarchy(), *f.frame)) << "the case is not the one it is named for";
+            }
+            if (c.hides_leaves) {
+                EXPECT_FALSE(f.frame->truth->visible.empty()) << "the oracle sees nothing";
+                EXPECT_LT(f.frame->truth->visible.size(), f.frame->truth->in_frustum.size())
+                    << "nothing in the frustum is hidden";
+            }
+        }
+        if (s.strategy.choice.name == "none") {
+            EXPECT_EQ(all_background(ctx.pixels(), bytes), c.empty_frame)
                 << (c.empty_frame ? "the unculled frame shows something" : "the unculled frame is empty");
         }
-        std::vector<std::string> settings = small_databases;
-        for (const std::string &s : databases.settings_for(choice, context, c.width, c.height))
-            settings.push_back(s);
-        Strategy s = make_strategy(v.spec, context, settings);
-        const DrawnFrame culled = draw_frame(ctx, renderer, h, *s.culler, frame, options);
-        // A strategy that orders the frame itself: the unculled frame in its
-        // order. Any other: the unculled frame of the same batches; where
-        // that differs, culling changed which nodes share a batch and so the
-        // order leaves are drawn in (measured: om-mos and pc-mos on the
-        // coplanar faces, every visible leaf drawn, 1,014 tied pixels
-        // different), and the frame must then equal the unculled frame in
-        // its own order, where a culled leaf changes a pixel only where it
-        // is strictly in front (frame_comparison.h).
-        const bool in_batches = !orders_frame(*s.culler) &&
-                                differing_pixels(unculled[v.batch].pixels, culled.pixels) == 0;
-        const DrawnFrame &reference =
-            in_batches ? unculled[v.batch]
-                       : ordered.emplace_back(draw_unculled_after(ctx, renderer, h, frame, culled.leaves));
-        EXPECT_EQ(differing_pixels(reference.pixels, culled.pixels), 0u)
-            << v.spec << " (batches of " << v.batch << ") changed pixels; visible leaves it did not draw:"
-            << visible_leaves_not_drawn(truth, culled.leaves);
-    }
+        EXPECT_EQ(f.loss.lost, 0u) << s.label << " lost pixels; visible leaves it did not draw:"
+                                   << integration::visible_leaves_not_drawn(f);
+    });
+    EXPECT_TRUE(premise_checked) << "no strategy drew the case";
     std::filesystem::remove_all(databases.directory());
 }
 

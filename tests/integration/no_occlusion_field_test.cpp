@@ -9,7 +9,8 @@
 //    in the city, so that it can fail;
 //  - every conservative strategy, with the walkthrough's policies across
 //    frames (temporal coherence, switch-off 0.5: evaluation/measurement_session.h),
-//    draws every frame of the route exactly as the unculled frame;
+//    draws every frame of the route exactly as the unculled frame, as the
+//    measurement session counts it (evaluation/lost_pixels.h);
 //  - the switch-off engages: every strategy that has one tests no node in
 //    the frames between its probes (frames 25-39 here: it switches off
 //    after frame 0 and probes at frames 8, 24 and 56).
@@ -21,6 +22,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,7 +38,7 @@
 #include "scene/field.h"
 #include "traversal/traversal.h"
 
-#include "frame_comparison.h"
+#include "strategy_variants.h"
 
 using namespace occu;
 
@@ -70,21 +72,6 @@ std::vector<std::uint32_t> hidden_leaves(const gl::OffscreenContext &ctx, const 
             hidden.push_back(leaf);
     }
     return hidden;
-}
-
-struct Drawn {
-    std::vector<std::uint8_t> pixels;
-    FrameStats stats;
-};
-
-Drawn draw(const gl::OffscreenContext &ctx, const SceneRenderer &renderer, const Hierarchy &h, Culler &culler,
-           const Frame &frame, const TraversalOptions &options)
-{
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    gl::load_camera(frame.camera);
-    FrameStats s = render_hierarchy(renderer, h, culler, frame, options);
-    glFinish();
-    return {std::vector<std::uint8_t>(ctx.pixels(), ctx.pixels() + std::size_t(size) * size * 4), std::move(s)};
 }
 
 }  // namespace
@@ -123,51 +110,38 @@ TEST(NoOcclusionField, NoLeafHidesAnotherFromTheOverheadRoute)
 TEST(NoOcclusionField, EveryStrategyDrawsUnculledFramesAndSwitchesOff)
 {
     gl::OffscreenContext ctx(size, size);
-    glEnable(GL_DEPTH_TEST);
-    glEnable(GL_CULL_FACE);
-    glClearColor(0, 0, 0, 0);
-    const Scene field = generate_field(FieldOptions{});
-    const Hierarchy h = Hierarchy::build(field);
-    SceneRenderer renderer(field, h);
-    const StrategyContext context{field, h, renderer};
-    const std::vector<Camera> route = make_route("overhead", field.bounds, CityOptions{}, 40, 1.0f);
-    Oracle oracle(renderer, h);
-    std::vector<VisibilityTruth> truths;
-    for (const Camera &c : route)
-        truths.push_back(oracle.see(c, size, size));
-    const Strategy none = make_strategy("none", context);
-    std::vector<std::vector<std::uint8_t>> unculled;
-    for (std::size_t f = 0; f < route.size(); ++f)
-        unculled.push_back(draw(ctx, renderer, h, *none.culler, Frame(route[f], size, size, &truths[f]), {}).pixels);
-
-    std::size_t with_switch_off = 0;
+    SceneChoice field;
+    field.name = "field";
+    const SceneSetup setup(field);
+    // The walkthrough's policies across frames, each frame checked against
+    // the unculled frame.
+    SessionOptions so = integration::checking_session_options();
+    so.coherence = true;
+    so.switch_off = 0.5;
+    MeasurementSession session(setup, ctx, so);
     for (const std::string &name : strategy_names()) {
         const StrategyChoice choice = choose_strategy(name);
         // Strategies that require a database (made for the scene) switch
         // off as the same family without one does.
         const auto read = databases_read(choice);
-        if (!choice.conservative() ||
-            std::any_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->required; }))
-            continue;
-        SCOPED_TRACE(name);
-        Strategy s = make_strategy(name, context);
-        TraversalPolicies policies(*s.choice.family, true, 0.5);
-        std::uint64_t tested_between_probes = 0;
-        for (std::size_t f = 0; f < route.size(); ++f) {
-            const Frame frame(route[f], size, size, &truths[f]);
-            const Drawn d = draw(ctx, renderer, h, *s.culler, frame, policies.options(32));
-            // A strategy that orders its frame, when it tested: the unculled
-            // frame in its order (frame_comparison.h says why).
-            const bool ordered = orders_frame(*s.culler) && d.stats.occlusion_tested;
-            const std::vector<std::uint8_t> reference =
-                ordered ? integration::draw_unculled_after(ctx, renderer, h, frame, d.stats.drawn).pixels : unculled[f];
-            EXPECT_EQ(integration::differing_pixels(reference, d.pixels), 0u) << "frame " << f;
-            if (f >= 25)
-                tested_between_probes += d.stats.nodes_tested;
-        }
-        if (policies.switch_off) {
+        if (choice.conservative() &&
+            std::none_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->required; }))
+            session.add(name);
+    }
+    std::map<std::string, std::uint64_t> tested_between_probes;
+    session.walk(setup.route("overhead", 40), "field", [&](const SessionStrategy &s, const StrategyFrame &f) {
+        EXPECT_EQ(integration::differing_pixels(f), 0u) << s.label << ", frame " << f.index;
+        if (f.index >= 25)
+            tested_between_probes[s.label] += f.stats.nodes_tested;
+    });
+
+    std::size_t with_switch_off = 0;
+    for (const SessionStrategy &s : session.strategies()) {
+        EXPECT_EQ(s.measured.frames(), 40u) << s.label;
+        if (s.policies.switch_off) {
             ++with_switch_off;
-            EXPECT_EQ(tested_between_probes, 0u) << "node tests in frames 25-39: the switch-off did not engage";
+            EXPECT_EQ(tested_between_probes[s.label], 0u)
+                << s.label << ": node tests in frames 25-39: the switch-off did not engage";
         }
     }
     // Every family that tests occlusion has one: all but none, vfc, ideal and pvs.

@@ -5,8 +5,10 @@
 // strategy culls it, and no preprocessing step makes an occluder of the
 // see-through mesh. The scene: a solid block of glass, thick enough for
 // occluder skins and covering the whole view of an opaque box behind it,
-// and nothing else. Every conservative strategy of the registry must draw
-// the box and lose no pixel against the unculled frame; a strategy that
+// and nothing else. Every conservative strategy of the registry and test
+// variant of its family (culling/registry.h), in batches of one and of its
+// own, must draw the box and lose no pixel against the unculled frame (as
+// the measurement session counts them); a strategy that
 // cannot serve the scene must refuse it with a reason. Runs on the driver
 // meson selects with GALLIUM_DRIVER.
 #include <gtest/gtest.h>
@@ -15,13 +17,14 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "culling/registry.h"
 #include "evaluation/lost_pixels.h"
+#include "evaluation/measurement_session.h"
 #include "evaluation/oracle.h"
 #include "gl/offscreen_context.h"
 #include "gl/state.h"
@@ -31,13 +34,10 @@
 #include "spatial/hierarchy.h"
 #include "strategies/poon_wang_opacity_maps/occluder_database.h"
 #include "strategies/poon_wang_opacity_maps/view_preprocessing.h"
-#include "traversal/traversal.h"
 
-#include "frame_comparison.h"
+#include "strategy_variants.h"
 
 using namespace occu;
-using occu::integration::draw_frame;
-using occu::integration::DrawnFrame;
 
 namespace {
 
@@ -79,11 +79,16 @@ Scene glass_before_box(bool with_box = true)
 }
 
 // Leaves of 12 triangles at most: the glass and the box in leaves of their own.
-Hierarchy hierarchy_of(const Scene &scene)
+HierarchyOptions leaves_of_12_triangles()
 {
     HierarchyOptions options;
     options.max_leaf_triangles = 12;
-    return Hierarchy::build(scene, options);
+    return options;
+}
+
+Hierarchy hierarchy_of(const Scene &scene)
+{
+    return Hierarchy::build(scene, leaves_of_12_triangles());
 }
 
 // The leaves holding triangles of mesh `mesh`.
@@ -122,11 +127,11 @@ void frame_state()
     glClearColor(0, 0, 0, 0);
 }
 
-// The pixel at the middle of the frame, RGBA8.
-std::vector<std::uint8_t> middle(const std::vector<std::uint8_t> &pixels)
+// The pixel at the middle of a frame, RGBA8.
+std::vector<std::uint8_t> middle(const std::uint8_t *pixels)
 {
     const std::size_t i = 4 * (std::size_t(size / 2) * size + size / 2);
-    return {pixels.begin() + std::ptrdiff_t(i), pixels.begin() + std::ptrdiff_t(i + 4)};
+    return {pixels + i, pixels + i + 4};
 }
 
 }  // namespace
@@ -182,8 +187,9 @@ TEST(SeeThrough, EveryConservativeStrategyDrawsWhatShowsThroughASeeThroughMesh)
 {
     gl::OffscreenContext ctx(size, size);
     frame_state();
-    const Scene scene = glass_before_box();
-    const Hierarchy h = hierarchy_of(scene);
+    const SceneSetup setup(glass_before_box(), leaves_of_12_triangles(), "glass before box");
+    const Scene &scene = setup.scene();
+    const Hierarchy &h = setup.hierarchy();
     const SceneRenderer renderer(scene, h);
     const std::vector<std::uint32_t> box_leaves = leaves_of(h, box_mesh), glass_leaves = leaves_of(h, glass_mesh);
     ASSERT_FALSE(box_leaves.empty());
@@ -191,23 +197,18 @@ TEST(SeeThrough, EveryConservativeStrategyDrawsWhatShowsThroughASeeThroughMesh)
     for (std::uint32_t b : box_leaves)
         ASSERT_FALSE(std::count(glass_leaves.begin(), glass_leaves.end(), b)) << "a leaf holds glass and box";
     const Camera camera = eye();
-    Oracle oracle(renderer, h);
-    const VisibilityTruth truth = oracle.see(camera, size, size);
-    const Frame frame(camera, size, size, &truth);
-    const StrategyContext context{scene, h, renderer};
-    const Strategy none = make_strategy("none", context);
-    const DrawnFrame unculled = draw_frame(ctx, renderer, h, *none.culler, frame, {});
 
-    // The box shows through the glass: the frame differs from the glass alone there.
+    // The box shows through the glass: the unculled frame differs from the
+    // glass alone there.
     {
         const Scene glass_only = glass_before_box(false);
         const Hierarchy gh = hierarchy_of(glass_only);
         const SceneRenderer glass_renderer(glass_only, gh);
-        const StrategyContext glass_context{glass_only, gh, glass_renderer};
-        const Strategy glass_none = make_strategy("none", glass_context);
-        const DrawnFrame glass = draw_frame(ctx, glass_renderer, gh, *glass_none.culler, Frame(camera, size, size), {});
-        ASSERT_NE(middle(glass.pixels), std::vector<std::uint8_t>(4, 0)) << "the glass is not drawn";
-        EXPECT_NE(middle(unculled.pixels), middle(glass.pixels)) << "the box does not show through the glass";
+        draw_unculled_after(glass_renderer, gh, camera, {});
+        const std::vector<std::uint8_t> glass = middle(ctx.pixels());
+        ASSERT_NE(glass, std::vector<std::uint8_t>(4, 0)) << "the glass is not drawn";
+        draw_unculled_after(renderer, h, camera, {});
+        EXPECT_NE(middle(ctx.pixels()), glass) << "the box does not show through the glass";
     }
 
     // A minimum-occluder-set database made here, from the eye (heading 3 looks down -z).
@@ -230,40 +231,45 @@ TEST(SeeThrough, EveryConservativeStrategyDrawsWhatShowsThroughASeeThroughMesh)
         frame_state();
     }
 
+    // Every conservative strategy and test variant, in batches of one and
+    // of its own, through the measurement session.
+    MeasurementSession session(setup, ctx, integration::checking_session_options());
+    std::set<std::string> labels;
     std::size_t served = 0, refused = 0;
-    for (const std::string &name : strategy_names()) {
-        if (!choose_strategy(name).conservative())
-            continue;
-        SCOPED_TRACE(name);
-        std::optional<Strategy> s;
-        try {
-            s.emplace(make_strategy(name, context, {"database=" + database}));
-        } catch (const std::invalid_argument &e) {
-            // Refusing a scene is allowed, with a reason.
-            EXPECT_GT(std::string(e.what()).size(), 10u) << "refused without a reason";
-            std::printf("%s refuses the scene: %s\n", name.c_str(), e.what());
-            ++refused;
-            continue;
-        }
-        ++served;
-        for (std::size_t batch : {std::size_t(1), std::size_t(16)}) {
-            TraversalOptions options;
-            options.batch = batch;
-            const DrawnFrame culled = draw_frame(ctx, renderer, h, *s->culler, frame, options);
-            EXPECT_TRUE(holds_any(culled.leaves, box_leaves))
-                << "culled the box behind the glass (batches of " << batch << "); drawn:" << listed(culled.leaves);
-            for (std::uint32_t leaf : box_leaves)
-                if (std::count(truth.visible.begin(), truth.visible.end(), leaf)) {
-                    EXPECT_TRUE(std::count(culled.leaves.begin(), culled.leaves.end(), leaf))
-                        << "culled box leaf " << leaf << ", seen through the glass (batches of " << batch << ")";
-                }
-            // Lost pixels against the unculled frame, as the demos count them
-            // (evaluation/lost_pixels.h).
-            const PixelLoss loss = count_lost_pixels(renderer, h, camera, culled.leaves, unculled.pixels.data(),
-                                                     culled.pixels.data(), std::size_t(size) * size);
-            EXPECT_EQ(loss.lost, 0u) << "batches of " << batch << "; drawn:" << listed(culled.leaves);
+    for (const StrategyTestVariant &declared : integration::conservative_test_variants()) {
+        StrategyTestVariant one_at_a_time = declared;
+        one_at_a_time.in_batches_of(1);
+        for (const StrategyTestVariant &v : {declared, one_at_a_time}) {
+            if (!labels.insert(integration::variant_label(v)).second)
+                continue;
+            try {
+                integration::add_variant(session, v, {"database=" + database});
+                ++served;
+            } catch (const std::invalid_argument &e) {
+                // Refusing a scene is allowed, with a reason.
+                EXPECT_GT(std::string(e.what()).size(), 10u) << v.spec << " refused without a reason";
+                std::printf("%s refuses the scene: %s\n", integration::variant_label(v).c_str(), e.what());
+                ++refused;
+            }
         }
     }
+    std::size_t judged = 0;
+    session.measure(0, camera, [&](const SessionStrategy &s, const StrategyFrame &f) {
+        SCOPED_TRACE(s.label);
+        ++judged;
+        EXPECT_TRUE(f.pixels_checked);
+        const std::vector<std::uint32_t> &drawn = f.stats.drawn;
+        EXPECT_TRUE(holds_any(drawn, box_leaves)) << "culled the box behind the glass; drawn:" << listed(drawn);
+        for (std::uint32_t leaf : box_leaves)
+            if (std::count(f.frame->truth->visible.begin(), f.frame->truth->visible.end(), leaf)) {
+                EXPECT_TRUE(std::count(drawn.begin(), drawn.end(), leaf))
+                    << "culled box leaf " << leaf << ", seen through the glass";
+            }
+        // Lost pixels against the unculled frame, as the demos count them
+        // (evaluation/lost_pixels.h).
+        EXPECT_EQ(f.loss.lost, 0u) << "drawn:" << listed(drawn);
+    });
     std::remove(database.c_str());
-    EXPECT_GT(served, 10u) << "most strategies should serve a scene of two meshes (" << refused << " refused)";
+    EXPECT_EQ(judged, served);
+    EXPECT_GT(served, 20u) << "most strategies should serve a scene of two meshes (" << refused << " refused)";
 }

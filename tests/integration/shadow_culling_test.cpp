@@ -2,32 +2,38 @@
 // Shadow culling (Moeller and Haines, "Occlusion Culling Algorithms",
 // section "Shadow Culling": `shadow`, Hudson et al.; `planes`, Coorg and
 // Teller), and every other strategy whose occluders are occluder skins
-// (skins, hzb, hom), where skins would hide what GL shows: the eye inside a mesh (back-face culling then shows what
-// lies behind the mesh's skin) and a near plane that clips away the mesh's
+// (the registry's conservative names and test variants of the families
+// that read a skin database: skins, hzb, hom), where skins would hide what
+// GL shows: the eye inside a mesh (back-face culling then shows what lies
+// behind the mesh's skin) and a near plane that clips away the mesh's
 // surface in front of a skin. In both the strategies must leave the skin
-// out (SkinOccluders::usable), and their frames equal the unculled
-// frames byte for byte, as on many random views of a small city; and the
+// out (SkinOccluders::usable), and their frames equal the unculled frames
+// byte for byte, as the measurement session counts them, as on many random
+// views of a small city; and the
 // two families, equivalent for single convex occluders, draw the same
 // leaves. Runs on the driver meson selects with GALLIUM_DRIVER.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "camera/route.h"
+#include "culling/databases.h"
 #include "culling/registry.h"
+#include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
 #include "occluders/skin_occluders.h"
 #include "scene/city.h"
 
-#include "frame_comparison.h"
 #include "small_city.h"
+#include "strategy_variants.h"
 
 using namespace occu;
-using occu::integration::draw_frame;
-using occu::integration::DrawnFrame;
+using namespace occu::integration;
 
 namespace {
 
@@ -72,9 +78,7 @@ std::vector<Camera> through_the_mesh_cameras(const Scene &scene, const std::vect
 
 TEST(ShadowCulling, FramesEqualUnculledFramesWhereSkinsWouldSeeThrough)
 {
-    const integration::SmallCity small(3, 128, 128);
-    const Hierarchy &h = small.h;
-    const StrategyContext context{small.scene, h, small.renderer};
+    SmallCity small(3, 128, 128);
     const SkinOccluders skins(small.scene, "", 8);
     ASSERT_GT(skins.size(), 20u);
 
@@ -99,39 +103,41 @@ TEST(ShadowCulling, FramesEqualUnculledFramesWhereSkinsWouldSeeThrough)
     for (const Camera &c : small.setup.route("dense", 8))
         cameras.push_back(c);
 
-    const Strategy none = make_strategy("none", context);
-    std::uint64_t drawn_none = 0;
-    std::vector<std::uint64_t> drawn_by(11, 0);
-    std::vector<std::vector<std::vector<std::uint32_t>>> leaves(11);
-    // The shadow families first (indices used below), then every other
-    // strategy whose occluders are skins.
-    const std::vector<std::string> specs = {"shadow",       "planes", "shadow-faces", "planes-faces",
-                                            "planes:plane-cache=off", "shadow:occluders=64",
-                                            "skins", "skins:occludee=rect", "skins-both", "hzb", "hom"};
-    std::vector<Strategy> strategies;
-    for (const std::string &spec : specs)
-        strategies.push_back(make_strategy(spec, context));
-    TraversalOptions options;
-    options.batch = 16;
-    for (std::size_t f = 0; f < cameras.size(); ++f) {
-        const Frame frame(cameras[f], 128, 128);
-        const DrawnFrame reference = draw_frame(small.ctx, small.renderer, h, *none.culler, frame, {});
-        drawn_none += reference.triangles;
-        for (std::size_t s = 0; s < specs.size(); ++s) {
-            const DrawnFrame culled = draw_frame(small.ctx, small.renderer, h, *strategies[s].culler, frame, options);
-            EXPECT_TRUE(reference.pixels == culled.pixels)
-                << specs[s] << ", camera " << f << (f < awkward ? " (through a mesh)" : "");
-            drawn_by[s] += culled.triangles;
-            leaves[s].push_back(culled.leaves);
+    // Every conservative strategy and test variant whose occluders are
+    // skins (the families that read a skin database).
+    MeasurementSession session(small.setup, small.ctx, checking_session_options());
+    std::vector<StrategyTestVariant> with_skins;
+    for (const StrategyTestVariant &v : conservative_test_variants()) {
+        const auto read = databases_read(choose_strategy(v.spec));
+        if (std::any_of(read.begin(), read.end(), [](const DatabaseNeed *d) { return d->setting == "skin-database"; })) {
+            with_skins.push_back(v);
+            add_variant(session, v);
         }
     }
-    EXPECT_LT(drawn_by[0], drawn_none * 3 / 4) << "shadow culled too little for the comparison to mean anything";
-    EXPECT_LE(drawn_by[0], drawn_by[2]) << "aggregates hide what their faces hide";
-    EXPECT_LE(drawn_by[5], drawn_by[0]) << "more occluders hide more";
+    ASSERT_GE(with_skins.size(), 10u);
+    add_variant(session, StrategyTestVariant("none"));   // what shadow's share culled is of
+    std::map<std::string, std::vector<std::vector<std::uint32_t>>> leaves;
+    for (std::size_t f = 0; f < cameras.size(); ++f)
+        session.measure(f, cameras[f], [&](const SessionStrategy &s, const StrategyFrame &frame) {
+            EXPECT_EQ(differing_pixels(frame), 0u)
+                << s.label << ", camera " << f << (f < awkward ? " (through a mesh)" : "");
+            leaves[s.label].push_back(frame.stats.drawn);
+        });
+    std::map<std::string, double> drawn;
+    for (const SessionStrategy &s : session.strategies())
+        drawn[s.label] = s.measured.triangles;
+    EXPECT_GT(expect_declared_bounds(session, with_skins), 0u);
+
+    EXPECT_LT(drawn["shadow/16"], drawn["none/16"] * 3 / 4)
+        << "shadow culled too little for the comparison to mean anything";
+    EXPECT_LE(drawn["shadow/16"], drawn["shadow-faces/16"]) << "aggregates hide what their faces hide";
     // Coorg and Teller's test and Hudson et al.'s agree, with the cache or without.
+    for (const char *label : {"shadow/16", "planes/16", "shadow-faces/16", "planes-faces/16", "planes:plane-cache=off/16"})
+        ASSERT_EQ(leaves[label].size(), cameras.size()) << label;
     for (std::size_t f = 0; f < cameras.size(); ++f) {
-        EXPECT_EQ(leaves[0][f], leaves[1][f]) << "shadow and planes, camera " << f;
-        EXPECT_EQ(leaves[2][f], leaves[3][f]) << "shadow-faces and planes-faces, camera " << f;
-        EXPECT_EQ(leaves[1][f], leaves[4][f]) << "planes with and without its cache, camera " << f;
+        EXPECT_EQ(leaves["shadow/16"][f], leaves["planes/16"][f]) << "shadow and planes, camera " << f;
+        EXPECT_EQ(leaves["shadow-faces/16"][f], leaves["planes-faces/16"][f]) << "shadow-faces and planes-faces, camera " << f;
+        EXPECT_EQ(leaves["planes/16"][f], leaves["planes:plane-cache=off/16"][f])
+            << "planes with and without its cache, camera " << f;
     }
 }

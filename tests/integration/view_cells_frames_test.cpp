@@ -11,21 +11,20 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <random>
 #include <set>
 
 #include "camera/route.h"
 #include "culling/registry.h"
-#include "evaluation/oracle.h"
-#include "frame_comparison.h"
-#include "small_city.h"
+#include "evaluation/measurement_session.h"
 #include "gl/offscreen_context.h"
 #include "render/scene_renderer.h"
 #include "scene/city.h"
 #include "strategies/wonka_view_cells/pvs_database.h"
-#include "traversal/traversal.h"
+
+#include "small_city.h"
+#include "strategy_variants.h"
 
 using namespace occu;
 using namespace occu::integration;
@@ -111,38 +110,29 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
     EXPECT_THROW(make_strategy("pvs:pvs-database=" + path + ":epsilon=2", context), std::invalid_argument)
         << "a setting the database decides, given beside it, would be ignored";
 
-    Strategy none = make_strategy("none", context);
-    Strategy vfc = make_strategy("vfc", context);
-    Strategy pvs = make_strategy("pvs:pvs-database=" + path, context);
-    Oracle oracle(city.renderer, city.h);
-    std::uint64_t drawn_vfc = 0, drawn_pvs = 0;
-    for (std::size_t i = 0; i < cameras.size(); ++i) {
-        const VisibilityTruth truth = oracle.see(cameras[i], size, size);
-        const Frame frame(cameras[i], size, size, &truth);
-        const DrawnFrame reference = draw_frame(city.ctx, city.renderer, city.h, *none.culler, frame, {});
-        const DrawnFrame culled = draw_frame(city.ctx, city.renderer, city.h, *pvs.culler, frame, {});
-        drawn_vfc += draw_frame(city.ctx, city.renderer, city.h, *vfc.culler, frame, {}).triangles;
-        drawn_pvs += culled.triangles;
-        std::string missing;
-        {
-            const std::set<std::uint32_t> drawn(culled.leaves.begin(), culled.leaves.end());
-            for (std::uint32_t leaf : truth.visible)
-                if (!drawn.count(leaf)) {
-                    const Aabb &b = city.h.nodes()[leaf].bounds;
-                    char buf[200];
-                    std::snprintf(buf, sizeof buf, " %u [%.2f %.2f %.2f - %.2f %.2f %.2f]", leaf, b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
-                    missing += buf;
-                }
-        }
-        EXPECT_EQ(differing_pixels(reference.pixels, culled.pixels), 0u)
-            << "visible leaves not drawn:" << missing << "; eye " << i << " at (" << cameras[i].position.x << ", " << cameras[i].position.y << ", "
-            << cameras[i].position.z << ")";
-    }
+    // vfc and pvs through the measurement session: every pvs frame equals
+    // the unculled frame (evaluation/lost_pixels.h).
+    SessionOptions so = checking_session_options();
+    MeasurementSession session(city.setup, city.ctx, so);
+    const SessionStrategy &vfc = add_variant(session, StrategyTestVariant("vfc").in_batches_of(so.batch));
+    const SessionStrategy &pvs =
+        add_variant(session, StrategyTestVariant("pvs:pvs-database=" + path).in_batches_of(so.batch));
+    const auto pvs_frames_equal_unculled = [&](const SessionStrategy &s, const StrategyFrame &f) {
+        if (&s != &pvs)
+            return;
+        const glm::vec3 &eye = f.frame->camera.position;
+        EXPECT_EQ(differing_pixels(f), 0u) << "visible leaves not drawn:" << visible_leaves_not_drawn(f) << "; eye "
+                                           << f.index << " at (" << eye.x << ", " << eye.y << ", " << eye.z << ")";
+    };
+    for (std::size_t i = 0; i < cameras.size(); ++i)
+        session.measure(i, cameras[i], pvs_frames_equal_unculled);
     // A cell's set holds whatever any eye of it sees in any direction; cut
     // by one frustum it still draws more than that eye sees (here about two
     // thirds of what vfc draws, on random views of a small city).
-    EXPECT_LT(drawn_pvs * 4, drawn_vfc * 3) << "pvs culled less than a quarter of what vfc draws";
-    EXPECT_EQ(pvs.culler->note().rfind("0 of 24 frames with the eye in no view cell", 0), 0u) << pvs.culler->note();
+    EXPECT_LT(pvs.measured.triangles * 4, vfc.measured.triangles * 3)
+        << "pvs culled less than a quarter of what vfc draws";
+    EXPECT_EQ(pvs.strategy.culler->note().rfind("0 of 24 frames with the eye in no view cell", 0), 0u)
+        << pvs.strategy.culler->note();
 
     // Eyes in no cell: inside a building, above the cells' tops. Drawn with
     // view-frustum culling, so equal frames, and counted in the note.
@@ -153,15 +143,13 @@ TEST(ViewCellFrames, PvsFramesEqualUnculledFramesFromAnywhereInTheCells)
     inside.target = inside.position + glm::vec3(1, 0, 0);
     Camera above = cameras[4];
     above.position.y = 40.0f;
+    std::size_t index = cameras.size();
     for (const Camera &c : {inside, above}) {
         ASSERT_FALSE(city.cells->locate(c.position));
-        const VisibilityTruth truth = oracle.see(c, size, size);
-        const Frame frame(c, size, size, &truth);
-        const DrawnFrame reference = draw_frame(city.ctx, city.renderer, city.h, *none.culler, frame, {});
-        const DrawnFrame culled = draw_frame(city.ctx, city.renderer, city.h, *pvs.culler, frame, {});
-        EXPECT_EQ(differing_pixels(reference.pixels, culled.pixels), 0u);
+        session.measure(index++, c, pvs_frames_equal_unculled);
     }
-    EXPECT_EQ(pvs.culler->note().rfind("2 of 26 frames with the eye in no view cell", 0), 0u) << pvs.culler->note();
+    EXPECT_EQ(pvs.strategy.culler->note().rfind("2 of 26 frames with the eye in no view cell", 0), 0u)
+        << pvs.strategy.culler->note();
     std::filesystem::remove(path);
 }
 

@@ -19,7 +19,9 @@ public:
     OcclusionUnitCuller(const StrategyContext &context, const Settings &settings)
         : renderer_(context.renderer), shared_passes_(settings.text("passes") == "shared"),
           leaf_triangles_(settings.text("proxy") == "triangles"), tolerance_(settings.number("tolerance")),
-          max_test_area_(settings.number("max-test-area"))
+          max_test_area_(settings.number("max-test-area")),
+          mode_(tolerance_ == 0.0 && settings.text("answer") == "conservative" ? gl::OcclusionMode::conservative
+                                                                               : gl::OcclusionMode::brief)
     {
         // The unit holds at most max_tiles tiles (4096 on occu's drivers): a
         // frame's disjoint footprints go into as few passes as it allows.
@@ -98,7 +100,7 @@ private:
     void run_pass(std::vector<NodeTest> &tests, const std::vector<std::size_t> &members)
     {
         const ProxyTestState proxy_state;   // render/occlusion_proxy.h
-        gl::OcclusionPass pass(unit_, gl::OcclusionMode::brief, tiles_for(members));
+        gl::OcclusionPass pass(unit_, mode_, tiles_for(members));
         for (std::size_t i : members) {
             if (leaf_triangles_ && tests[i].leaf)
                 // All of them: a leaf whose see-through triangles show is visible.
@@ -119,6 +121,7 @@ private:
     const SceneRenderer &renderer_;
     bool shared_passes_, leaf_triangles_;
     double tolerance_, max_test_area_;
+    gl::OcclusionMode mode_;   // conservative only where tolerance 0 needs no counts
     std::size_t tiles_per_pass_ = 64;
     std::optional<Frame> frame_;
     GLint origin_x_ = 0, origin_y_ = 0;
@@ -144,6 +147,12 @@ StrategyFamily occlusion_unit_family()
         choice_setting("proxy", {"box", "triangles"}, "what stands for a leaf in the test: its box or its triangles"),
         number_setting("tolerance", 0.0, 0.0, 0.999, Role::approximation,
                        "adaptive culling: occluded when NOHC <= tolerance * PHC"),
+        choice_setting("answer", {"conservative", "exact"},
+                       "at tolerance 0 the unit is asked only whether some fragment of a tile passed "
+                       "(GL_MESAX_occlusion_unit_conservative: llvmpipe rejects whole bins on coarse depth and "
+                       "stops on a tile that passed), or asked to count as at other tolerances; the answers "
+                       "are the same",
+                       Role::cost),
         number_setting("max-test-area", 0.25, 0.0001, 1.0, Role::cost,
                        "boxes covering more of the viewport are taken as visible untested", "1"),
     };
@@ -151,6 +160,22 @@ StrategyFamily occlusion_unit_family()
         {"ou-shared", "passes=shared"},
         {"occu-hier", "", true},
         {"occu-hier-shared", "passes=shared", true},
+    };
+    // Every box tested (none taken as visible for its size), strictly front
+    // to back and in batches (section 3), culling more than half of what
+    // the unculled frame draws; leaves tested by their own triangles,
+    // which lie inside their box (culling at least what boxes do); shared
+    // passes with temporal coherence; the switch-off's probes. A tile
+    // counts only the fragments in its box's footprint (section 3.1), an
+    // HP query (scott_hp_occlusion_test) all of its grown box's: hp sees
+    // at least what ou sees, and culls about as much or less.
+    f.test_variants = {
+        StrategyTestVariant("ou:max-test-area=1").in_batches_of(1),
+        StrategyTestVariant("ou:max-test-area=1").drawing_at_most("none", 0.5).drawing_at_most("hp", 100.0 / 99.0),
+        StrategyTestVariant("ou:proxy=triangles:max-test-area=1").drawing_at_most("ou:max-test-area=1"),
+        StrategyTestVariant("ou-shared").in_batches_of(32).with_coherence(),
+        StrategyTestVariant("ou").with_probing_switch_off(),
+        StrategyTestVariant("ou:answer=exact"),
     };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<OcclusionUnitCuller>(context, settings);

@@ -458,6 +458,12 @@ StrategyFamily coherent_hierarchical_culling_family()
                         "a previously visible leaf is re-tested every this many frames (from a random offset per node)", "1"),
         number_setting("tolerance", 0.0, 0.0, 0.999, Role::approximation,
                        "visibility threshold (CHC++): occluded when NOHC <= tolerance * PHC"),
+        choice_setting("answer", {"conservative", "exact"},
+                       "at tolerance 0 the unit is asked only whether some fragment of a tile passed "
+                       "(GL_MESAX_occlusion_unit_conservative: llvmpipe rejects whole bins on coarse depth and "
+                       "stops on a tile that passed), or asked to count as at other tolerances; the answers "
+                       "are the same",
+                       Role::cost),
         integer_setting("bounds", 1, 1, 64, Role::cost,
                         "tight bounds: an inner node is tested by its descendants' boxes, level by level while they are at most this many", "1"),
         choice_setting("passes", {"disjoint", "shared"},
@@ -474,6 +480,8 @@ StrategyFamily coherent_hierarchical_culling_family()
                         "the pass on the GL (a scene of its own on llvmpipe)"),
     };
     f.presets = {{"chc-shared", "passes=shared"}};
+    // The switch-off's probes through the common traversal.
+    f.test_variants = {StrategyTestVariant("chc").with_probing_switch_off(), StrategyTestVariant("chc:answer=exact")};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<CoherentHierarchicalCuller>(context, settings);
     };

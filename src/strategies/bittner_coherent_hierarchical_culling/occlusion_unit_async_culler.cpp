@@ -15,7 +15,9 @@ namespace {
 class OcclusionUnitAsyncCuller final : public AsyncCuller {
 public:
     explicit OcclusionUnitAsyncCuller(const Settings &settings)
-        : threshold_(settings.number("tolerance")), shared_passes_(settings.text("passes") == "shared")
+        : threshold_(settings.number("tolerance")), shared_passes_(settings.text("passes") == "shared"),
+          mode_(threshold_ == 0.0 && settings.text("answer") == "conservative" ? gl::OcclusionMode::conservative
+                                                                               : gl::OcclusionMode::brief)
     {
         // The unit holds at most max_tiles tiles; a batch is one pass.
         tiles_per_pass_ = std::size_t(std::clamp<long>(settings.integer("batch"), 1, std::max(unit_.max_tiles(), 1)));
@@ -79,7 +81,7 @@ public:
         }
         {
             const ProxyTestState proxy_state;   // render/occlusion_proxy.h
-            slot.pass->begin(gl::OcclusionMode::brief, tiles);
+            slot.pass->begin(mode_, tiles);
             for (const AsyncTest &t : tests)
                 for (const Aabb &proxy : t.boxes)
                     draw_proxy_box(proxy);
@@ -137,6 +139,7 @@ private:
     gl::OcclusionUnit unit_;
     double threshold_;
     bool shared_passes_;
+    gl::OcclusionMode mode_;   // conservative only where tolerance 0 needs no counts
     std::size_t tiles_per_pass_ = 64;
     std::optional<Frame> frame_;
     GLint origin_x_ = 0, origin_y_ = 0;

@@ -187,6 +187,8 @@ StrategyFamily supporting_plane_family()
     f.presets = {
         {"planes-faces", "aggregate=off"},
     };
+    // Supporting planes made at every test instead of kept per pair.
+    f.test_variants = {StrategyTestVariant("planes:plane-cache=off")};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<SupportingPlaneCuller>(context, settings);
     };

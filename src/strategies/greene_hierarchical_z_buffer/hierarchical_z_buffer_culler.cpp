@@ -151,6 +151,12 @@ StrategyFamily hierarchical_z_buffer_family()
     f.presets = {
         {"hzb-last-frame", "source=last-frame"},
     };
+    // The scene's own triangles beside the skins, in whole depth pixels and
+    // merged (which culls at least what whole pixels do).
+    f.test_variants = {
+        StrategyTestVariant("hzb:occluder-triangles=512"),
+        StrategyTestVariant("hzb:occluder-triangles=512:coverage=merged").drawing_at_most("hzb:occluder-triangles=512"),
+    };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalZBufferCuller>(context, settings);
     };

@@ -102,6 +102,8 @@ StrategyFamily shadow_frustum_family()
     f.presets = {
         {"shadow-faces", "aggregate=off"},
     };
+    // More occluders than the paper's eight hide at least as much.
+    f.test_variants = {StrategyTestVariant("shadow:occluders=64").drawing_at_most("shadow")};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<ShadowFrustumCuller>(context, settings);
     };

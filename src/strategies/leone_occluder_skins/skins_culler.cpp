@@ -129,6 +129,24 @@ StrategyFamily occluder_skins_family()
         // Occlusion Culling fuses them, and leaves tested by what they draw.
         {"skins-triangles", "occluder-triangles=1024:coverage=merged:occludee=triangles"},
     };
+    // The scene's own triangles beside the skins, in whole depth pixels and
+    // merged (each culls at least what the one before it does); occludees
+    // tested by their triangles where their box fails; the rectangle alone
+    // (section 6); one farthest depth per polygon (section 5); the drawn
+    // leaves' triangles with the switch-off's probes.
+    f.test_variants = {
+        StrategyTestVariant("skins:occluder-triangles=512"),
+        StrategyTestVariant("skins:occluder-triangles=512:coverage=merged").drawing_at_most("skins:occluder-triangles=512"),
+        StrategyTestVariant("skins:occluder-triangles=512:coverage=merged:occludee=triangles")
+            .drawing_at_most("skins:occluder-triangles=512:coverage=merged"),
+        StrategyTestVariant("skins:occluder-triangles=1024"),
+        StrategyTestVariant("skins:occluder-triangles=1024:coverage=merged"),
+        StrategyTestVariant("skins:occludee=triangles"),
+        StrategyTestVariant("skins:occludee=rect"),
+        StrategyTestVariant("skins:depth=polygon"),
+        StrategyTestVariant("skins-drawn:occludee=triangles"),
+        StrategyTestVariant("skins-drawn").with_probing_switch_off(),
+    };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<OccluderSkinCuller>(context, settings);
     };

@@ -319,6 +319,15 @@ StrategyFamily opacity_map_family()
         {"pc-mos", "selection=mos:compare=pixels"},
         {"mos-om", "selection=mos", true},
     };
+    // Temporal coherence; occluders chosen by a triangle budget; first-hit
+    // selection (section 4) with the switch-off's probes, on the maps and
+    // per pixel.
+    f.test_variants = {
+        StrategyTestVariant("om-ps").with_coherence(),
+        StrategyTestVariant("om-ps:occluder-triangle-budget=2048"),
+        StrategyTestVariant("om-fh").with_probing_switch_off(),
+        StrategyTestVariant("pc-fh").with_probing_switch_off(),
+    };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<OpacityMapCuller>(context, settings);
     };

@@ -120,6 +120,13 @@ StrategyFamily hp_occlusion_test_family()
     f.settings = {
         choice_setting("proxy", {"box", "triangles"}, "what stands for a leaf in the query: its box or its triangles"),
     };
+    // Leaves queried by their own triangles, which lie inside their box and
+    // show nowhere it does not (so they cull at least what boxes do); the
+    // switch-off's probes.
+    f.test_variants = {
+        StrategyTestVariant("hp:proxy=triangles").drawing_at_most("hp"),
+        StrategyTestVariant("hp").with_probing_switch_off(),
+    };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HpOcclusionTestCuller>(context, settings);
     };

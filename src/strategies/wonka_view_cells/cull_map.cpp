@@ -378,7 +378,7 @@ std::vector<std::optional<bool>> CullMap::visible_by_unit(const gl::OcclusionUni
         }
         glVertexPointer(3, GL_DOUBLE, 0, v.data());
         issued.push_back(std::make_unique<gl::AsyncOcclusionPass>(unit));
-        issued.back()->begin(gl::OcclusionMode::brief, tiles);
+        issued.back()->begin(gl::OcclusionMode::conservative, tiles);   // only nohc > 0 is read
         glDrawArrays(GL_QUADS, 0, GLsizei(v.size() / 3));   // the vertices are copied here
         issued.back()->end();
         issued_boxes.push_back(std::move(in_pass));

@@ -145,6 +145,9 @@ StrategyFamily hierarchical_occlusion_map_family()
         integer_setting("depth-regions", 64, 1, 4096, Role::cost, "depth estimation buffer regions, each way"),
     };
     f.occluder_sources = {{&skin_occluder_source()}, {&triangle_occluder_source()}};
+    // The scene's own triangles beside the skins in the occlusion map; the
+    // occluder count adapted from frame to frame along a route.
+    f.test_variants = {StrategyTestVariant("hom:occluder-triangles=512"), StrategyTestVariant("hom:adapt-budget=on")};
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalOcclusionMapCuller>(context, settings);
     };

@@ -165,6 +165,46 @@ TEST(Registry, PresetsAndFormerNames)
     EXPECT_EQ(choose_strategy("om-mos", {"database=/data/city.db"}).label(), "om-mos") << "files are not in labels";
 }
 
+// What the shared integration tests run of each family beyond its names
+// (StrategyTestVariant): variants of the family that declares them, exact,
+// each once, the bounds on what they draw naming what those tests run
+// beside them (a listed name, or a variant in batches of 16 without
+// policies across frames) with a positive share.
+TEST(Registry, FamiliesDeclareConservativeTestVariantsOfTheirOwn)
+{
+    const auto names = strategy_names();
+    std::set<std::string> comparable(names.begin(), names.end()), declared;
+    std::size_t variants = 0;
+    for (const StrategyFamily &family : strategy_families())
+        for (const StrategyTestVariant &v : family.test_variants)
+            if (v.batch == 16 && !v.coherence && !v.probing_switch_off)
+                comparable.insert(v.spec);
+    for (const StrategyFamily &family : strategy_families())
+        for (const StrategyTestVariant &v : family.test_variants) {
+            SCOPED_TRACE(v.spec);
+            ++variants;
+            const StrategyChoice choice = choose_strategy(v.spec);
+            EXPECT_EQ(choice.family, &family) << "declared by " << family.name;
+            EXPECT_TRUE(choice.conservative());
+            EXPECT_GE(v.batch, 1u);
+            EXPECT_TRUE(declared.insert(v.spec + "/" + std::to_string(v.batch) + (v.coherence ? "/coherent" : "") +
+                                        (v.probing_switch_off ? "/probes" : ""))
+                            .second)
+                << "declared twice";
+            for (const StrategyTestVariant::Bound &bound : v.draws_at_most) {
+                EXPECT_TRUE(comparable.count(bound.spec)) << "bounded by " << bound.spec << ", which the tests do not run";
+                EXPECT_GT(bound.share, 0.0);
+            }
+        }
+    EXPECT_GT(variants, 0u);
+    // A declaration the tests would not tell apart from a listed name is refused here.
+    for (const StrategyFamily &family : strategy_families())
+        for (const StrategyTestVariant &v : family.test_variants)
+            EXPECT_FALSE(v.batch == 16 && !v.coherence && !v.probing_switch_off &&
+                         std::count(names.begin(), names.end(), v.spec))
+                << v.spec << " is a listed name: the tests run it already";
+}
+
 TEST(Registry, DistinctStrategiesNameEachSettingsOnce)
 {
     const auto names = distinct_strategy_names();

@@ -115,6 +115,44 @@ TEST(OcclusionUnit, DepthTestedFragmentsOnlyPassWhereInFront)
     glDisable(GL_DEPTH_TEST);
 }
 
+// A conservative pass (GL_MESAX_occlusion_unit_conservative) answers each
+// tile with nohc 1 or 0 and an empty record otherwise, on the extension or,
+// where a context lacks it, on a brief pass: both say which tiles saw a
+// passing fragment.
+TEST(OcclusionUnit, ConservativeRecordsSayWhichTilesPassed)
+{
+    gl::OffscreenContext ctx(64, 64);
+    const gl::OcclusionUnit unit;
+    EXPECT_EQ(gl::OcclusionUnit::conservative_available(), gl::OcclusionUnit::available())
+        << "occu's drivers advertise the conservative mode wherever they have the unit";
+    pixel_exact_projection(64, 64);
+    glEnable(GL_DEPTH_TEST);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    rectangle(0, 0, 32, 64);   // window z 0.5 over the left half
+    glDepthFunc(GL_LESS);
+    gl::OcclusionPass pass(unit, gl::OcclusionMode::conservative, {{0, 0, 32, 64}, {32, 0, 64, 64}, {0, 0, 64, 64}});
+    glBegin(GL_QUADS);   // behind (window z 0.75) over the window
+    glVertex3f(0, 0, -0.5f);
+    glVertex3f(64, 0, -0.5f);
+    glVertex3f(64, 64, -0.5f);
+    glVertex3f(0, 64, -0.5f);
+    glEnd();
+    const auto &r = pass.end();
+    glDisable(GL_DEPTH_TEST);
+    ASSERT_EQ(r.size(), 3u);
+    const std::uint32_t expected_nohc[3] = {0, 1, 1};
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(r[i].nohc, expected_nohc[i]) << "tile " << i;
+        EXPECT_EQ(r[i].phc, 0u) << "tile " << i;
+        EXPECT_EQ(r[i].x_min, 0xFFFFFFFFu) << "tile " << i;
+        EXPECT_EQ(r[i].x_max, 0u) << "tile " << i;
+        EXPECT_TRUE(r[i].pixels.empty());
+    }
+    GLint mode = 0;
+    glGetIntegerv(GL_RENDER_MODE, &mode);
+    EXPECT_EQ(mode, GL_RENDER);
+}
+
 TEST(OcclusionUnit, MoreTilesThanTheUnitHasAreRefused)
 {
     gl::OffscreenContext ctx(8, 8);
