@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "culling/adaptive_culling.h"
+#include "culling/occlusion_question.h"
 #include "gl/occlusion_unit.h"
 #include "render/occlusion_proxy.h"
 #include "render/scene_renderer.h"
@@ -20,8 +21,7 @@ public:
         : renderer_(context.renderer), shared_passes_(settings.text("passes") == "shared"),
           leaf_triangles_(settings.text("proxy") == "triangles"), tolerance_(settings.number("tolerance")),
           max_test_area_(settings.number("max-test-area")),
-          mode_(tolerance_ == 0.0 && settings.text("answer") == "conservative" ? gl::OcclusionMode::conservative
-                                                                               : gl::OcclusionMode::brief)
+          mode_(occlusion_question(settings, tolerance_))
     {
         // The unit holds at most max_tiles tiles (4096 on occu's drivers): a
         // frame's disjoint footprints go into as few passes as it allows.
@@ -147,12 +147,7 @@ StrategyFamily occlusion_unit_family()
         choice_setting("proxy", {"box", "triangles"}, "what stands for a leaf in the test: its box or its triangles"),
         number_setting("tolerance", 0.0, 0.0, 0.999, Role::approximation,
                        "adaptive culling: occluded when NOHC <= tolerance * PHC"),
-        choice_setting("answer", {"conservative", "exact"},
-                       "at tolerance 0 the unit is asked only whether some fragment of a tile passed "
-                       "(GL_MESAX_occlusion_unit_conservative: llvmpipe rejects whole bins on coarse depth and "
-                       "stops on a tile that passed), or asked to count as at other tolerances; the answers "
-                       "are the same",
-                       Role::cost),
+        occlusion_answer_setting(),
         number_setting("max-test-area", 0.25, 0.0001, 1.0, Role::cost,
                        "boxes covering more of the viewport are taken as visible untested", "1"),
     };

@@ -10,6 +10,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "culling/occlusion_question.h"
 #include "spatial/hierarchy.h"
 #include "strategies/bittner_coherent_hierarchical_culling/occlusion_unit_async_culler.h"
 #include "traversal/traversal.h"
@@ -458,12 +459,7 @@ StrategyFamily coherent_hierarchical_culling_family()
                         "a previously visible leaf is re-tested every this many frames (from a random offset per node)", "1"),
         number_setting("tolerance", 0.0, 0.0, 0.999, Role::approximation,
                        "visibility threshold (CHC++): occluded when NOHC <= tolerance * PHC"),
-        choice_setting("answer", {"conservative", "exact"},
-                       "at tolerance 0 the unit is asked only whether some fragment of a tile passed "
-                       "(GL_MESAX_occlusion_unit_conservative: llvmpipe rejects whole bins on coarse depth and "
-                       "stops on a tile that passed), or asked to count as at other tolerances; the answers "
-                       "are the same",
-                       Role::cost),
+        occlusion_answer_setting(),
         integer_setting("bounds", 1, 1, 64, Role::cost,
                         "tight bounds: an inner node is tested by its descendants' boxes, level by level while they are at most this many", "1"),
         choice_setting("passes", {"disjoint", "shared"},

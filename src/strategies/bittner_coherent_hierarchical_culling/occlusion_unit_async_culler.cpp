@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "culling/adaptive_culling.h"
+#include "culling/occlusion_question.h"
 #include "gl/occlusion_unit.h"
 #include "render/occlusion_proxy.h"
 
@@ -16,8 +17,7 @@ class OcclusionUnitAsyncCuller final : public AsyncCuller {
 public:
     explicit OcclusionUnitAsyncCuller(const Settings &settings)
         : threshold_(settings.number("tolerance")), shared_passes_(settings.text("passes") == "shared"),
-          mode_(threshold_ == 0.0 && settings.text("answer") == "conservative" ? gl::OcclusionMode::conservative
-                                                                               : gl::OcclusionMode::brief)
+          mode_(occlusion_question(settings, threshold_))
     {
         // The unit holds at most max_tiles tiles; a batch is one pass.
         tiles_per_pass_ = std::size_t(std::clamp<long>(settings.integer("batch"), 1, std::max(unit_.max_tiles(), 1)));
