@@ -352,6 +352,21 @@ ou_init_async(int argc, char **argv, int width, int height)
     return a;
 }
 
+/* GL_MESAX_occlusion_unit_conservative, which softpipe and llvmpipe must
+ * advertise wherever they have the unit (a failure there, a skip
+ * elsewhere); it adds no entry points. */
+static inline void
+ou_require_conservative(void)
+{
+    if (piglit_is_extension_supported("GL_MESAX_occlusion_unit_conservative"))
+        return;
+    if (ou_driver_is_patched()) {
+        printf("%s must advertise GL_MESAX_occlusion_unit_conservative\n", (const char *)glGetString(GL_RENDERER));
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    piglit_require_extension("GL_MESAX_occlusion_unit_conservative");
+}
+
 /* Polls OCCLUSION_PASS_RESULT_AVAILABLE_MESAX until it is TRUE, for at most
  * about ten seconds (the spec: repeated calls eventually return TRUE). */
 static inline bool

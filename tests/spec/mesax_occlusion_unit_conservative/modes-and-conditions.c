@@ -110,14 +110,7 @@ int
 main(int argc, char **argv)
 {
     a = ou_init_async(argc, argv, W, H);
-    if (!piglit_is_extension_supported("GL_MESAX_occlusion_unit_conservative")) {
-        if (ou_driver_is_patched()) {
-            printf("%s must advertise GL_MESAX_occlusion_unit_conservative\n",
-                   (const char *)glGetString(GL_RENDERER));
-            piglit_report_result(PIGLIT_FAIL);
-        }
-        piglit_require_extension("GL_MESAX_occlusion_unit_conservative");
-    }
+    ou_require_conservative();
 
     set_up_scene();
     glRenderMode(GL_CONSERVATIVE_OCCLUSION_MESAX);

@@ -125,14 +125,7 @@ int
 main(int argc, char **argv)
 {
     ou_init(argc, argv, W, H);
-    if (!piglit_is_extension_supported("GL_MESAX_occlusion_unit_conservative")) {
-        if (ou_driver_is_patched()) {
-            printf("%s must advertise GL_MESAX_occlusion_unit_conservative\n",
-                   (const char *)glGetString(GL_RENDERER));
-            piglit_report_result(PIGLIT_FAIL);
-        }
-        piglit_require_extension("GL_MESAX_occlusion_unit_conservative");
-    }
+    ou_require_conservative();
     piglit_require_extension("GL_ARB_occlusion_query");
     const bool has_clamp = piglit_is_extension_supported("GL_ARB_depth_clamp");
     PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
