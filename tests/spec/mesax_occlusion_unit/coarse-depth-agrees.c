@@ -8,7 +8,8 @@
  * of 4x4 blocks cut by the framebuffer's edge): depth buffers of 16, 24,
  * 24 + 8 stencil and 32-bit float; occluders drawn in GL_RENDER between
  * passes, scissored depth clears; passes of whole-pixel rectangles or
- * random triangles under the 8 depth functions, with polygon offset, depth
+ * random triangles, and a triangle over the whole framebuffer (bins
+ * covered whole), under the 8 depth functions, with polygon offset, depth
  * clamping (geometry beyond near and far), gl_FragDepth, a discard, the
  * alpha test, a stencil test, polygon stipple, early fragment tests and
  * 4x multisampling, in brief and verbose mode, over tiles of 1x1 pixel,
@@ -121,6 +122,18 @@ static void
 draw_primitives(bool rects, bool beyond)
 {
     const float z0 = beyond ? -0.3f : 0.02f, z1 = beyond ? 1.3f : 0.98f;
+    /* One triangle over the whole framebuffer: llvmpipe bins it as
+     * covering whole bins, which the coarse test may reject for a bin
+     * before its blocks. Constant depth in the rectangle scenes, where it
+     * covers whole pixels as their rectangles do. */
+    if (rnd() < 0.5f) {
+        const float z = z0 + (z1 - z0) * rnd(), dz = rects ? 0.0f : 0.1f * (rnd() - 0.5f);
+        glBegin(GL_TRIANGLES);
+        glVertex3f(-W, -H, z);
+        glVertex3f(3 * W, -H, z + dz);
+        glVertex3f(-W, 3 * H, z - dz);
+        glEnd();
+    }
     if (rects) {
         for (int i = 0; i < 12; ++i) {
             glColor4f(1, 1, 1, rnd() < 0.5f ? 0.3f : 0.8f);
