@@ -23,6 +23,9 @@
 #        meson test --suite piglit --no-suite S...
 #    S being the suites of the parts after it: after the base part its tests
 #    alone, after the last part every one.
+# 0. Before building, the lines a patch adds that a later patch deletes or
+#    rewrites (tools/series-churn.py), as one line:
+#        series churn: N of M added lines deleted or rewritten by a later patch
 # Prints one line per patch and one per part:
 #     part SUITE (WHAT, patches I-J): N passed, N failed, N skipped, N known
 # Exits non-zero at the first patch that does not apply or build, and at the
@@ -132,6 +135,11 @@ print("\n".join(sorted(programs)))' "$occu_build")
     fi
     say "part $suite (${part_what[p]}, patches $first-$last): ${result#meson: }"
 }
+
+# --- 0. lines a patch adds that a later patch takes out again --------------------------
+# Printed, not checked: a series that shows its final design keeps this near 0
+# (tools/series-churn.py --verbose lists the lines).
+/usr/bin/python3 "$OCCU_ROOT/tools/series-churn.py" "$top/source" | tail -n 1 | while read -r line; do say "$line"; done
 
 # --- 1. each patch on the ones before it ----------------------------------------------
 pristine=$(git -C "$top/source" rev-list --max-parents=0 HEAD)
