@@ -16,7 +16,7 @@
  */
 #include <stdio.h>
 
-#include "piglit_util.h"
+#include "piglit-util-gl.h"
 
 enum { S = 64 };
 
@@ -109,8 +109,25 @@ point_sprite(void)
     glDisable(GL_POINT_SPRITE);
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 20;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     static const struct {
         const char *name;
@@ -121,8 +138,7 @@ main(int argc, char **argv)
     };
     enum piglit_result result = PIGLIT_PASS;
 
-    piglit_osmesa_init(argc, argv, S, S);
-    const GLuint program = piglit_build_fragment_program(
+    const GLuint program = piglit_build_simple_program(NULL,
         "#version 110\n"
         "void main() { gl_FragDepth = 0.2; gl_FragColor = vec4(1.0); }\n");
     if (!program) {

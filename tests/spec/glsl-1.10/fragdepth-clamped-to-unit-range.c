@@ -24,7 +24,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "piglit_util.h"
+#include "piglit-util-gl.h"
 
 enum { S = 64 };
 
@@ -71,7 +71,7 @@ check(const char *name, const char *depth, GLenum func, double clear, float stor
     char source[160];
     snprintf(source, sizeof(source),
              "#version 110\nvoid main() { gl_FragDepth = %s; gl_FragColor = vec4(1.0); }\n", depth);
-    const GLuint program = piglit_build_fragment_program(source);
+    const GLuint program = piglit_build_simple_program(NULL, source);
     if (!program) {
         printf("%s: the shader did not build\n", name);
         return false;
@@ -96,12 +96,28 @@ check(const char *name, const char *depth, GLenum func, double clear, float stor
     return ok;
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 20;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     bool ok = true;
 
-    piglit_osmesa_init(argc, argv, S, S);
     UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
     glMatrixMode(GL_PROJECTION);
     glLoadIdentity();

@@ -1297,8 +1297,25 @@ call_end_nv_condition(unsigned i)
     nv_cond = -1;
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     /* Taken out of argv: piglit's own options are the rest. */
     int kept = 1;
@@ -1310,9 +1327,9 @@ main(int argc, char **argv)
     }
     argc = kept;
     if (base_extension_only)
-        ou_init(argc, argv, W, H);
+        ou_init();
     else
-        a = ou_init_async(argc, argv, W, H);
+        a = ou_init_async();
     unsigned long calls = DEFAULT_CALLS;
     const char *calls_env = getenv("OU_RANDOM_CALLS");
     if (calls_env) {

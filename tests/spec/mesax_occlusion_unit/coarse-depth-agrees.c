@@ -263,7 +263,8 @@ static char **g_argv;
 static void
 scenes(struct transcript *t, bool rects_only, bool multisampled)
 {
-    ou_init(g_argc, g_argv, W, H);
+    piglit_osmesa_init(g_argc, g_argv, W, H);
+        ou_init();
     for (int i = 0; i < MAX_TILES; ++i)
         list_buffers[i] = malloc((8 + 2 * LIST_PAIRS) * sizeof(GLuint));
     build_programs();

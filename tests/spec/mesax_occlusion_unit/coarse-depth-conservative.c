@@ -169,7 +169,8 @@ setup(const struct ou_fbo_functions *fbo, const struct coarse_format *format, in
 static void
 init(void)
 {
-    ou_init(g_argc, g_argv, W, H);
+    piglit_osmesa_init(g_argc, g_argv, W, H);
+        ou_init();
     UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
     GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
     BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");

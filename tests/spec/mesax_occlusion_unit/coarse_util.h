@@ -223,7 +223,7 @@ coarse_build_program(const char *body, bool early)
              "out vec4 colour;\n"
              "void main() {\n%s  colour = gl_Color;\n}\n",
              early ? "layout(early_fragment_tests) in;\n" : "", body);
-    GLuint p = piglit_build_fragment_program(source);
+    GLuint p = piglit_build_simple_program(NULL, source);
     if (!p) {
         fprintf(stderr, "a fragment shader did not build\n");
         _exit(2);

@@ -70,10 +70,28 @@ get_pointer_is_invalid_enum(GLenum pname)
     return error == GL_INVALID_ENUM && untouched;
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = 8;
+    config.window_height = 8;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     /* First a compatibility context, where the extension must be. */
-    ou_init(argc, argv, 8, 8);
+    ou_init();
     GLint max_tiles = 0;
     glGetIntegerv(GL_MAX_OCCLUSION_TILES_MESAX, &max_tiles);
     subtest(max_tiles >= 64 && glGetError() == GL_NO_ERROR, "compat-get-max-tiles-at-least-64");

@@ -23,9 +23,27 @@ draw_layers(void)
         ou_rect(0, 0, SIZE, SIZE, 0.5f);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = SIZE;
+    config.window_height = SIZE;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, SIZE, SIZE);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     const char *renderer = (const char *)glGetString(GL_RENDERER);
     if (!strstr(renderer, "llvmpipe")) {
         printf("runs on llvmpipe only (softpipe would take minutes)\n");

@@ -136,14 +136,31 @@ static const struct {
     {"edge-centre-every-edge", 2.5f, 3.5f, 7.0f, 9.0f},
 };
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     const GLuint z = ou_depth(0.5);
     const GLuint width[OU_BRIEF_SIZE] = {11 * 32, 11 * 32, 0, 10, 0, 31, z, z};
     const GLuint origin[OU_BRIEF_SIZE] = {6 * 7, 6 * 7, 2, 7, 3, 9, z, z};
 
-    ou_init(argc, argv, W, H);
+    ou_init();
     glMatrixMode(GL_PROJECTION);
     glLoadIdentity();
     glMatrixMode(GL_MODELVIEW);

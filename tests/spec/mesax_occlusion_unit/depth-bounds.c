@@ -66,9 +66,27 @@ expect_record(const char *name, const GLuint expected[OU_BRIEF_SIZE])
     subtest(ou_check_record(name, rec[0], expected, 0) && piglit_check_gl_error(GL_NO_ERROR), name);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, W, H);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     const char *renderer = (const char *)glGetString(GL_RENDERER);
     if (!piglit_is_extension_supported("GL_EXT_depth_bounds_test")) {
         printf("%s does not expose GL_EXT_depth_bounds_test: the spec's interaction with it does not apply\n",

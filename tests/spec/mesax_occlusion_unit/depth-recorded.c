@@ -64,11 +64,29 @@ check(const char *name, void (*draw)(void), double expected_z)
     subtest(ok && piglit_check_gl_error(GL_NO_ERROR), name);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 20;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     glDepthMask(GL_FALSE);
-    const GLuint program = piglit_build_fragment_program("#version 110\n"
+    const GLuint program = piglit_build_simple_program(NULL, "#version 110\n"
                                                           "void main() {\n"
                                                           "  gl_FragDepth = 0.25;\n"
                                                           "  gl_FragColor = vec4(1.0);\n"

@@ -42,9 +42,27 @@ expect(const char *name, GLuint nohc, GLuint phc)
     subtest(ok && piglit_check_gl_error(GL_NO_ERROR), name);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     glDisable(GL_DEPTH_TEST);
     const GLuint lists = glGenLists(3);
 
@@ -95,8 +113,8 @@ int main(int argc, char **argv)
     GLint mode_after_call = 0;
     glGetIntegerv(GL_RENDER_MODE, &mode_after_call);
     static const unsigned char white[4] = {255, 255, 255, 255}, black[4] = {0, 0, 0, 255};
-    const bool drawn = piglit_probe_rect_rgba_ub(16, 16, 8, 8, white, 0) &&
-                       piglit_probe_rect_rgba_ub(0, 0, 16, 16, black, 0);
+    const bool drawn = ou_probe_rect_rgba_ub(16, 16, 8, 8, white, 0) &&
+                       ou_probe_rect_rgba_ub(0, 0, 16, 16, black, 0);
     if (mode_after_call != GL_RENDER || record[OU_NOHC] != OU_SENTINEL)
         printf("after glCallList: RENDER_MODE 0x%x, record word 0 0x%08x\n", mode_after_call, record[OU_NOHC]);
     subtest(pass_ran && drawn && mode_after_call == GL_RENDER && record[OU_NOHC] == OU_SENTINEL &&

@@ -36,9 +36,27 @@ scissor_box_is(GLint x, GLint y, GLint w, GLint h)
 
 static void draw_all(void) { ou_rect(0, 0, W, H, 0.5f); }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, W, H);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     glDisable(GL_DEPTH_TEST);
     const GLint tiles[12] = {0, 0, 1, 1, 0, 0, 2, 2, 0, 0, 3, 3};
 

@@ -106,12 +106,30 @@ early_program(const char *body)
              "layout(early_fragment_tests) in;\n"
              "void main() { %s }\n",
              body);
-    return piglit_build_fragment_program(source);
+    return piglit_build_simple_program(NULL, source);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 20;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
     GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
     BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");

@@ -181,7 +181,8 @@ run_child(const char *driver, const char *threads, struct results *out, int argc
         if (threads)
             setenv("LP_NUM_THREADS", threads, 1);
         /* The child reports through the pipe, not with piglit lines. */
-        ou_init(argc, argv, SIZE, SIZE);
+        piglit_osmesa_init(argc, argv, SIZE, SIZE);
+        ou_init();
         static struct results r;
         measure(&r);
         _exit(ou_write_all(fd[1], &r, sizeof(r)) ? 0 : 1);

@@ -106,9 +106,27 @@ other_thread_grows(void *arg)
     return (int)e;
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     f = ou_fbo_functions();
     contexts = ou_make_second_context(S);
 

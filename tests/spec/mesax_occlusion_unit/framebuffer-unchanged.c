@@ -92,9 +92,27 @@ write_everything(void)
     glDisable(GL_STENCIL_TEST);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, W, H);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     BlitFramebuffer = (PFNGLBLITFRAMEBUFFERPROC)piglit_get_proc_address("glBlitFramebuffer");
     ClearBufferfv = (PFNGLCLEARBUFFERFVPROC)piglit_get_proc_address("glClearBufferfv");
     if (!BlitFramebuffer || !ClearBufferfv) {

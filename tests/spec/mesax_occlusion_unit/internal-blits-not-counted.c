@@ -115,8 +115,25 @@ samples_in_render_mode(void (*command)(void))
     return samples;
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     static const GLuint nothing[OU_BRIEF_SIZE] = {0, 0, OU_EMPTY_MIN, OU_EMPTY_MAX, OU_EMPTY_MIN, OU_EMPTY_MAX,
                                                   OU_EMPTY_MIN, OU_EMPTY_MAX};
@@ -124,7 +141,7 @@ main(int argc, char **argv)
     const GLuint copied_depth[OU_BRIEF_SIZE] = {64, 64, 40, 47, 8, 15, z, z};
     const GLuint copied_stencil[OU_BRIEF_SIZE] = {64, 64, 40, 47, 8, 15, 0, 0}; /* z: not compared */
 
-    ou_init(argc, argv, W, H);
+    ou_init();
     GenerateMipmap = (PFNGLGENERATEMIPMAPPROC)piglit_get_proc_address("glGenerateMipmap");
     GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
     BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");

@@ -102,10 +102,28 @@ entry_points_work(void)
     return ok;
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = 16;
+    config.window_height = 16;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     const bool tiles_4096 = ou_take_flag(&argc, argv, "-tiles-4096");
-    ou_init_context(argc, argv, 16, 16);
+    ou_init_context();
 
     /* The initial state first: entry-points changes and restores it. */
     const GLint max_tiles = get_integer(GL_MAX_OCCLUSION_TILES_MESAX);

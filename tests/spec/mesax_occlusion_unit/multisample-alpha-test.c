@@ -51,9 +51,27 @@ expect(const char *name, GLuint nohc, GLuint phc)
     subtest(got_nohc == nohc && got_phc == phc && piglit_check_gl_error(GL_NO_ERROR), name);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 20;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     GLint max_samples = 0;
     glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
     if (max_samples < 4) {
@@ -61,7 +79,7 @@ int main(int argc, char **argv)
         piglit_report_result(PIGLIT_SKIP);
     }
     PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
-    const GLuint program = piglit_build_fragment_program(
+    const GLuint program = piglit_build_simple_program(NULL,
         "#version 110\n"
         "void main() { gl_FragColor = vec4(1.0, 1.0, 1.0, gl_FragCoord.x < 16.0 ? 0.0 : 1.0); }\n");
     if (!program) {

@@ -94,7 +94,7 @@ static bool
 triangle_pass(const char *source, bool alpha_to_coverage, GLuint record[OU_BRIEF_SIZE])
 {
     static const GLint tile[4] = {8, 8, 16, 16};
-    const GLuint p = piglit_build_fragment_program(source);
+    const GLuint p = piglit_build_simple_program(NULL, source);
     if (!p)
         return false;
     GLuint records[1][OU_BRIEF_SIZE];
@@ -129,7 +129,7 @@ counts_as_discarding(const char *name, const char *source, bool alpha_to_coverag
 static GLuint
 program(const char *name, const char *source)
 {
-    const GLuint p = piglit_build_fragment_program(source);
+    const GLuint p = piglit_build_simple_program(NULL, source);
     if (!p) {
         printf("%s: the shader did not build\n", name);
         subtest(false, name);
@@ -137,9 +137,27 @@ program(const char *name, const char *source)
     return p;
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 20;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     GLint max_samples = 0;
     glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
     if (max_samples < 4) {

@@ -106,9 +106,27 @@ accum(void)
     glAccum(GL_LOAD, 0.0f);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     /* A context with an accumulation buffer, which piglit_osmesa_init's
      * has not. */
     static const int attribs[] = {
@@ -188,9 +206,9 @@ int main(int argc, char **argv)
     glClearColor(1, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT);
     ok = counts_nothing("accum-has-no-effect", accum);
-    const bool colour_kept = piglit_probe_rect_rgba_ub(0, 0, S, S, red, 0);
+    const bool colour_kept = ou_probe_rect_rgba_ub(0, 0, S, S, red, 0);
     glAccum(GL_RETURN, 1.0f);
-    const bool accum_kept = piglit_probe_rect_rgba_ub(0, 0, S, S, green, 1);
+    const bool accum_kept = ou_probe_rect_rgba_ub(0, 0, S, S, green, 1);
     if (!colour_kept || !accum_kept)
         printf("accum-has-no-effect: the colour buffer %s, the accumulation buffer %s\n",
                colour_kept ? "kept" : "changed", accum_kept ? "kept" : "changed");

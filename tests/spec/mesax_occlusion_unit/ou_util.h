@@ -17,7 +17,12 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "piglit_util.h"
+#include "piglit-util-gl.h"
+/* piglit's GL header (piglit-dispatch.h) defines APIENTRY but not the
+ * APIENTRYP of <GL/glext.h> that the extension's header uses. */
+#ifndef APIENTRYP
+#define APIENTRYP APIENTRY *
+#endif
 #include "GL/mesax_occlusion_unit.h"
 
 /* Words of a record (spec section 5.X). */
@@ -91,13 +96,13 @@ ou_subtest_dependency_missing(const char *name, const char *extension)
         piglit_report_subtest_result(PIGLIT_SKIP, "%s", name);
 }
 
-/* Makes the context and sets the pixel-exact projection. Without the
- * extension the test fails on softpipe and llvmpipe, which must advertise it,
- * and skips elsewhere. */
+/* Sets the pixel-exact projection over the window (piglit_width x
+ * piglit_height, the test's config). Without the extension the test fails on
+ * softpipe and llvmpipe, which must advertise it, and skips elsewhere. */
 static inline void
-ou_init_context(int argc, char **argv, int width, int height)
+ou_init_context(void)
 {
-    piglit_osmesa_init(argc, argv, width, height);
+    const int width = piglit_width, height = piglit_height;
     if (!piglit_is_extension_supported("GL_MESAX_occlusion_unit")) {
         if (ou_driver_is_patched()) {
             printf("%s must advertise GL_MESAX_occlusion_unit\n", (const char *)glGetString(GL_RENDERER));
@@ -142,13 +147,38 @@ ou_resolve_entry_points(void)
 
 /* ou_init_context and ou_resolve_entry_points; fails without the entry points. */
 static inline void
-ou_init(int argc, char **argv, int width, int height)
+ou_init(void)
 {
-    ou_init_context(argc, argv, width, height);
+    ou_init_context();
     if (!ou_resolve_entry_points()) {
         printf("extension advertised but its entry points are missing\n");
         piglit_report_result(PIGLIT_FAIL);
     }
+}
+
+/* True when every pixel of the rectangle matches `expected` within
+ * `tolerance` per channel (0..255 units); prints the first mismatch. */
+static inline bool
+ou_probe_rect_rgba_ub(int x, int y, int w, int h, const unsigned char expected[4], int tolerance)
+{
+    unsigned char *pixels = malloc((size_t)w * (size_t)h * 4);
+    glReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+    for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+            const unsigned char *p = pixels + ((size_t)j * (size_t)w + (size_t)i) * 4;
+            for (int c = 0; c < 4; ++c) {
+                if (abs(p[c] - expected[c]) > tolerance) {
+                    printf("Probe at (%d, %d): expected %u %u %u %u, observed %u %u %u %u (tolerance %d)\n",
+                           x + i, y + j, expected[0], expected[1], expected[2], expected[3],
+                           p[0], p[1], p[2], p[3], tolerance);
+                    free(pixels);
+                    return false;
+                }
+            }
+        }
+    }
+    free(pixels);
+    return true;
 }
 
 static inline void
@@ -321,9 +351,9 @@ struct ou_async_functions {
  * must advertise beside GL_MESAX_occlusion_unit (a failure there, a skip
  * elsewhere), and its entry points (a failure when one is missing). */
 static inline struct ou_async_functions
-ou_init_async(int argc, char **argv, int width, int height)
+ou_init_async(void)
 {
-    ou_init(argc, argv, width, height);
+    ou_init();
     if (!piglit_is_extension_supported("GL_MESAX_occlusion_unit_async")) {
         if (ou_driver_is_patched()) {
             printf("%s must advertise GL_MESAX_occlusion_unit_async\n", (const char *)glGetString(GL_RENDERER));

@@ -232,12 +232,30 @@ heap_in_use(void)
     return info.uordblks + info.hblkhd;
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     /* One arena, so that mallinfo2 sees the rasterizer threads' memory. */
     mallopt(M_ARENA_MAX, 1);
     const bool tiles_4096 = ou_take_flag(&argc, argv, "-tiles-4096");
-    ou_init(argc, argv, W, H);
+    ou_init();
     glDisable(GL_DEPTH_TEST);
 
     /* Passes without fault injection first, and the draw in RENDER mode

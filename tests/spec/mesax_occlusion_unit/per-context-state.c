@@ -21,9 +21,27 @@ enum { S = 32 };
 
 static struct ou_two_contexts c;
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     c = ou_make_second_context(S);
     ou_make_b_current(&c);
     glViewport(0, 0, S, S);
@@ -83,7 +101,7 @@ int main(int argc, char **argv)
     f.BindFramebuffer(GL_FRAMEBUFFER, 0);
     const bool b_bound = piglit_check_gl_error(GL_NO_ERROR) && fbo != 0;
     static const unsigned char white[4] = {255, 255, 255, 255};
-    const bool b_drew = piglit_probe_rect_rgba_ub(0, 0, S, S, white, 0);
+    const bool b_drew = ou_probe_rect_rgba_ub(0, 0, S, S, white, 0);
     glFinish();
 
     ou_make_a_current(&c);

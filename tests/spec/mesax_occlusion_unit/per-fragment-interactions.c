@@ -129,9 +129,27 @@ test_conditional_render(void)
     }
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 20;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, W, H);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
 
     scene_with_occluder();
     ou_brief_pass(0, NULL, rec, draw_target);
@@ -196,7 +214,7 @@ int main(int argc, char **argv)
      * shader discards the columns x < 20, the left half of the object.
      * GLSL 1.10 is part of every context these tests run in, so a shader
      * that does not build fails the subtest. */
-    GLuint program = piglit_build_fragment_program(
+    GLuint program = piglit_build_simple_program(NULL,
         "#version 110\n"
         "void main() { if (gl_FragCoord.x < 20.0) discard; gl_FragColor = vec4(1.0); }\n");
     PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");

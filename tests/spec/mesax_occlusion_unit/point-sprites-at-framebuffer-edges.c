@@ -88,8 +88,25 @@ sprite_counts_agree(const char *edge, float size, float x, float y, bool vertica
     return ok;
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     static const float sizes[] = {4.0f, 8.0f, 33.0f};
     static const struct {
@@ -103,7 +120,7 @@ main(int argc, char **argv)
         {"right-edge", W - 0.5f, 75.5f, true},
     };
 
-    ou_init(argc, argv, W, H);
+    ou_init();
     GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
     BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
     EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");

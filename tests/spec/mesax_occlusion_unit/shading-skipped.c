@@ -137,7 +137,7 @@ test_atomic_counter_shaders(void)
              header);
     snprintf(plain, sizeof(plain), "%svoid main() { atomicCounterIncrement(fragments); gl_FragColor = vec4(1.0); }\n",
              header);
-    const GLuint programs[2] = {piglit_build_fragment_program(may_discard), piglit_build_fragment_program(plain)};
+    const GLuint programs[2] = {piglit_build_simple_program(NULL, may_discard), piglit_build_simple_program(NULL, plain)};
     if (!programs[0] || !programs[1]) {
         for (int i = 0; i < 3; ++i)
             subtest(false, names[i]);
@@ -259,7 +259,7 @@ test_image_store(void)
              "void main() { imageStore(stored, ivec2(gl_FragCoord.xy), uvec4(1u));"
              " if (gl_FragCoord.x < 0.0) discard; gl_FragColor = vec4(1.0); }\n",
              store_header);
-    const GLuint program = piglit_build_fragment_program(source);
+    const GLuint program = piglit_build_simple_program(NULL, source);
     PFNGLTEXSTORAGE2DPROC TexStorage2D = (PFNGLTEXSTORAGE2DPROC)piglit_get_proc_address("glTexStorage2D");
     PFNGLBINDIMAGETEXTUREPROC BindImageTexture =
         (PFNGLBINDIMAGETEXTUREPROC)piglit_get_proc_address("glBindImageTexture");
@@ -287,7 +287,7 @@ test_buffer_store(void)
              "void main() { stored[int(gl_FragCoord.y) * %d + int(gl_FragCoord.x)] = 1u;"
              " if (gl_FragCoord.x < 0.0) discard; gl_FragColor = vec4(1.0); }\n",
              store_header, W);
-    const GLuint program = piglit_build_fragment_program(source);
+    const GLuint program = piglit_build_simple_program(NULL, source);
     PFNGLGENBUFFERSPROC GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
     PFNGLBINDBUFFERPROC BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
     PFNGLBUFFERDATAPROC BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
@@ -299,9 +299,27 @@ test_buffer_store(void)
     subtest(program && stores_match_render(name, program, reset_buffer, read_buffer), name);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 20;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    ou_init(argc, argv, W, H);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    ou_init();
     UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
     have_statistics = piglit_is_extension_supported("GL_ARB_pipeline_statistics_query");
     if (have_statistics) {
@@ -314,8 +332,8 @@ int main(int argc, char **argv)
     glDisable(GL_DEPTH_TEST);
 
     const GLuint plain =
-        piglit_build_fragment_program("#version 110\nvoid main() { gl_FragColor = vec4(gl_FragCoord.x / 32.0); }\n");
-    const GLuint discards = piglit_build_fragment_program(
+        piglit_build_simple_program(NULL, "#version 110\nvoid main() { gl_FragColor = vec4(gl_FragCoord.x / 32.0); }\n");
+    const GLuint discards = piglit_build_simple_program(NULL,
         "#version 110\nvoid main() { if (gl_FragCoord.x < 16.0) discard; gl_FragColor = vec4(1.0); }\n");
     if (!plain || !discards) {
         printf("a GLSL 1.10 shader did not build\n");

@@ -191,11 +191,29 @@ huge_declarations(int grid, const char *name)
     free(small);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     /* One arena: see the comment at the top. */
     mallopt(M_ARENA_MAX, 1);
-    ou_init(argc, argv, W, H);
+    ou_init();
     glDisable(GL_DEPTH_TEST);
 
     huge_declarations(1, "one-tile-of-2^31-1-words");

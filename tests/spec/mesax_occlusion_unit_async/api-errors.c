@@ -59,13 +59,30 @@ ended_pass(GLuint pass)
     a.EndOcclusionPass();
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = 32;
+    config.window_height = 32;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     GLuint p[4];
     GLint params;
 
-    a = ou_init_async(argc, argv, 32, 32);
+    a = ou_init_async();
     expect(mode_is(GL_RENDER, 0), GL_NO_ERROR, "initial-state");
 
     /* Gen and Delete. */
@@ -176,7 +193,7 @@ main(int argc, char **argv)
     glClear(GL_COLOR_BUFFER_BIT);
     {
         const unsigned char green[4] = {0, 255, 0, 255};
-        expect(piglit_probe_rect_rgba_ub(0, 0, 32, 32, green, 0), GL_NO_ERROR,
+        expect(ou_probe_rect_rgba_ub(0, 0, 32, 32, green, 0), GL_NO_ERROR,
                "failed-conditional-begins-leave-rendering-unconditional");
     }
 

@@ -28,9 +28,27 @@
 
 enum { S = 32 };
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    const struct ou_async_functions a = ou_init_async(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    const struct ou_async_functions a = ou_init_async();
     glDisable(GL_DEPTH_TEST);
     GLuint pass, record[OU_BRIEF_SIZE];
     GLuint *buffers[1] = {record};
@@ -59,7 +77,7 @@ int main(int argc, char **argv)
         const bool rejected = piglit_check_gl_error(GL_INVALID_ENUM);
         glColor4ub(255, 0, 0, 255);
         ou_rect(0, 0, S, S, 0.5f);
-        const bool drawn = piglit_probe_rect_rgba_ub(0, 0, S, S, red, 0);
+        const bool drawn = ou_probe_rect_rgba_ub(0, 0, S, S, red, 0);
         a.EndConditionalRenderOcclusionTile();
         const bool nothing_begun = piglit_check_gl_error(GL_INVALID_OPERATION);
         subtest(rejected && drawn && nothing_begun, modes[i].name);

@@ -105,12 +105,29 @@ depth_everywhere(float expected)
     return true;
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     GLuint pass, query[2];
 
-    a = ou_init_async(argc, argv, W, H);
+    a = ou_init_async();
     GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
     BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
     EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
@@ -123,7 +140,7 @@ main(int argc, char **argv)
     GenQueries(2, query);
 
     discarded_draw(pass);
-    subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, blue, 0) && piglit_check_gl_error(GL_NO_ERROR),
+    subtest(ou_probe_rect_rgba_ub(0, 0, W, H, blue, 0) && piglit_check_gl_error(GL_NO_ERROR),
             "discarded-draw-draws-nothing");
 
     discarded_draw(pass);
@@ -131,7 +148,7 @@ main(int argc, char **argv)
     glClearDepth(0.75);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     {
-        const bool colour = piglit_probe_rect_rgba_ub(0, 0, W, H, red, 0);
+        const bool colour = ou_probe_rect_rgba_ub(0, 0, W, H, red, 0);
         const bool depth = depth_everywhere(0.75f);
         subtest(colour && depth && piglit_check_gl_error(GL_NO_ERROR), "clear-after-discarded-draw");
     }
@@ -139,7 +156,7 @@ main(int argc, char **argv)
     discarded_draw(pass);
     glColor4ub(255, 0, 0, 255);
     ou_rect(0, 0, W, H, 0.5f);
-    subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
+    subtest(ou_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
             "draw-after-discarded-draw");
 
     discarded_draw(pass);

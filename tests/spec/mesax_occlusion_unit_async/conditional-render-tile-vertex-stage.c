@@ -94,12 +94,29 @@ counted_quad(GLuint pass, bool conditional, GLuint tile, GLuint *primitives, GLu
         GetQueryObjectuiv(query[1], GL_QUERY_RESULT, invocations);
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     GLuint pass, primitives, invocations, drawn_primitives, drawn_invocations;
 
-    a = ou_init_async(argc, argv, W, H);
+    a = ou_init_async();
     GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
     BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
     EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");

@@ -83,13 +83,30 @@ check(GLuint pass, GLuint tile, GLuint min_nohc, float min_ratio, GLenum mode, b
     subtest(drawn == expected && piglit_check_gl_error(GL_NO_ERROR), name);
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     GLuint pass[2], records[2][OU_BRIEF_SIZE];
     GLint overflowed;
 
-    a = ou_init_async(argc, argv, W, H);
+    a = ou_init_async();
     a.GenOcclusionPasses(2, pass);
 
     /* Right after the pass ends, unread: QUERY_WAIT must wait. */
@@ -133,7 +150,7 @@ main(int argc, char **argv)
     a.BeginConditionalRenderOcclusionTile(pass[0], 0, 0, 0.0f, GL_QUERY_WAIT);
     glClear(GL_COLOR_BUFFER_BIT);
     a.EndConditionalRenderOcclusionTile();
-    subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
+    subtest(ou_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
             "clear-is-conditional");
 
     {
@@ -150,7 +167,7 @@ main(int argc, char **argv)
     a.EndConditionalRenderOcclusionTile();
     glColor4ub(255, 0, 0, 255);
     ou_rect(0, 0, W, H, 0.5f);
-    subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
+    subtest(ou_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
             "unconditional-after-end");
 
     {
@@ -164,7 +181,7 @@ main(int argc, char **argv)
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT);
         glCallList(list);
-        subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
+        subtest(ou_probe_rect_rgba_ub(0, 0, W, H, red, 0) && piglit_check_gl_error(GL_NO_ERROR),
                 "list-compiled-under-condition-draws-when-called");
 
         static const unsigned char black[4] = {0, 0, 0, 255};
@@ -172,7 +189,7 @@ main(int argc, char **argv)
         a.BeginConditionalRenderOcclusionTile(pass[0], 0, 0, 0.0f, GL_QUERY_WAIT);
         glCallList(list);
         a.EndConditionalRenderOcclusionTile();
-        subtest(piglit_probe_rect_rgba_ub(0, 0, W, H, black, 0) && piglit_check_gl_error(GL_NO_ERROR),
+        subtest(ou_probe_rect_rgba_ub(0, 0, W, H, black, 0) && piglit_check_gl_error(GL_NO_ERROR),
                 "list-called-under-condition-is-conditional");
     }
 

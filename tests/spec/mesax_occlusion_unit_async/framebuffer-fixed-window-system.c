@@ -26,9 +26,27 @@ enum { SMALL = 32, LARGE = 64 };
 
 static GLubyte small_pixels[SMALL * SMALL * 4];
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = LARGE;
+    config.window_height = LARGE;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    const struct ou_async_functions a = ou_init_async(argc, argv, LARGE, LARGE);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    const struct ou_async_functions a = ou_init_async();
     glDisable(GL_DEPTH_TEST);
     PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
     PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");

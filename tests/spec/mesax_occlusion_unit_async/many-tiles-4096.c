@@ -287,13 +287,31 @@ async_subtests(GLint *tiles, GLuint **buffers, GLsizei *sizes)
     a.DeleteOcclusionPasses(1, &pass);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = W;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     /* The window's size depends on the driver, known once a context is. */
     const char *driver = getenv("GALLIUM_DRIVER");
     S = driver && strcmp(driver, "softpipe") == 0 ? 1 : 8;
     W = N * S;
-    a = ou_init_async(argc, argv, W, W);
+    a = ou_init_async();
     const char *renderer = (const char *)glGetString(GL_RENDERER);
     if ((S == 1) != (strstr(renderer, "softpipe") != NULL)) {
         printf("GALLIUM_DRIVER %s, but the renderer is %s\n", driver ? driver : "(unset)", renderer);

@@ -207,9 +207,27 @@ opaque_draw_after_pass(void)
     f.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    a = ou_init_async(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    a = ou_init_async();
     passes_in_order();
     opaque_draw_after_pass();
     piglit_report_result(result);

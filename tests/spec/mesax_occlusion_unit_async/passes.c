@@ -127,13 +127,30 @@ untouched(const char *what, GLuint (*records)[LIST_WORDS])
     return true;
 }
 
-int
-main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = W;
+    config.window_height = H;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_NO_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
+{
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
 {
     static GLuint ref[TILES][LIST_WORDS], got[TILES][LIST_WORDS], other[TILES][LIST_WORDS];
     GLuint pass[8];
 
-    a = ou_init_async(argc, argv, W, H);
+    a = ou_init_async();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     a.GenOcclusionPasses(8, pass);

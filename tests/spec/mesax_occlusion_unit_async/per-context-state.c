@@ -24,9 +24,27 @@ enum { S = 32 };
 
 static struct ou_two_contexts c;
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    const struct ou_async_functions as = ou_init_async(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    const struct ou_async_functions as = ou_init_async();
     c = ou_make_second_context(S);
     ou_make_b_current(&c);
     glViewport(0, 0, S, S);
@@ -103,7 +121,7 @@ int main(int argc, char **argv)
     glClear(GL_COLOR_BUFFER_BIT);
     glColor4ub(255, 0, 0, 255);
     ou_rect(0, 0, S, S, 0.5f);
-    const bool b_drew_red = piglit_probe_rect_rgba_ub(0, 0, S, S, red, 0);
+    const bool b_drew_red = ou_probe_rect_rgba_ub(0, 0, S, S, red, 0);
     if (b_mode_async != GL_RENDER)
         printf("B's RENDER_MODE is 0x%x during A's BeginOcclusionPassMESAX pass\n", b_mode_async);
     subtest(b_mode_async == GL_RENDER && b_drew_red && piglit_check_gl_error(GL_NO_ERROR),

@@ -78,9 +78,27 @@ all_sentinels(const char *name, int words)
     return true;
 }
 
-int main(int argc, char **argv)
+PIGLIT_GL_TEST_CONFIG_BEGIN
+
+    config.supports_gl_compat_version = 10;
+    config.window_width = S;
+    config.window_height = S;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    config.khr_no_error_support = PIGLIT_HAS_ERRORS;
+
+PIGLIT_GL_TEST_CONFIG_END
+
+enum piglit_result
+piglit_display(void)
 {
-    a = ou_init_async(argc, argv, S, S);
+    /* piglit_init reports the result. */
+    return PIGLIT_FAIL;
+}
+
+void
+piglit_init(int argc, char **argv)
+{
+    a = ou_init_async();
     if (!piglit_is_extension_supported("GL_ARB_query_buffer_object")) {
         static const char *names[] = {"region-must-fit-whole", "misaligned-offset-writes-nothing", "region-gaps-kept",
                                       "verbose-equals-client-memory", "storage-flags-do-not-restrict",

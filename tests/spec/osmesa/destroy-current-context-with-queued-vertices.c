@@ -20,7 +20,7 @@
 
 #include <GL/osmesa.h>
 
-#include "piglit_util.h"
+#include "piglit-util-gl.h"
 
 enum { S = 32 };
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-#include "piglit_util.h"
+#include "piglit-util-gl.h"
 
 #include <GL/osmesa.h>
 #include <stdarg.h>
@@ -8,6 +8,7 @@
 #include <string.h>
 
 int piglit_width, piglit_height;
+unsigned int piglit_winsys_fbo;
 static OSMesaContext context;
 static unsigned char *color_buffer;
 /* Subtests reported so far, by result: a program whose subtests all
@@ -61,13 +62,82 @@ void piglit_report_subtest_result(enum piglit_result result, const char *format,
     fflush(stdout);
 }
 
-enum piglit_result piglit_merge_result(enum piglit_result a, enum piglit_result b)
+void piglit_merge_result(enum piglit_result *all, enum piglit_result subtest)
 {
-    if (a == PIGLIT_FAIL || b == PIGLIT_FAIL)
-        return PIGLIT_FAIL;
-    if (a == PIGLIT_PASS || b == PIGLIT_PASS)
-        return PIGLIT_PASS;
-    return PIGLIT_SKIP;
+    if (*all == PIGLIT_FAIL || subtest == PIGLIT_FAIL)
+        *all = PIGLIT_FAIL;
+    else if (*all == PIGLIT_PASS || subtest == PIGLIT_PASS)
+        *all = PIGLIT_PASS;
+    else
+        *all = PIGLIT_SKIP;
+}
+
+/* Makes the OSMesa context and its buffer of width x height current. */
+static void make_context(const struct piglit_gl_test_config *config)
+{
+    const int width = config->window_width, height = config->window_height;
+    const bool core = !config->supports_gl_compat_version && config->supports_gl_core_version;
+    int attribs[32], n = 0;
+    attribs[n++] = OSMESA_FORMAT;
+    attribs[n++] = OSMESA_RGBA;
+    attribs[n++] = OSMESA_DEPTH_BITS;
+    attribs[n++] = config->window_visual & PIGLIT_GL_VISUAL_DEPTH ? 24 : 0;
+    attribs[n++] = OSMESA_STENCIL_BITS;
+    attribs[n++] = config->window_visual & PIGLIT_GL_VISUAL_STENCIL ? 8 : 0;
+    attribs[n++] = OSMESA_ACCUM_BITS;
+    attribs[n++] = config->window_visual & PIGLIT_GL_VISUAL_ACCUM ? 16 : 0;
+    attribs[n++] = OSMESA_PROFILE;
+    attribs[n++] = core ? OSMESA_CORE_PROFILE : OSMESA_COMPAT_PROFILE;
+    if (core) {
+        attribs[n++] = OSMESA_CONTEXT_MAJOR_VERSION;
+        attribs[n++] = config->supports_gl_core_version / 10;
+        attribs[n++] = OSMESA_CONTEXT_MINOR_VERSION;
+        attribs[n++] = config->supports_gl_core_version % 10;
+    }
+    attribs[n] = 0;
+    context = OSMesaCreateContextAttribs(attribs, NULL);
+    color_buffer = calloc((size_t)width * (size_t)height, 4);
+    if (!context || !color_buffer ||
+        !OSMesaMakeCurrent(context, color_buffer, GL_UNSIGNED_BYTE, width, height)) {
+        fprintf(stderr, "could not make an OSMesa %s context of %dx%d\n", core ? "core" : "compatibility", width,
+                height);
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    OSMesaPixelStore(OSMESA_Y_UP, 1);
+    piglit_width = width;
+    piglit_height = height;
+    glViewport(0, 0, width, height);
+}
+
+void piglit_gl_test_config_init(struct piglit_gl_test_config *config)
+{
+    /* piglit's defaults. */
+    memset(config, 0, sizeof(*config));
+    config->window_width = 160;
+    config->window_height = 160;
+    config->window_visual = PIGLIT_GL_VISUAL_RGB | PIGLIT_GL_VISUAL_DOUBLE;
+}
+
+void piglit_gl_process_args(int *argc, char *argv[], struct piglit_gl_test_config *config)
+{
+    (void)config;
+    /* Every occu test is automatic and off-screen: -auto and -fbo change
+     * nothing here, and piglit_init does not see them, as under piglit. */
+    int kept = 1;
+    for (int i = 1; i < *argc; ++i) {
+        if (strcmp(argv[i], "-auto") && strcmp(argv[i], "-fbo"))
+            argv[kept++] = argv[i];
+    }
+    argv[kept] = NULL;
+    *argc = kept;
+}
+
+void piglit_gl_test_run(int argc, char *argv[], const struct piglit_gl_test_config *config)
+{
+    make_context(config);
+    if (config->init)
+        config->init(argc, argv);
+    piglit_report_result(config->display ? config->display() : PIGLIT_PASS);
 }
 
 void piglit_osmesa_init(int argc, char **argv, int width, int height)
@@ -78,21 +148,13 @@ void piglit_osmesa_init(int argc, char **argv, int width, int height)
             piglit_report_result(PIGLIT_FAIL);
         }
     }
-    static const int attribs[] = {
-        OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
-        OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0,
-    };
-    context = OSMesaCreateContextAttribs(attribs, NULL);
-    color_buffer = calloc((size_t)width * (size_t)height, 4);
-    if (!context || !color_buffer ||
-        !OSMesaMakeCurrent(context, color_buffer, GL_UNSIGNED_BYTE, width, height)) {
-        fprintf(stderr, "could not make an OSMesa context of %dx%d\n", width, height);
-        piglit_report_result(PIGLIT_FAIL);
-    }
-    OSMesaPixelStore(OSMESA_Y_UP, 1);
-    piglit_width = width;
-    piglit_height = height;
-    glViewport(0, 0, width, height);
+    struct piglit_gl_test_config config;
+    piglit_gl_test_config_init(&config);
+    config.supports_gl_compat_version = 10;
+    config.window_width = width;
+    config.window_height = height;
+    config.window_visual = PIGLIT_GL_VISUAL_RGBA | PIGLIT_GL_VISUAL_DEPTH | PIGLIT_GL_VISUAL_STENCIL;
+    make_context(&config);
 }
 
 bool piglit_is_extension_supported(const char *name)
@@ -128,28 +190,6 @@ bool piglit_check_gl_error(GLenum expected)
     return false;
 }
 
-bool piglit_probe_rect_rgba_ub(int x, int y, int w, int h, const unsigned char expected[4], int tolerance)
-{
-    unsigned char *pixels = malloc((size_t)w * (size_t)h * 4);
-    glReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
-    for (int j = 0; j < h; ++j) {
-        for (int i = 0; i < w; ++i) {
-            const unsigned char *p = pixels + ((size_t)j * (size_t)w + (size_t)i) * 4;
-            for (int c = 0; c < 4; ++c) {
-                if (abs(p[c] - expected[c]) > tolerance) {
-                    printf("Probe at (%d, %d): expected %u %u %u %u, observed %u %u %u %u (tolerance %d)\n",
-                           x + i, y + j, expected[0], expected[1], expected[2], expected[3],
-                           p[0], p[1], p[2], p[3], tolerance);
-                    free(pixels);
-                    return false;
-                }
-            }
-        }
-    }
-    free(pixels);
-    return true;
-}
-
 GLuint piglit_build_simple_program(const char *vertex_source, const char *fragment_source)
 {
     PFNGLCREATESHADERPROC CreateShader = (PFNGLCREATESHADERPROC)piglit_get_proc_address("glCreateShader");
@@ -167,7 +207,7 @@ GLuint piglit_build_simple_program(const char *vertex_source, const char *fragme
     if (!CreateShader || !ShaderSource || !CompileShader || !CreateProgram || !AttachShader || !LinkProgram ||
         !GetProgramiv || !GetProgramInfoLog || !GetShaderiv || !GetShaderInfoLog) {
         printf("GL 2.0 shader entry points are missing\n");
-        return 0;
+        piglit_report_result(PIGLIT_FAIL);
     }
     const struct {
         GLenum type;
@@ -187,7 +227,7 @@ GLuint piglit_build_simple_program(const char *vertex_source, const char *fragme
             char log[1024];
             GetShaderInfoLog(shader, sizeof(log), NULL, log);
             printf("%s shader failed to compile: %s\n", stages[i].name, log);
-            return 0;
+            piglit_report_result(PIGLIT_FAIL);
         }
         AttachShader(program, shader);
     }
@@ -198,12 +238,7 @@ GLuint piglit_build_simple_program(const char *vertex_source, const char *fragme
         char log[1024];
         GetProgramInfoLog(program, sizeof(log), NULL, log);
         printf("program failed to link: %s\n", log);
-        return 0;
+        piglit_report_result(PIGLIT_FAIL);
     }
     return program;
-}
-
-GLuint piglit_build_fragment_program(const char *source)
-{
-    return piglit_build_simple_program(NULL, source);
 }
