@@ -289,6 +289,11 @@ async_subtests(GLint *tiles, GLuint **buffers, GLsizei *sizes)
 
 PIGLIT_GL_TEST_CONFIG_BEGIN
 
+    /* The window's size depends on the driver (piglit_init checks that the
+     * context's renderer is the one named). */
+    const char *driver = getenv("GALLIUM_DRIVER");
+    S = driver && strcmp(driver, "softpipe") == 0 ? 1 : 8;
+    W = N * S;
     config.supports_gl_compat_version = 10;
     config.window_width = W;
     config.window_height = W;
@@ -307,10 +312,7 @@ piglit_display(void)
 void
 piglit_init(int argc, char **argv)
 {
-    /* The window's size depends on the driver, known once a context is. */
     const char *driver = getenv("GALLIUM_DRIVER");
-    S = driver && strcmp(driver, "softpipe") == 0 ? 1 : 8;
-    W = N * S;
     a = ou_init_async();
     const char *renderer = (const char *)glGetString(GL_RENDERER);
     if ((S == 1) != (strstr(renderer, "softpipe") != NULL)) {
