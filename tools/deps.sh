@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Installs the Debian packages occu needs, only those that are missing.
-# Usage: tools/deps.sh [build|demo|test|bench|all]   (default: all)
+# Usage: tools/deps.sh [build|demo|test|bench|piglit|all]   (default: all)
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
@@ -37,6 +37,14 @@ DEMO_PACKAGES=(
     gnuplot-nox
     ffmpeg              # tools/video-walkthrough.sh (tools/demo and its test)
 )
+# To build a piglit source tree with occu's tests in it and run them with its
+# own runner (tools/check-in-piglit.sh); not needed by tools/test.
+PIGLIT_PACKAGES=(
+    cmake
+    libwaffle-dev       # piglit's GL framework makes its contexts through waffle
+    python3-numpy       # piglit's CMake requires it (its generated tests)
+    python3-mako        # piglit's dispatch and profile generators
+)
 # To count instructions in benchmarks (wall time on shared machines is noisy).
 BENCH_PACKAGES=(
     valgrind
@@ -48,8 +56,9 @@ case $what in
     demo) wanted=("${BUILD_PACKAGES[@]}" "${DEMO_PACKAGES[@]}") ;;
     test) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${DEMO_PACKAGES[@]}") ;;
     bench) wanted=("${BUILD_PACKAGES[@]}" "${DEMO_PACKAGES[@]}" "${BENCH_PACKAGES[@]}") ;;
-    all) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${DEMO_PACKAGES[@]}" "${BENCH_PACKAGES[@]}") ;;
-    *) die "tools/deps.sh: unknown argument '$what' (expected build, demo, test, bench or all)" ;;
+    piglit) wanted=("${BUILD_PACKAGES[@]}" "${PIGLIT_PACKAGES[@]}") ;;
+    all) wanted=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${DEMO_PACKAGES[@]}" "${BENCH_PACKAGES[@]}" "${PIGLIT_PACKAGES[@]}") ;;
+    *) die "tools/deps.sh: unknown argument '$what' (expected build, demo, test, bench, piglit or all)" ;;
 esac
 
 # apt-get source needs a deb-src entry; derive one from the deb entries when none exists.
