@@ -18,9 +18,10 @@
 #   tests/spec/mesax_occlusion_unit/GL/mesax_occlusion_unit.h  (include/GL/'s
 #       header beside ou_util.h, which includes it; piglit's gl.xml has no tokens
 #       of these extensions)
-# and adds the three folders to tests/spec/CMakeLists.txt and their tests to
-# the profile tests/opengl.py (one group per extension, as piglit lists every
-# other extension's). `diff -r PIGLIT_TREE $OCCU_PIGLIT_WORK/src` is then the
+# adds the three folders to tests/spec/CMakeLists.txt and their tests to the
+# profile tests/opengl.py (one group per extension, as piglit lists every
+# other extension's), and the extensions' enums and commands to piglit's
+# registry/gl.xml, from which its dispatch is generated. `diff -r PIGLIT_TREE $OCCU_PIGLIT_WORK/src` is then the
 # merge request. Its build is $OCCU_PIGLIT_WORK/build (CMake, Ninja; only the
 # tests' executables and what they link, nice'd, -j2), kept between runs.
 #
@@ -76,10 +77,10 @@ nice ninja -C "$build" -j2 "${occu_targets[@]}" >"$work/occu-ninja.log" 2>&1 ||
 
 # --- the scratch copy of the piglit tree, with the tests in it ---------------------
 # Copied once per tree: again when its path, its git commit or the times of
-# the two files the script patches change. The files the script writes are
+# the three files the script patches change. The files the script writes are
 # replaced only when their content changes, so that the build stays
 # incremental.
-stamp="$tree $(git -C "$tree" rev-parse HEAD 2>/dev/null || true) $(stat -c %Y "$tree/tests/opengl.py" "$tree/tests/spec/CMakeLists.txt" | tr '\n' ' ')"
+stamp="$tree $(git -C "$tree" rev-parse HEAD 2>/dev/null || true) $(stat -c %Y "$tree/tests/opengl.py" "$tree/tests/spec/CMakeLists.txt" "$tree/registry/gl.xml" | tr '\n' ' ')"
 if [ "$(cat "$work/tree" 2>/dev/null)" != "$stamp" ] || [ ! -d "$src" ]; then
     say "copying $tree to $src"
     rm -rf "$src" "$work/build"
@@ -87,6 +88,7 @@ if [ "$(cat "$work/tree" 2>/dev/null)" != "$stamp" ] || [ ! -d "$src" ]; then
     (cd "$tree" && tar --exclude=./.git -cf - .) | (cd "$src" && tar -xf -)
     cp "$src/tests/opengl.py" "$work/opengl.py.orig"
     cp "$src/tests/spec/CMakeLists.txt" "$work/spec-CMakeLists.txt.orig"
+    cp "$src/registry/gl.xml" "$work/gl.xml.orig"
     echo "$stamp" >"$work/tree"
 fi
 put() {  # FILE DEST: copies FILE to DEST unless DEST has its content already
@@ -99,6 +101,11 @@ for ext in "${exts[@]}"; do
 done
 put "$OCCU_ROOT/include/GL/mesax_occlusion_unit.h" "$src/tests/spec/mesax_occlusion_unit/GL/mesax_occlusion_unit.h"
 
+# registry/gl.xml: the extensions' enums, commands and extension entries,
+# read from include/GL/mesax_occlusion_unit.h (names as spec/*.txt spell
+# them). piglit's dispatch resolves only the commands of its registry
+# (piglit_get_proc_address of any other name skips the test); Khronos's gl.xml,
+# from which piglit's is updated, has none of these extensions yet.
 # tests/spec/CMakeLists.txt: the three folders, in its alphabetical order.
 # tests/opengl.py: a group per extension, one test per piglit_add_executable of
 # its CMakeLists.gl.txt, plus the registrations with arguments that
@@ -112,6 +119,51 @@ def put(path, text):
     if old != text:
         with open(path, 'w') as f:
             f.write(text)
+
+header = open(os.path.join(root, 'include/GL/mesax_occlusion_unit.h')).read()
+camel = {}
+for spec in sorted(os.listdir(os.path.join(root, 'spec'))):
+    for word in re.findall(r'\b([A-Za-z]+MESAX)\(', open(os.path.join(root, 'spec', spec)).read()):
+        word = word[2:] if word.startswith('gl') else word
+        camel['GL' + word.upper()] = 'gl' + word
+enums, commands, extensions = [], [], []
+for ext, body in re.findall(r'#ifndef (GL_MESAX_\w+)\n#define \1 1\n(.*?)\n#endif', header, re.S):
+    required = []
+    for name, value in re.findall(r'^#define (GL_\w+)\s+(0x[0-9A-Fa-f]+)', body, re.M):
+        enums.append('        <enum value="%s" name="%s"/>\n' % (value, name))
+        required.append('                <enum name="%s"/>\n' % name)
+    for ret, pfn, params in re.findall(r'typedef (\w+) \(APIENTRYP PFN(\w+)PROC\)\(([^;]*)\);', body):
+        name = camel[pfn]
+        xml = ['        <command>\n', '            <proto>%s <name>%s</name></proto>\n' % (ret, name)]
+        for param in re.split(r'\s*,\s*', ' '.join(params.split())):
+            if param in ('', 'void'):
+                continue
+            m = re.match(r'(.*?)(\w+)$', param)
+            xml.append('            <param>%s <name>%s</name></param>\n' % (m.group(1).strip(), m.group(2)))
+        xml.append('        </command>\n')
+        commands.append((name, ''.join(xml)))
+        required.append('                <command name="%s"/>\n' % name)
+    extensions.append('        <extension name="%s" supported="gl">\n            <require>\n%s'
+                      '            </require>\n        </extension>\n' % (ext, ''.join(required)))
+registry = open(os.path.join(work, 'gl.xml.orig')).read()
+anchor = '    <!-- SECTION: GL command definitions. -->'
+assert anchor in registry and '    </commands>' in registry and '    </extensions>' in registry
+registry = registry.replace(anchor, '    <enums namespace="GL" group="MESAX_occlusion_unit" vendor="MESAX" '
+                            'comment="tokens of GL_MESAX_occlusion_unit*, in no vendor\'s block yet">\n'
+                            + ''.join(enums) + '    </enums>\n\n' + anchor, 1)
+# In the registry's (strcmp) order: piglit's dispatch looks names up by bsearch
+# in the order of the file.
+for name, xml in commands:
+    start = registry.index('    <commands namespace="GL">')
+    end = registry.index('    </commands>', start)
+    at = end
+    for m in re.finditer(r'        <command>\s*<proto>[^\n]*?<name>(\w+)</name>', registry[start:end]):
+        if m.group(1) > name:
+            at = start + m.start()
+            break
+    registry = registry[:at] + xml + registry[at:]
+registry = registry.replace('    </extensions>', ''.join(extensions) + '    </extensions>', 1)
+put(os.path.join(src, 'registry/gl.xml'), registry)
 
 lines = open(os.path.join(work, 'spec-CMakeLists.txt.orig')).read().splitlines(keepends=True)
 for ext in exts:
@@ -162,7 +214,8 @@ if [ ! -f "$work/build/build.ninja" ]; then
         -DPIGLIT_BUILD_GL_TESTS=ON -DPIGLIT_USE_WAFFLE=ON \
         -DPIGLIT_BUILD_GLES1_TESTS=OFF -DPIGLIT_BUILD_GLES2_TESTS=OFF -DPIGLIT_BUILD_GLES3_TESTS=OFF \
         -DPIGLIT_BUILD_CL_TESTS=OFF -DPIGLIT_BUILD_VK_TESTS=OFF -DPIGLIT_BUILD_GLX_TESTS=OFF \
-        -DPIGLIT_BUILD_WGL_TESTS=OFF -DPIGLIT_BUILD_DMA_BUF_TESTS=OFF) >"$work/cmake.log" 2>&1 ||
+        -DPIGLIT_BUILD_WGL_TESTS=OFF -DPIGLIT_BUILD_DMA_BUF_TESTS=OFF \
+        -DPIGLIT_USE_WAYLAND=OFF -DPIGLIT_USE_GBM=OFF) >"$work/cmake.log" 2>&1 ||
         { tail -n 30 "$work/cmake.log" >&2; die "piglit's CMake failed (log: $work/cmake.log)"; }
 fi
 piglit_targets=()

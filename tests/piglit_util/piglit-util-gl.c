@@ -7,6 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define PIGLIT_DEFINE_DISPATCH(type, name) type piglit_dispatch_##name;
+PIGLIT_OSMESA_UNEXPORTED(PIGLIT_DEFINE_DISPATCH)
+#undef PIGLIT_DEFINE_DISPATCH
+
 int piglit_width, piglit_height;
 unsigned int piglit_winsys_fbo;
 static OSMesaContext context;
@@ -104,6 +108,10 @@ static void make_context(const struct piglit_gl_test_config *config)
         piglit_report_result(PIGLIT_FAIL);
     }
     OSMesaPixelStore(OSMESA_Y_UP, 1);
+#define PIGLIT_RESOLVE_DISPATCH(type, name) \
+    piglit_dispatch_##name = (type)(void (*)(void))OSMesaGetProcAddress(#name);
+    PIGLIT_OSMESA_UNEXPORTED(PIGLIT_RESOLVE_DISPATCH)
+#undef PIGLIT_RESOLVE_DISPATCH
     piglit_width = width;
     piglit_height = height;
     glViewport(0, 0, width, height);
@@ -176,11 +184,6 @@ void piglit_require_extension(const char *name)
     }
 }
 
-void (*piglit_get_proc_address(const char *name))(void)
-{
-    return (void (*)(void))OSMesaGetProcAddress(name);
-}
-
 bool piglit_check_gl_error(GLenum expected)
 {
     GLenum got = glGetError();
@@ -192,18 +195,18 @@ bool piglit_check_gl_error(GLenum expected)
 
 GLuint piglit_build_simple_program(const char *vertex_source, const char *fragment_source)
 {
-    PFNGLCREATESHADERPROC CreateShader = (PFNGLCREATESHADERPROC)piglit_get_proc_address("glCreateShader");
-    PFNGLSHADERSOURCEPROC ShaderSource = (PFNGLSHADERSOURCEPROC)piglit_get_proc_address("glShaderSource");
-    PFNGLCOMPILESHADERPROC CompileShader = (PFNGLCOMPILESHADERPROC)piglit_get_proc_address("glCompileShader");
-    PFNGLCREATEPROGRAMPROC CreateProgram = (PFNGLCREATEPROGRAMPROC)piglit_get_proc_address("glCreateProgram");
-    PFNGLATTACHSHADERPROC AttachShader = (PFNGLATTACHSHADERPROC)piglit_get_proc_address("glAttachShader");
-    PFNGLLINKPROGRAMPROC LinkProgram = (PFNGLLINKPROGRAMPROC)piglit_get_proc_address("glLinkProgram");
-    PFNGLGETPROGRAMIVPROC GetProgramiv = (PFNGLGETPROGRAMIVPROC)piglit_get_proc_address("glGetProgramiv");
+    PFNGLCREATESHADERPROC CreateShader = glCreateShader;
+    PFNGLSHADERSOURCEPROC ShaderSource = glShaderSource;
+    PFNGLCOMPILESHADERPROC CompileShader = glCompileShader;
+    PFNGLCREATEPROGRAMPROC CreateProgram = glCreateProgram;
+    PFNGLATTACHSHADERPROC AttachShader = glAttachShader;
+    PFNGLLINKPROGRAMPROC LinkProgram = glLinkProgram;
+    PFNGLGETPROGRAMIVPROC GetProgramiv = glGetProgramiv;
     PFNGLGETPROGRAMINFOLOGPROC GetProgramInfoLog =
-        (PFNGLGETPROGRAMINFOLOGPROC)piglit_get_proc_address("glGetProgramInfoLog");
-    PFNGLGETSHADERIVPROC GetShaderiv = (PFNGLGETSHADERIVPROC)piglit_get_proc_address("glGetShaderiv");
+        glGetProgramInfoLog;
+    PFNGLGETSHADERIVPROC GetShaderiv = glGetShaderiv;
     PFNGLGETSHADERINFOLOGPROC GetShaderInfoLog =
-        (PFNGLGETSHADERINFOLOGPROC)piglit_get_proc_address("glGetShaderInfoLog");
+        glGetShaderInfoLog;
     if (!CreateShader || !ShaderSource || !CompileShader || !CreateProgram || !AttachShader || !LinkProgram ||
         !GetProgramiv || !GetProgramInfoLog || !GetShaderiv || !GetShaderInfoLog) {
         printf("GL 2.0 shader entry points are missing\n");

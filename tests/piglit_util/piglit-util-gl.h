@@ -38,8 +38,16 @@
 
 #include <stdbool.h>
 
+/* Tests call GL functions by name, as piglit's dispatch lets them; libOSMesa
+ * exports the core functions and most extensions'. (tests/meson.build
+ * defines it on the command line too, for tests that include <GL/glext.h>
+ * first, through <GL/osmesa.h>.) */
+#ifndef GL_GLEXT_PROTOTYPES
+#define GL_GLEXT_PROTOTYPES 1
+#endif
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include "GL/mesax_occlusion_unit.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -106,6 +114,43 @@ void piglit_gl_test_run(int argc, char *argv[], const struct piglit_gl_test_conf
         piglit_gl_test_run(argc, argv, &config);                    \
     }
 
+/* The GL functions the tests call that libOSMesa does not export (the
+ * GL_MESAX_occlusion_unit extensions' and three EXT ones): their names are
+ * pointers resolved (OSMesaGetProcAddress) once the context exists, NULL
+ * when the GL lacks one; piglit's dispatch makes every GL function name such
+ * a pointer (tools/check-in-piglit.sh adds the extensions' to its
+ * registry). */
+#define PIGLIT_OSMESA_UNEXPORTED(X)                                                   \
+    X(PFNGLSCISSORSMESAXPROC, glScissorsMESAX)                                      \
+    X(PFNGLOCCLUSIONBUFFERSMESAXPROC, glOcclusionBuffersMESAX)                      \
+    X(PFNGLGENOCCLUSIONPASSESMESAXPROC, glGenOcclusionPassesMESAX)                  \
+    X(PFNGLDELETEOCCLUSIONPASSESMESAXPROC, glDeleteOcclusionPassesMESAX)            \
+    X(PFNGLISOCCLUSIONPASSMESAXPROC, glIsOcclusionPassMESAX)                        \
+    X(PFNGLBEGINOCCLUSIONPASSMESAXPROC, glBeginOcclusionPassMESAX)                  \
+    X(PFNGLENDOCCLUSIONPASSMESAXPROC, glEndOcclusionPassMESAX)                      \
+    X(PFNGLGETOCCLUSIONPASSIVMESAXPROC, glGetOcclusionPassivMESAX)                  \
+    X(PFNGLBEGINCONDITIONALRENDEROCCLUSIONTILEMESAXPROC, glBeginConditionalRenderOcclusionTileMESAX) \
+    X(PFNGLENDCONDITIONALRENDEROCCLUSIONTILEMESAXPROC, glEndConditionalRenderOcclusionTileMESAX) \
+    X(PFNGLDEPTHBOUNDSEXTPROC, glDepthBoundsEXT)                                    \
+    X(PFNGLGETPOINTERINDEXEDVEXTPROC, glGetPointerIndexedvEXT)                      \
+    X(PFNGLGETPOINTERI_VEXTPROC, glGetPointeri_vEXT)
+#define PIGLIT_DECLARE_DISPATCH(type, name) extern type piglit_dispatch_##name;
+PIGLIT_OSMESA_UNEXPORTED(PIGLIT_DECLARE_DISPATCH)
+#undef PIGLIT_DECLARE_DISPATCH
+#define glScissorsMESAX piglit_dispatch_glScissorsMESAX
+#define glOcclusionBuffersMESAX piglit_dispatch_glOcclusionBuffersMESAX
+#define glGenOcclusionPassesMESAX piglit_dispatch_glGenOcclusionPassesMESAX
+#define glDeleteOcclusionPassesMESAX piglit_dispatch_glDeleteOcclusionPassesMESAX
+#define glIsOcclusionPassMESAX piglit_dispatch_glIsOcclusionPassMESAX
+#define glBeginOcclusionPassMESAX piglit_dispatch_glBeginOcclusionPassMESAX
+#define glEndOcclusionPassMESAX piglit_dispatch_glEndOcclusionPassMESAX
+#define glGetOcclusionPassivMESAX piglit_dispatch_glGetOcclusionPassivMESAX
+#define glBeginConditionalRenderOcclusionTileMESAX piglit_dispatch_glBeginConditionalRenderOcclusionTileMESAX
+#define glEndConditionalRenderOcclusionTileMESAX piglit_dispatch_glEndConditionalRenderOcclusionTileMESAX
+#define glDepthBoundsEXT piglit_dispatch_glDepthBoundsEXT
+#define glGetPointerIndexedvEXT piglit_dispatch_glGetPointerIndexedvEXT
+#define glGetPointeri_vEXT piglit_dispatch_glGetPointeri_vEXT
+
 /* Makes a compatibility-profile OSMesa context of width x height (RGBA8,
  * depth 24, stencil 8) and makes it current, for tests with a main of their
  * own. Fails the test (never returns) when that is impossible or argv holds
@@ -129,9 +174,6 @@ void piglit_merge_result(enum piglit_result *all, enum piglit_result subtest);
 /* Skips the test (never returns) unless the context advertises `name`. */
 void piglit_require_extension(const char *name);
 bool piglit_is_extension_supported(const char *name);
-
-/* Entry point of the current context's GL, or NULL. */
-void (*piglit_get_proc_address(const char *name))(void);
 
 /* A program of a GLSL vertex and fragment shader, either NULL for the
  * fixed-function stage. As piglit's, it fails the test (never returns) when

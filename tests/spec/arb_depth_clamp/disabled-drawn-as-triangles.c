@@ -145,7 +145,7 @@ piglit_init(int argc, char **argv)
         printf("the shader did not build\n");
         piglit_report_result(PIGLIT_FAIL);
     }
-    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    PFNGLUSEPROGRAMPROC UseProgram = glUseProgram;
     UseProgram(program);
     glMatrixMode(GL_PROJECTION);
     glLoadIdentity();

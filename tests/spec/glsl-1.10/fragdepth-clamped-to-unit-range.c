@@ -118,7 +118,7 @@ piglit_init(int argc, char **argv)
 {
     bool ok = true;
 
-    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    UseProgram = glUseProgram;
     glMatrixMode(GL_PROJECTION);
     glLoadIdentity();
     glOrtho(0, S, 0, S, -1, 1);
@@ -138,19 +138,19 @@ piglit_init(int argc, char **argv)
         piglit_report_result(PIGLIT_FAIL);
     }
     PFNGLGENFRAMEBUFFERSPROC GenFramebuffers =
-        (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
+        glGenFramebuffers;
     PFNGLBINDFRAMEBUFFERPROC BindFramebuffer =
-        (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
+        glBindFramebuffer;
     PFNGLGENRENDERBUFFERSPROC GenRenderbuffers =
-        (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
+        glGenRenderbuffers;
     PFNGLBINDRENDERBUFFERPROC BindRenderbuffer =
-        (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
+        glBindRenderbuffer;
     PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage =
-        (PFNGLRENDERBUFFERSTORAGEPROC)piglit_get_proc_address("glRenderbufferStorage");
+        glRenderbufferStorage;
     PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer =
-        (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
+        glFramebufferRenderbuffer;
     PFNGLCHECKFRAMEBUFFERSTATUSPROC CheckFramebufferStatus =
-        (PFNGLCHECKFRAMEBUFFERSTATUSPROC)piglit_get_proc_address("glCheckFramebufferStatus");
+        glCheckFramebufferStatus;
     GLuint fbo, rb[2];
     GenFramebuffers(1, &fbo);
     BindFramebuffer(GL_FRAMEBUFFER, fbo);

@@ -110,17 +110,6 @@ static PFNGLBEGINCONDITIONALRENDERPROC BeginConditionalRender;
 static PFNGLENDCONDITIONALRENDERPROC EndConditionalRender;
 static PFNGLWINDOWPOS3FPROC WindowPos3f;
 
-static void *
-entry_point(const char *name)
-{
-    void *f = piglit_get_proc_address(name);
-    if (!f) {
-        printf("%s is missing\n", name);
-        piglit_report_result(PIGLIT_FAIL);
-    }
-    return f;
-}
-
 /* Record buffers: buffer k is always storage[k]; every word holds the
  * sentinel except while a writing call is checked. */
 static GLuint storage[MAX_TILES][WORDS];
@@ -1340,24 +1329,24 @@ piglit_init(int argc, char **argv)
             piglit_report_result(PIGLIT_FAIL);
         }
     }
-    GenFramebuffers = entry_point("glGenFramebuffers");
-    DeleteFramebuffers = entry_point("glDeleteFramebuffers");
-    IsFramebuffer = entry_point("glIsFramebuffer");
-    BindFramebuffer = entry_point("glBindFramebuffer");
-    GenRenderbuffers = entry_point("glGenRenderbuffers");
-    DeleteRenderbuffers = entry_point("glDeleteRenderbuffers");
-    IsRenderbuffer = entry_point("glIsRenderbuffer");
-    BindRenderbuffer = entry_point("glBindRenderbuffer");
-    RenderbufferStorage = entry_point("glRenderbufferStorage");
-    FramebufferRenderbuffer = entry_point("glFramebufferRenderbuffer");
-    CheckFramebufferStatus = entry_point("glCheckFramebufferStatus");
-    GenQueries = entry_point("glGenQueries");
-    BeginQuery = entry_point("glBeginQuery");
-    EndQuery = entry_point("glEndQuery");
-    GetQueryObjectuiv = entry_point("glGetQueryObjectuiv");
-    BeginConditionalRender = entry_point("glBeginConditionalRender");
-    EndConditionalRender = entry_point("glEndConditionalRender");
-    WindowPos3f = entry_point("glWindowPos3f");
+    GenFramebuffers = glGenFramebuffers;
+    DeleteFramebuffers = glDeleteFramebuffers;
+    IsFramebuffer = glIsFramebuffer;
+    BindFramebuffer = glBindFramebuffer;
+    GenRenderbuffers = glGenRenderbuffers;
+    DeleteRenderbuffers = glDeleteRenderbuffers;
+    IsRenderbuffer = glIsRenderbuffer;
+    BindRenderbuffer = glBindRenderbuffer;
+    RenderbufferStorage = glRenderbufferStorage;
+    FramebufferRenderbuffer = glFramebufferRenderbuffer;
+    CheckFramebufferStatus = glCheckFramebufferStatus;
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
+    BeginConditionalRender = glBeginConditionalRender;
+    EndConditionalRender = glEndConditionalRender;
+    WindowPos3f = glWindowPos3f;
     /* Adjacency primitives need geometry shaders: OpenGL 3.2. */
     const char *version = (const char *)glGetString(GL_VERSION);
     int major = 0, minor = 0;

@@ -61,7 +61,7 @@ static GLuint programs[F_COUNT];
 static void
 build_programs(void)
 {
-    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    UseProgram = glUseProgram;
     const char *discard = "  if (mod(floor(gl_FragCoord.x) + floor(gl_FragCoord.y), 3.0) == 0.0) discard;\n";
     programs[F_FRAGDEPTH] = coarse_build_program("  gl_FragDepth = gl_FragCoord.z * 0.5 + 0.25;\n", false);
     programs[F_DISCARD] = coarse_build_program(discard, false);

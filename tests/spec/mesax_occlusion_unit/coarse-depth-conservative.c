@@ -171,11 +171,11 @@ init(void)
 {
     piglit_osmesa_init(g_argc, g_argv, W, H);
         ou_init();
-    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
-    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    UseProgram = glUseProgram;
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
 }
 
 /* Scenes whose passes the coarse test can reject. */

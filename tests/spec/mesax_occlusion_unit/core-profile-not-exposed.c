@@ -107,7 +107,7 @@ piglit_init(int argc, char **argv)
         printf("could not make a 3.2 core context on %s\n", ou_driver_is_patched() ? "the patched driver" : "this driver");
         piglit_report_result(ou_driver_is_patched() ? PIGLIT_FAIL : PIGLIT_SKIP);
     }
-    PFNGLGETSTRINGIPROC GetStringi = (PFNGLGETSTRINGIPROC)piglit_get_proc_address("glGetStringi");
+    PFNGLGETSTRINGIPROC GetStringi = glGetStringi;
     GLint count = 0;
     glGetIntegerv(GL_NUM_EXTENSIONS, &count);
     bool listed = false;
@@ -120,7 +120,7 @@ piglit_init(int argc, char **argv)
                 get_is_invalid_enum(GL_OCCLUSION_TILE_COUNT_MESAX, true),
             "core-getfloat-invalid-enum");
     subtest(get_is_invalid_enum(GL_OCCLUSION_BUFFER_COUNT_MESAX, false), "core-get-buffer-count-invalid-enum");
-    PFNGLGETINTEGERI_VPROC GetIntegeri_v = (PFNGLGETINTEGERI_VPROC)piglit_get_proc_address("glGetIntegeri_v");
+    PFNGLGETINTEGERI_VPROC GetIntegeri_v = glGetIntegeri_v;
     subtest(get_is_invalid_enum(GL_OCCLUSION_TILE_MESAX, false) &&
                 get_indexed_is_invalid_enum(GetIntegeri_v, GL_OCCLUSION_TILE_MESAX),
             "core-get-tile-invalid-enum");

@@ -62,8 +62,8 @@ widen_scissor_and_draw_target(void)
 static void
 disable_indexed_scissor_and_draw_target(void)
 {
-    PFNGLSCISSORINDEXEDPROC ScissorIndexed = (PFNGLSCISSORINDEXEDPROC)piglit_get_proc_address("glScissorIndexed");
-    PFNGLDISABLEIPROC Disablei = (PFNGLDISABLEIPROC)piglit_get_proc_address("glDisablei");
+    PFNGLSCISSORINDEXEDPROC ScissorIndexed = glScissorIndexed;
+    PFNGLDISABLEIPROC Disablei = glDisablei;
     ScissorIndexed(0, 0, 0, W, H);
     Disablei(GL_SCISSOR_TEST, 0);
     draw_target();

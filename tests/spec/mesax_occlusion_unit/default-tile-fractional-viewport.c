@@ -166,11 +166,11 @@ piglit_init(int argc, char **argv)
     glMatrixMode(GL_MODELVIEW);
     glLoadIdentity();
     glDisable(GL_DEPTH_TEST);
-    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
-    ViewportIndexedf = (PFNGLVIEWPORTINDEXEDFPROC)piglit_get_proc_address("glViewportIndexedf");
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
+    ViewportIndexedf = glViewportIndexedf;
     if (!piglit_is_extension_supported("GL_ARB_viewport_array") || !ViewportIndexedf) {
         ou_subtest_dependency_missing("fractional-width", "GL_ARB_viewport_array");
         ou_subtest_dependency_missing("fractional-origin", "GL_ARB_viewport_array");

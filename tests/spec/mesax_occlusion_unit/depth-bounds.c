@@ -95,11 +95,11 @@ piglit_init(int argc, char **argv)
             piglit_report_result(PIGLIT_FAIL);
         piglit_report_result(PIGLIT_SKIP);
     }
-    DepthBoundsProc DepthBoundsEXT = (DepthBoundsProc)piglit_get_proc_address("glDepthBoundsEXT");
-    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    DepthBoundsProc DepthBoundsEXT = glDepthBoundsEXT;
+    PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
     if (!DepthBoundsEXT || !GenQueries || !GetQueryObjectuiv || !BeginQuery || !EndQuery) {
         printf("glDepthBoundsEXT or a query entry point is missing\n");
         piglit_report_result(PIGLIT_FAIL);

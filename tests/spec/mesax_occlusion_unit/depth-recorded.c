@@ -91,7 +91,7 @@ piglit_init(int argc, char **argv)
                                                           "  gl_FragDepth = 0.25;\n"
                                                           "  gl_FragColor = vec4(1.0);\n"
                                                           "}\n");
-    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    PFNGLUSEPROGRAMPROC UseProgram = glUseProgram;
     if (!program) {
         printf("the GLSL 1.10 shader did not build\n");
         subtest(false, "shader-depth-test-off");

@@ -130,11 +130,11 @@ void
 piglit_init(int argc, char **argv)
 {
     ou_init();
-    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
-    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    UseProgram = glUseProgram;
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
     const GLuint discards =
         early_program("if (mod(floor(gl_FragCoord.x), 2.0) == 1.0) discard; gl_FragColor = vec4(1.0);");
     const GLuint transparent = early_program("gl_FragColor = vec4(1.0, 1.0, 1.0, 0.0);");

@@ -85,11 +85,11 @@ void
 piglit_init(int argc, char **argv)
 {
     ou_init();
-    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
-    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    UseProgram = glUseProgram;
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
     const GLuint early = build(true), late = build(false);
     if (!early || !late) {
         printf("a shader with layout(early_fragment_tests) or ARB_shader_image_load_store did not build\n");

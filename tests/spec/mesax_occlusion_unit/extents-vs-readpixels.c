@@ -91,18 +91,18 @@ bind_float_depth_fbo(void)
     if (!piglit_is_extension_supported("GL_ARB_framebuffer_object") ||
         !piglit_is_extension_supported("GL_ARB_depth_buffer_float"))
         return false;
-    PFNGLGENFRAMEBUFFERSPROC GenFramebuffers = (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
-    PFNGLBINDFRAMEBUFFERPROC BindFramebuffer = (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
+    PFNGLGENFRAMEBUFFERSPROC GenFramebuffers = glGenFramebuffers;
+    PFNGLBINDFRAMEBUFFERPROC BindFramebuffer = glBindFramebuffer;
     PFNGLGENRENDERBUFFERSPROC GenRenderbuffers =
-        (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
+        glGenRenderbuffers;
     PFNGLBINDRENDERBUFFERPROC BindRenderbuffer =
-        (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
+        glBindRenderbuffer;
     PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage =
-        (PFNGLRENDERBUFFERSTORAGEPROC)piglit_get_proc_address("glRenderbufferStorage");
+        glRenderbufferStorage;
     PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer =
-        (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
+        glFramebufferRenderbuffer;
     PFNGLCHECKFRAMEBUFFERSTATUSPROC CheckFramebufferStatus =
-        (PFNGLCHECKFRAMEBUFFERSTATUSPROC)piglit_get_proc_address("glCheckFramebufferStatus");
+        glCheckFramebufferStatus;
     GLuint fbo, rb[2];
     GenFramebuffers(1, &fbo);
     GenRenderbuffers(2, rb);

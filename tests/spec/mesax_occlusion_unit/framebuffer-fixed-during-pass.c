@@ -90,7 +90,7 @@ piglit_init(int argc, char **argv)
     ou_init();
     f = ou_fbo_functions();
     PFNGLGETRENDERBUFFERPARAMETERIVPROC GetRenderbufferParameteriv =
-        (PFNGLGETRENDERBUFFERPARAMETERIVPROC)piglit_get_proc_address("glGetRenderbufferParameteriv");
+        glGetRenderbufferParameteriv;
     glDisable(GL_DEPTH_TEST);
     GLuint unused[2];
     fbo[1] = ou_make_fbo(&f, 32, 32, 0, false, unused);
@@ -129,8 +129,7 @@ piglit_init(int argc, char **argv)
     begin_pass();
     f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
     GLint type = -1;
-    PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC GetAttachment = (PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC)
-        piglit_get_proc_address("glGetFramebufferAttachmentParameteriv");
+    PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC GetAttachment = glGetFramebufferAttachmentParameteriv;
     ok = glGetError() == GL_INVALID_OPERATION;
     end_pass();
     GetAttachment(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
@@ -155,8 +154,8 @@ piglit_init(int argc, char **argv)
 
     /* An error changes no state (Errors): the name is not deleted either. */
     PFNGLDELETEFRAMEBUFFERSPROC DeleteFramebuffers =
-        (PFNGLDELETEFRAMEBUFFERSPROC)piglit_get_proc_address("glDeleteFramebuffers");
-    PFNGLISFRAMEBUFFERPROC IsFramebuffer = (PFNGLISFRAMEBUFFERPROC)piglit_get_proc_address("glIsFramebuffer");
+        glDeleteFramebuffers;
+    PFNGLISFRAMEBUFFERPROC IsFramebuffer = glIsFramebuffer;
     begin_pass();
     DeleteFramebuffers(1, &fbo[0]);
     ok = glGetError() == GL_INVALID_OPERATION;
@@ -186,8 +185,8 @@ piglit_init(int argc, char **argv)
 
     /* fbo[0] now has the depth renderbuffer and the texture (colour 1). */
     PFNGLDELETERENDERBUFFERSPROC DeleteRenderbuffers =
-        (PFNGLDELETERENDERBUFFERSPROC)piglit_get_proc_address("glDeleteRenderbuffers");
-    PFNGLISRENDERBUFFERPROC IsRenderbuffer = (PFNGLISRENDERBUFFERPROC)piglit_get_proc_address("glIsRenderbuffer");
+        glDeleteRenderbuffers;
+    PFNGLISRENDERBUFFERPROC IsRenderbuffer = glIsRenderbuffer;
     f.BindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

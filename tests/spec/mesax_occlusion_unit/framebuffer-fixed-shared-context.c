@@ -75,7 +75,7 @@ static GLint
 renderbuffer_width(void)
 {
     PFNGLGETRENDERBUFFERPARAMETERIVPROC GetRenderbufferParameteriv =
-        (PFNGLGETRENDERBUFFERPARAMETERIVPROC)piglit_get_proc_address("glGetRenderbufferParameteriv");
+        glGetRenderbufferParameteriv;
     GLint width = -1;
     GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &width);
     return width;

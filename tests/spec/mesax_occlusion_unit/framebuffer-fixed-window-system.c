@@ -64,11 +64,11 @@ piglit_init(int argc, char **argv)
 {
     ou_init();
     glDisable(GL_DEPTH_TEST);
-    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+    PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
+    PFNGLENDQUERYPROC EndQuery = glEndQuery;
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
-        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+        glGetQueryObjectuiv;
     GLuint query;
     GenQueries(1, &query);
 

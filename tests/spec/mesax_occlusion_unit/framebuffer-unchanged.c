@@ -113,8 +113,8 @@ void
 piglit_init(int argc, char **argv)
 {
     ou_init();
-    BlitFramebuffer = (PFNGLBLITFRAMEBUFFERPROC)piglit_get_proc_address("glBlitFramebuffer");
-    ClearBufferfv = (PFNGLCLEARBUFFERFVPROC)piglit_get_proc_address("glClearBufferfv");
+    BlitFramebuffer = glBlitFramebuffer;
+    ClearBufferfv = glClearBufferfv;
     if (!BlitFramebuffer || !ClearBufferfv) {
         printf("needs glBlitFramebuffer and glClearBufferfv (GL 3.0)\n");
         piglit_report_result(PIGLIT_SKIP);

@@ -142,11 +142,11 @@ piglit_init(int argc, char **argv)
     const GLuint copied_stencil[OU_BRIEF_SIZE] = {64, 64, 40, 47, 8, 15, 0, 0}; /* z: not compared */
 
     ou_init();
-    GenerateMipmap = (PFNGLGENERATEMIPMAPPROC)piglit_get_proc_address("glGenerateMipmap");
-    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    GenerateMipmap = glGenerateMipmap;
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
     glGenTextures(1, &texture);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
 

@@ -78,7 +78,7 @@ piglit_init(int argc, char **argv)
         printf("%s has no 4x multisampling (GL_MAX_SAMPLES %d)\n", (const char *)glGetString(GL_RENDERER), max_samples);
         piglit_report_result(PIGLIT_SKIP);
     }
-    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    PFNGLUSEPROGRAMPROC UseProgram = glUseProgram;
     const GLuint program = piglit_build_simple_program(NULL,
         "#version 110\n"
         "void main() { gl_FragColor = vec4(1.0, 1.0, 1.0, gl_FragCoord.x < 16.0 ? 0.0 : 1.0); }\n");

@@ -152,11 +152,11 @@ piglit_init(int argc, char **argv)
      * So the count is the samples of the 8 x 16 pixels right of x = 16:
      * GL_SAMPLES of the framebuffer (4 asked for; the implementation may
      * give more) times 128. */
-    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+    PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
+    PFNGLENDQUERYPROC EndQuery = glEndQuery;
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
-        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+        glGetQueryObjectuiv;
     GLuint query, samples[2];
     GenQueries(1, &query);
     GLuint record[OU_BRIEF_SIZE];

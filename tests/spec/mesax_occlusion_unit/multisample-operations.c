@@ -164,10 +164,10 @@ piglit_init(int argc, char **argv)
         printf("%s has no 4x multisampling (GL_MAX_SAMPLES %d)\n", (const char *)glGetString(GL_RENDERER), max_samples);
         piglit_report_result(PIGLIT_SKIP);
     }
-    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
-    SampleCoverage = (PFNGLSAMPLECOVERAGEPROC)piglit_get_proc_address("glSampleCoverage");
-    SampleMaski = (PFNGLSAMPLEMASKIPROC)piglit_get_proc_address("glSampleMaski");
-    MinSampleShading = (PFNGLMINSAMPLESHADINGPROC)piglit_get_proc_address("glMinSampleShading");
+    UseProgram = glUseProgram;
+    SampleCoverage = glSampleCoverage;
+    SampleMaski = glSampleMaski;
+    MinSampleShading = glMinSampleShading;
     if (!UseProgram || !SampleCoverage || !SampleMaski || !MinSampleShading) {
         printf("glUseProgram, glSampleCoverage, glSampleMaski or glMinSampleShading is missing\n");
         piglit_report_result(PIGLIT_FAIL);

@@ -64,10 +64,10 @@ check(const char *name, const char *depth_expression, GLuint zmin, GLuint zmax)
         subtest(false, name);
         return false;
     }
-    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    PFNGLUSEPROGRAMPROC UseProgram = glUseProgram;
     PFNGLGETUNIFORMLOCATIONPROC GetUniformLocation =
-        (PFNGLGETUNIFORMLOCATIONPROC)piglit_get_proc_address("glGetUniformLocation");
-    PFNGLUNIFORM1FPROC Uniform1f = (PFNGLUNIFORM1FPROC)piglit_get_proc_address("glUniform1f");
+        glGetUniformLocation;
+    PFNGLUNIFORM1FPROC Uniform1f = glUniform1f;
     UseProgram(program);
     Uniform1f(GetUniformLocation(program, "zero"), 0.0f);
 
@@ -110,15 +110,15 @@ static void
 check_test(const char *name, GLenum func, double clear, GLuint expected, bool from_vertices)
 {
     const GLuint program = from_vertices ? vertex_nan_program() : program_for("nan");
-    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    PFNGLUSEPROGRAMPROC UseProgram = glUseProgram;
     PFNGLGETUNIFORMLOCATIONPROC GetUniformLocation =
-        (PFNGLGETUNIFORMLOCATIONPROC)piglit_get_proc_address("glGetUniformLocation");
-    PFNGLUNIFORM1FPROC Uniform1f = (PFNGLUNIFORM1FPROC)piglit_get_proc_address("glUniform1f");
-    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+        glGetUniformLocation;
+    PFNGLUNIFORM1FPROC Uniform1f = glUniform1f;
+    PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+    PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
+    PFNGLENDQUERYPROC EndQuery = glEndQuery;
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
-        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+        glGetQueryObjectuiv;
     if (!program) {
         printf("%s: the GLSL 1.10 shader did not build\n", name);
         subtest(false, name);

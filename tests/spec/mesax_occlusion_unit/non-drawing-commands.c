@@ -95,7 +95,7 @@ static void
 copy_image(void)
 {
     PFNGLCOPYIMAGESUBDATAPROC CopyImageSubData =
-        (PFNGLCOPYIMAGESUBDATAPROC)piglit_get_proc_address("glCopyImageSubData");
+        glCopyImageSubData;
     CopyImageSubData(source, GL_TEXTURE_2D, 0, 0, 0, 0, destination, GL_TEXTURE_2D, 0, 0, 0, 0, T, T, 1);
 }
 
@@ -149,10 +149,10 @@ piglit_init(int argc, char **argv)
     glOrtho(0, S, 0, S, 0, -1);
     glMatrixMode(GL_MODELVIEW);
     glDisable(GL_DEPTH_TEST);
-    GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
-    BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
-    BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
-    GetBufferSubData = (PFNGLGETBUFFERSUBDATAPROC)piglit_get_proc_address("glGetBufferSubData");
+    GenBuffers = glGenBuffers;
+    BindBuffer = glBindBuffer;
+    BufferData = glBufferData;
+    GetBufferSubData = glGetBufferSubData;
 
     static const GLubyte green[4] = {0, 255, 0, 255}, red[4] = {255, 0, 0, 255}, blue[4] = {0, 0, 255, 255},
                          black[4] = {0, 0, 0, 255};

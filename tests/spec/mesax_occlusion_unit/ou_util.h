@@ -140,8 +140,8 @@ ou_take_flag(int *argc, char **argv, const char *flag)
 static inline bool
 ou_resolve_entry_points(void)
 {
-    ScissorsMESAX = (PFNGLSCISSORSMESAXPROC)piglit_get_proc_address("glScissorsMESAX");
-    OcclusionBuffersMESAX = (PFNGLOCCLUSIONBUFFERSMESAXPROC)piglit_get_proc_address("glOcclusionBuffersMESAX");
+    ScissorsMESAX = glScissorsMESAX;
+    OcclusionBuffersMESAX = glOcclusionBuffersMESAX;
     return ScissorsMESAX && OcclusionBuffersMESAX;
 }
 
@@ -362,22 +362,23 @@ ou_init_async(void)
         piglit_require_extension("GL_MESAX_occlusion_unit_async");
     }
     struct ou_async_functions a;
-#define OU_RESOLVE(member, type, name)                              \
-    a.member = (type)piglit_get_proc_address(name);                 \
+/* Through the GL's dispatch (piglit's, or occu's for the functions OSMesa
+ * does not export): a missing entry point is NULL here, or fails the test
+ * at its first call under piglit. */
+#define OU_RESOLVE(member, function)                                \
+    a.member = function;                                            \
     if (!a.member) {                                                \
-        printf("extension advertised but %s is missing\n", name);   \
+        printf("extension advertised but %s is missing\n", #function); \
         piglit_report_result(PIGLIT_FAIL);                          \
     }
-    OU_RESOLVE(GenOcclusionPasses, PFNGLGENOCCLUSIONPASSESMESAXPROC, "glGenOcclusionPassesMESAX");
-    OU_RESOLVE(DeleteOcclusionPasses, PFNGLDELETEOCCLUSIONPASSESMESAXPROC, "glDeleteOcclusionPassesMESAX");
-    OU_RESOLVE(IsOcclusionPass, PFNGLISOCCLUSIONPASSMESAXPROC, "glIsOcclusionPassMESAX");
-    OU_RESOLVE(BeginOcclusionPass, PFNGLBEGINOCCLUSIONPASSMESAXPROC, "glBeginOcclusionPassMESAX");
-    OU_RESOLVE(EndOcclusionPass, PFNGLENDOCCLUSIONPASSMESAXPROC, "glEndOcclusionPassMESAX");
-    OU_RESOLVE(GetOcclusionPassiv, PFNGLGETOCCLUSIONPASSIVMESAXPROC, "glGetOcclusionPassivMESAX");
-    OU_RESOLVE(BeginConditionalRenderOcclusionTile, PFNGLBEGINCONDITIONALRENDEROCCLUSIONTILEMESAXPROC,
-               "glBeginConditionalRenderOcclusionTileMESAX");
-    OU_RESOLVE(EndConditionalRenderOcclusionTile, PFNGLENDCONDITIONALRENDEROCCLUSIONTILEMESAXPROC,
-               "glEndConditionalRenderOcclusionTileMESAX");
+    OU_RESOLVE(GenOcclusionPasses, glGenOcclusionPassesMESAX);
+    OU_RESOLVE(DeleteOcclusionPasses, glDeleteOcclusionPassesMESAX);
+    OU_RESOLVE(IsOcclusionPass, glIsOcclusionPassMESAX);
+    OU_RESOLVE(BeginOcclusionPass, glBeginOcclusionPassMESAX);
+    OU_RESOLVE(EndOcclusionPass, glEndOcclusionPassMESAX);
+    OU_RESOLVE(GetOcclusionPassiv, glGetOcclusionPassivMESAX);
+    OU_RESOLVE(BeginConditionalRenderOcclusionTile, glBeginConditionalRenderOcclusionTileMESAX);
+    OU_RESOLVE(EndConditionalRenderOcclusionTile, glEndConditionalRenderOcclusionTileMESAX);
 #undef OU_RESOLVE
     return a;
 }
@@ -438,18 +439,18 @@ static inline struct ou_fbo_functions
 ou_fbo_functions(void)
 {
     struct ou_fbo_functions f;
-    f.GenFramebuffers = (PFNGLGENFRAMEBUFFERSPROC)piglit_get_proc_address("glGenFramebuffers");
-    f.BindFramebuffer = (PFNGLBINDFRAMEBUFFERPROC)piglit_get_proc_address("glBindFramebuffer");
-    f.GenRenderbuffers = (PFNGLGENRENDERBUFFERSPROC)piglit_get_proc_address("glGenRenderbuffers");
-    f.BindRenderbuffer = (PFNGLBINDRENDERBUFFERPROC)piglit_get_proc_address("glBindRenderbuffer");
-    f.RenderbufferStorage = (PFNGLRENDERBUFFERSTORAGEPROC)piglit_get_proc_address("glRenderbufferStorage");
+    f.GenFramebuffers = glGenFramebuffers;
+    f.BindFramebuffer = glBindFramebuffer;
+    f.GenRenderbuffers = glGenRenderbuffers;
+    f.BindRenderbuffer = glBindRenderbuffer;
+    f.RenderbufferStorage = glRenderbufferStorage;
     f.RenderbufferStorageMultisample =
-        (PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC)piglit_get_proc_address("glRenderbufferStorageMultisample");
+        glRenderbufferStorageMultisample;
     f.FramebufferRenderbuffer =
-        (PFNGLFRAMEBUFFERRENDERBUFFERPROC)piglit_get_proc_address("glFramebufferRenderbuffer");
-    f.FramebufferTexture2D = (PFNGLFRAMEBUFFERTEXTURE2DPROC)piglit_get_proc_address("glFramebufferTexture2D");
-    f.CheckFramebufferStatus = (PFNGLCHECKFRAMEBUFFERSTATUSPROC)piglit_get_proc_address("glCheckFramebufferStatus");
-    f.BlitFramebuffer = (PFNGLBLITFRAMEBUFFERPROC)piglit_get_proc_address("glBlitFramebuffer");
+        glFramebufferRenderbuffer;
+    f.FramebufferTexture2D = glFramebufferTexture2D;
+    f.CheckFramebufferStatus = glCheckFramebufferStatus;
+    f.BlitFramebuffer = glBlitFramebuffer;
     return f;
 }
 

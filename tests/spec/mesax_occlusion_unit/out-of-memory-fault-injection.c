@@ -157,7 +157,7 @@ static bool
 two_tiles_set(const char *what)
 {
     GLint tile0[4] = {-1, -1, -1, -1}, tile1[4] = {-1, -1, -1, -1};
-    PFNGLGETINTEGERI_VPROC GetIntegeri_v = (PFNGLGETINTEGERI_VPROC)piglit_get_proc_address("glGetIntegeri_v");
+    PFNGLGETINTEGERI_VPROC GetIntegeri_v = glGetIntegeri_v;
     GetIntegeri_v(GL_OCCLUSION_TILE_MESAX, 0, tile0);
     GetIntegeri_v(GL_OCCLUSION_TILE_MESAX, 1, tile1);
     GLint size1 = -1;

@@ -54,11 +54,11 @@ test_any_samples_passed(void)
         ou_subtest_unsupported("any-samples-passed-query-in-pass", "GL_ARB_occlusion_query2");
         return;
     }
-    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+    PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
+    PFNGLENDQUERYPROC EndQuery = glEndQuery;
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
-        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+        glGetQueryObjectuiv;
     GLuint query[2], any[2] = {7, 7};
     void (*draws[2])(void) = {draw_occluded_half, draw_target};
     GLuint nohc[2];
@@ -86,17 +86,17 @@ static void
 test_conditional_render(void)
 {
     PFNGLBEGINCONDITIONALRENDERPROC BeginConditionalRender =
-        (PFNGLBEGINCONDITIONALRENDERPROC)piglit_get_proc_address("glBeginConditionalRender");
+        glBeginConditionalRender;
     PFNGLENDCONDITIONALRENDERPROC EndConditionalRender =
-        (PFNGLENDCONDITIONALRENDERPROC)piglit_get_proc_address("glEndConditionalRender");
+        glEndConditionalRender;
     if (!piglit_is_extension_supported("GL_NV_conditional_render")) {
         ou_subtest_unsupported("conditional-render-discarded-draw-not-counted", "GL_NV_conditional_render");
         ou_subtest_unsupported("conditional-render-passed-draw-counted", "GL_NV_conditional_render");
         return;
     }
-    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+    PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
+    PFNGLENDQUERYPROC EndQuery = glEndQuery;
     GLuint query[2];
     GenQueries(2, query);
     scene_with_occluder();
@@ -217,7 +217,7 @@ piglit_init(int argc, char **argv)
     GLuint program = piglit_build_simple_program(NULL,
         "#version 110\n"
         "void main() { if (gl_FragCoord.x < 20.0) discard; gl_FragColor = vec4(1.0); }\n");
-    PFNGLUSEPROGRAMPROC UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    PFNGLUSEPROGRAMPROC UseProgram = glUseProgram;
     if (program && UseProgram) {
         glDisable(GL_DEPTH_TEST);
         UseProgram(program);
@@ -231,11 +231,11 @@ piglit_init(int argc, char **argv)
     }
 
     /* An active SAMPLES_PASSED query counts what NOHC counts. */
-    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+    PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
+    PFNGLENDQUERYPROC EndQuery = glEndQuery;
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
-        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+        glGetQueryObjectuiv;
     GLuint query, samples = 0;
     scene_with_occluder();
     GenQueries(1, &query);

@@ -121,10 +121,10 @@ piglit_init(int argc, char **argv)
     };
 
     ou_init();
-    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
     glDisable(GL_DEPTH_TEST);
     glEnable(GL_POINT_SPRITE);
     glClearColor(0, 0, 0, 0);

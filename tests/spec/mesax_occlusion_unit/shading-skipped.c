@@ -99,10 +99,10 @@ check_invocations(GLuint program, GLenum mode, bool skipped, const char *name)
 static GLuint
 atomic_count(GLuint program, GLenum mode)
 {
-    PFNGLBUFFERSUBDATAPROC BufferSubData = (PFNGLBUFFERSUBDATAPROC)piglit_get_proc_address("glBufferSubData");
+    PFNGLBUFFERSUBDATAPROC BufferSubData = glBufferSubData;
     PFNGLGETBUFFERSUBDATAPROC GetBufferSubData =
-        (PFNGLGETBUFFERSUBDATAPROC)piglit_get_proc_address("glGetBufferSubData");
-    PFNGLMEMORYBARRIERPROC MemoryBarrier = (PFNGLMEMORYBARRIERPROC)piglit_get_proc_address("glMemoryBarrier");
+        glGetBufferSubData;
+    PFNGLMEMORYBARRIERPROC MemoryBarrier = glMemoryBarrier;
     const GLuint zero = 0;
     GLuint n = 0;
     BufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof(zero), &zero);
@@ -144,10 +144,10 @@ test_atomic_counter_shaders(void)
         return;
     }
 
-    PFNGLGENBUFFERSPROC GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
-    PFNGLBINDBUFFERPROC BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
-    PFNGLBUFFERDATAPROC BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
-    PFNGLBINDBUFFERBASEPROC BindBufferBase = (PFNGLBINDBUFFERBASEPROC)piglit_get_proc_address("glBindBufferBase");
+    PFNGLGENBUFFERSPROC GenBuffers = glGenBuffers;
+    PFNGLBINDBUFFERPROC BindBuffer = glBindBuffer;
+    PFNGLBUFFERDATAPROC BufferData = glBufferData;
+    PFNGLBINDBUFFERBASEPROC BindBufferBase = glBindBufferBase;
     GLuint buffer;
     GenBuffers(1, &buffer);
     BindBuffer(GL_ATOMIC_COUNTER_BUFFER, buffer);
@@ -219,7 +219,7 @@ reset_image(void)
 static void
 read_image(GLuint *words)
 {
-    PFNGLMEMORYBARRIERPROC MemoryBarrier = (PFNGLMEMORYBARRIERPROC)piglit_get_proc_address("glMemoryBarrier");
+    PFNGLMEMORYBARRIERPROC MemoryBarrier = glMemoryBarrier;
     MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     glBindTexture(GL_TEXTURE_2D, image_texture);
     glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, words);
@@ -229,16 +229,16 @@ static void
 reset_buffer(void)
 {
     static const GLuint zero[W * H];
-    PFNGLBUFFERSUBDATAPROC BufferSubData = (PFNGLBUFFERSUBDATAPROC)piglit_get_proc_address("glBufferSubData");
+    PFNGLBUFFERSUBDATAPROC BufferSubData = glBufferSubData;
     BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zero), zero);
 }
 
 static void
 read_buffer(GLuint *words)
 {
-    PFNGLMEMORYBARRIERPROC MemoryBarrier = (PFNGLMEMORYBARRIERPROC)piglit_get_proc_address("glMemoryBarrier");
+    PFNGLMEMORYBARRIERPROC MemoryBarrier = glMemoryBarrier;
     PFNGLGETBUFFERSUBDATAPROC GetBufferSubData =
-        (PFNGLGETBUFFERSUBDATAPROC)piglit_get_proc_address("glGetBufferSubData");
+        glGetBufferSubData;
     MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, W * H * sizeof(GLuint), words);
 }
@@ -260,9 +260,9 @@ test_image_store(void)
              " if (gl_FragCoord.x < 0.0) discard; gl_FragColor = vec4(1.0); }\n",
              store_header);
     const GLuint program = piglit_build_simple_program(NULL, source);
-    PFNGLTEXSTORAGE2DPROC TexStorage2D = (PFNGLTEXSTORAGE2DPROC)piglit_get_proc_address("glTexStorage2D");
+    PFNGLTEXSTORAGE2DPROC TexStorage2D = glTexStorage2D;
     PFNGLBINDIMAGETEXTUREPROC BindImageTexture =
-        (PFNGLBINDIMAGETEXTUREPROC)piglit_get_proc_address("glBindImageTexture");
+        glBindImageTexture;
     glGenTextures(1, &image_texture);
     glBindTexture(GL_TEXTURE_2D, image_texture);
     TexStorage2D(GL_TEXTURE_2D, 1, GL_R32UI, W, H);
@@ -288,10 +288,10 @@ test_buffer_store(void)
              " if (gl_FragCoord.x < 0.0) discard; gl_FragColor = vec4(1.0); }\n",
              store_header, W);
     const GLuint program = piglit_build_simple_program(NULL, source);
-    PFNGLGENBUFFERSPROC GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
-    PFNGLBINDBUFFERPROC BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
-    PFNGLBUFFERDATAPROC BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
-    PFNGLBINDBUFFERBASEPROC BindBufferBase = (PFNGLBINDBUFFERBASEPROC)piglit_get_proc_address("glBindBufferBase");
+    PFNGLGENBUFFERSPROC GenBuffers = glGenBuffers;
+    PFNGLBINDBUFFERPROC BindBuffer = glBindBuffer;
+    PFNGLBUFFERDATAPROC BufferData = glBufferData;
+    PFNGLBINDBUFFERBASEPROC BindBufferBase = glBindBufferBase;
     GenBuffers(1, &storage_buffer);
     BindBuffer(GL_SHADER_STORAGE_BUFFER, storage_buffer);
     BufferData(GL_SHADER_STORAGE_BUFFER, W * H * sizeof(GLuint), NULL, GL_DYNAMIC_DRAW);
@@ -320,13 +320,13 @@ void
 piglit_init(int argc, char **argv)
 {
     ou_init();
-    UseProgram = (PFNGLUSEPROGRAMPROC)piglit_get_proc_address("glUseProgram");
+    UseProgram = glUseProgram;
     have_statistics = piglit_is_extension_supported("GL_ARB_pipeline_statistics_query");
     if (have_statistics) {
-        PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-        BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-        EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-        GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+        PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+        BeginQuery = glBeginQuery;
+        EndQuery = glEndQuery;
+        GetQueryObjectuiv = glGetQueryObjectuiv;
         GenQueries(1, &query);
     }
     glDisable(GL_DEPTH_TEST);

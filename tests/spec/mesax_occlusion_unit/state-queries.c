@@ -643,17 +643,17 @@ piglit_init(int argc, char **argv)
         ou_subtest_unsupported("state-queries", "EXT_direct_state_access (GetPointerIndexedvEXT)");
         piglit_report_result(result);
     }
-    GetIntegeri_v = (PFNGLGETINTEGERI_VPROC)piglit_get_proc_address("glGetIntegeri_v");
-    GetBooleani_v = (PFNGLGETBOOLEANI_VPROC)piglit_get_proc_address("glGetBooleani_v");
-    GetPointerIndexedvEXT = (PFNGLGETPOINTERINDEXEDVEXTPROC)piglit_get_proc_address("glGetPointerIndexedvEXT");
-    GetPointeri_vEXT = (PFNGLGETPOINTERI_VEXTPROC)piglit_get_proc_address("glGetPointeri_vEXT");
+    GetIntegeri_v = glGetIntegeri_v;
+    GetBooleani_v = glGetBooleani_v;
+    GetPointerIndexedvEXT = glGetPointerIndexedvEXT;
+    GetPointeri_vEXT = glGetPointeri_vEXT;
     if (version >= 32) {
-        GetInteger64i_v = (PFNGLGETINTEGER64I_VPROC)piglit_get_proc_address("glGetInteger64i_v");
-        GetInteger64v = (PFNGLGETINTEGER64VPROC)piglit_get_proc_address("glGetInteger64v");
+        GetInteger64i_v = glGetInteger64i_v;
+        GetInteger64v = glGetInteger64v;
     }
     if (version >= 41 || piglit_is_extension_supported("GL_ARB_viewport_array")) {
-        GetFloati_v = (PFNGLGETFLOATI_VPROC)piglit_get_proc_address("glGetFloati_v");
-        GetDoublei_v = (PFNGLGETDOUBLEI_VPROC)piglit_get_proc_address("glGetDoublei_v");
+        GetFloati_v = glGetFloati_v;
+        GetDoublei_v = glGetDoublei_v;
     }
     if (!GetIntegeri_v || !GetBooleani_v || !GetPointerIndexedvEXT || !GetPointeri_vEXT) {
         printf("an entry point of OpenGL 3.0 or EXT_direct_state_access is missing\n");

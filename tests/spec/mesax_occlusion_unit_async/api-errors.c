@@ -208,10 +208,10 @@ piglit_init(int argc, char **argv)
     expect(mode_is(GL_RENDER, 0), GL_INVALID_OPERATION, "begin-conditional-pass-invalid-operation");
     if (piglit_is_extension_supported("GL_NV_conditional_render")) {
         PFNGLBEGINCONDITIONALRENDERNVPROC BeginConditionalRenderNV =
-            (PFNGLBEGINCONDITIONALRENDERNVPROC)piglit_get_proc_address("glBeginConditionalRenderNV");
-        PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-        PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-        PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+            glBeginConditionalRenderNV;
+        PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+        PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
+        PFNGLENDQUERYPROC EndQuery = glEndQuery;
         GLuint q;   /* a query NV_conditional_render would take */
         GenQueries(1, &q);
         BeginQuery(GL_SAMPLES_PASSED, q);
@@ -228,9 +228,9 @@ piglit_init(int argc, char **argv)
     if (!piglit_is_extension_supported("GL_ARB_query_buffer_object")) {
         ou_subtest_dependency_missing("query-buffer-offset-errors", "GL_ARB_query_buffer_object");
     } else {
-        PFNGLGENBUFFERSPROC GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
-        PFNGLBINDBUFFERPROC BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
-        PFNGLBUFFERDATAPROC BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
+        PFNGLGENBUFFERSPROC GenBuffers = glGenBuffers;
+        PFNGLBINDBUFFERPROC BindBuffer = glBindBuffer;
+        PFNGLBUFFERDATAPROC BufferData = glBufferData;
         GLuint buffer;
         GenBuffers(1, &buffer);
         BindBuffer(GL_QUERY_BUFFER, buffer);

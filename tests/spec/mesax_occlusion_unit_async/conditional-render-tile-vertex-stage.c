@@ -117,10 +117,10 @@ piglit_init(int argc, char **argv)
     GLuint pass, primitives, invocations, drawn_primitives, drawn_invocations;
 
     a = ou_init_async();
-    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
     if (!GenQueries || !BeginQuery || !EndQuery || !GetQueryObjectuiv) {
         ou_subtest_unsupported("discarded-draw-generates-no-primitives", "OpenGL 1.5 queries");
         piglit_report_result(result);

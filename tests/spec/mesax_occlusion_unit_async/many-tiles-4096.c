@@ -262,11 +262,11 @@ async_subtests(GLint *tiles, GLuint **buffers, GLsizei *sizes)
     if (!piglit_is_extension_supported("GL_ARB_query_buffer_object")) {
         ou_subtest_dependency_missing("query-buffer-4096-records", "GL_ARB_query_buffer_object");
     } else {
-        PFNGLGENBUFFERSPROC GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
-        PFNGLBINDBUFFERPROC BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
-        PFNGLBUFFERDATAPROC BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
+        PFNGLGENBUFFERSPROC GenBuffers = glGenBuffers;
+        PFNGLBINDBUFFERPROC BindBuffer = glBindBuffer;
+        PFNGLBUFFERDATAPROC BufferData = glBufferData;
         PFNGLGETBUFFERSUBDATAPROC GetBufferSubData =
-            (PFNGLGETBUFFERSUBDATAPROC)piglit_get_proc_address("glGetBufferSubData");
+            glGetBufferSubData;
         GLuint *back = malloc(4 * TILES * OU_BRIEF_SIZE), buffer;
         ou_fill(back, TILES * OU_BRIEF_SIZE);
         GenBuffers(1, &buffer);

@@ -171,10 +171,10 @@ void
 piglit_init(int argc, char **argv)
 {
     a = ou_init_async();
-    GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
-    GetQueryObjectuiv = (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+    GenQueries = glGenQueries;
+    BeginQuery = glBeginQuery;
+    EndQuery = glEndQuery;
+    GetQueryObjectuiv = glGetQueryObjectuiv;
     if (!GenQueries || !BeginQuery || !EndQuery || !GetQueryObjectuiv) {
         printf("OpenGL 1.5 occlusion queries are missing\n");
         piglit_report_result(PIGLIT_FAIL);

@@ -260,11 +260,11 @@ piglit_init(int argc, char **argv)
     if (!piglit_is_extension_supported("GL_ARB_query_buffer_object")) {
         ou_subtest_dependency_missing("query-buffer-records", "GL_ARB_query_buffer_object");
     } else {
-        PFNGLGENBUFFERSPROC GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
-        PFNGLBINDBUFFERPROC BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
-        PFNGLBUFFERDATAPROC BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
+        PFNGLGENBUFFERSPROC GenBuffers = glGenBuffers;
+        PFNGLBINDBUFFERPROC BindBuffer = glBindBuffer;
+        PFNGLBUFFERDATAPROC BufferData = glBufferData;
         PFNGLGETBUFFERSUBDATAPROC GetBufferSubData =
-            (PFNGLGETBUFFERSUBDATAPROC)piglit_get_proc_address("glGetBufferSubData");
+            glGetBufferSubData;
         enum { OFFSET = 16, WORDS = 4 + TILES * OU_BRIEF_SIZE + 4 };
         GLuint buffer, init[WORDS], back[WORDS];
         for (int w = 0; w < WORDS; ++w)

@@ -107,10 +107,10 @@ piglit_init(int argc, char **argv)
             ou_subtest_dependency_missing(names[i], "GL_ARB_query_buffer_object");
         piglit_report_result(result);
     }
-    GenBuffers = (PFNGLGENBUFFERSPROC)piglit_get_proc_address("glGenBuffers");
-    BindBuffer = (PFNGLBINDBUFFERPROC)piglit_get_proc_address("glBindBuffer");
-    BufferData = (PFNGLBUFFERDATAPROC)piglit_get_proc_address("glBufferData");
-    GetBufferSubData = (PFNGLGETBUFFERSUBDATAPROC)piglit_get_proc_address("glGetBufferSubData");
+    GenBuffers = glGenBuffers;
+    BindBuffer = glBindBuffer;
+    BufferData = glBufferData;
+    GetBufferSubData = glGetBufferSubData;
     glDisable(GL_DEPTH_TEST);
     GLuint pass;
     a.GenOcclusionPasses(1, &pass);
@@ -174,7 +174,7 @@ piglit_init(int argc, char **argv)
     if (!piglit_is_extension_supported("GL_ARB_buffer_storage")) {
         ou_subtest_dependency_missing("storage-flags-do-not-restrict", "GL_ARB_buffer_storage");
     } else {
-        PFNGLBUFFERSTORAGEPROC BufferStorage = (PFNGLBUFFERSTORAGEPROC)piglit_get_proc_address("glBufferStorage");
+        PFNGLBUFFERSTORAGEPROC BufferStorage = glBufferStorage;
         GLuint buffer, init[TILES * SIZE];
         for (int w = 0; w < TILES * SIZE; ++w)
             init[w] = OU_SENTINEL;

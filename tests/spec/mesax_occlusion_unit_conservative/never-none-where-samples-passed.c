@@ -145,11 +145,11 @@ piglit_init(int argc, char **argv)
     ou_require_conservative();
     piglit_require_extension("GL_ARB_occlusion_query");
     const bool has_clamp = piglit_is_extension_supported("GL_ARB_depth_clamp");
-    PFNGLGENQUERIESPROC GenQueries = (PFNGLGENQUERIESPROC)piglit_get_proc_address("glGenQueries");
-    PFNGLBEGINQUERYPROC BeginQuery = (PFNGLBEGINQUERYPROC)piglit_get_proc_address("glBeginQuery");
-    PFNGLENDQUERYPROC EndQuery = (PFNGLENDQUERYPROC)piglit_get_proc_address("glEndQuery");
+    PFNGLGENQUERIESPROC GenQueries = glGenQueries;
+    PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
+    PFNGLENDQUERYPROC EndQuery = glEndQuery;
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv =
-        (PFNGLGETQUERYOBJECTUIVPROC)piglit_get_proc_address("glGetQueryObjectuiv");
+        glGetQueryObjectuiv;
     GLuint query;
     GenQueries(1, &query);
 
