@@ -497,8 +497,8 @@ check_state(unsigned i)
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &got_draw);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &got_read);
     const GLint model_current = current >= 0 ? (GLint)names[current] : 0;
-    const GLint model_draw = draw_fb >= 0 ? (GLint)fbo[draw_fb].name : 0;
-    const GLint model_read = read_fb >= 0 ? (GLint)fbo[read_fb].name : 0;
+    const GLint model_draw = draw_fb >= 0 ? (GLint)fbo[draw_fb].name : (GLint)piglit_winsys_fbo;
+    const GLint model_read = read_fb >= 0 ? (GLint)fbo[read_fb].name : (GLint)piglit_winsys_fbo;
     if (((GLenum)got_mode != mode || got_tiles != tiles || got_current != model_current || got_draw != model_draw ||
          got_read != model_read) &&
         state_ok) {
@@ -1026,7 +1026,7 @@ call_bind_fbo(unsigned i)
     static const GLenum targets[] = {GL_FRAMEBUFFER, GL_DRAW_FRAMEBUFFER, GL_READ_FRAMEBUFFER};
     const GLenum target = targets[next(3)];
     const int s = pick_fb();
-    BindFramebuffer(target, s >= 0 ? fbo[s].name : 0);
+    BindFramebuffer(target, s >= 0 ? fbo[s].name : piglit_winsys_fbo);
     GLenum e = GL_NO_ERROR;
     if (target != GL_READ_FRAMEBUFFER && in_occlusion() && s != draw_fb)
         e = GL_INVALID_OPERATION;
@@ -1056,10 +1056,21 @@ call_delete_fbo(unsigned i)
         return;
     }
     expect(GL_NO_ERROR, "DeleteFramebuffers", i);
-    if (draw_fb == s)
+    /* The GL binds framebuffer 0 in place of a deleted bound one; the
+     * window's is piglit_winsys_fbo (piglit's FBO under -fbo), bound back
+     * here. The draw framebuffer of a pass cannot be deleted (above), and
+     * the read framebuffer may change in a pass. */
+    if (draw_fb == s) {
         draw_fb = -1;
-    if (read_fb == s)
+        if (piglit_winsys_fbo)
+            BindFramebuffer(GL_DRAW_FRAMEBUFFER, piglit_winsys_fbo);
+    }
+    if (read_fb == s) {
         read_fb = -1;
+        if (piglit_winsys_fbo)
+            BindFramebuffer(GL_READ_FRAMEBUFFER, piglit_winsys_fbo);
+    }
+    expect(GL_NO_ERROR, "BindFramebuffer of the window's in place of a deleted one", i);
     /* Its renderbuffers go too: the walk's slots own them. */
     for (int r = 0; r < 2; ++r)
         if (fbo[s].rb[r])
@@ -1128,6 +1139,10 @@ call_attach(unsigned i)
     const int r = (int)next(2);
     const bool detach = r == 1 && next(2);
     GLuint rb = 0;
+    /* Under piglit with -fbo the window's framebuffer is piglit's FBO, whose
+     * attachments can change: only a window-system framebuffer refuses. */
+    if (s < 0 && piglit_winsys_fbo)
+        return;
     if (s >= 0 && !detach) {
         rb = fbo[s].rb[r];
         if (!rb)

@@ -115,7 +115,7 @@ piglit_init(int argc, char **argv)
     glViewport(0, 0, 128, 128);
     expect("reallocated-fbo-first-pass-counts-whole", pass_over(128, true), 128 * 128);
 
-    f.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    f.BindFramebuffer(GL_FRAMEBUFFER, piglit_winsys_fbo);
     ou_rect(0, 0, 32, 32, 0.5f);
     glFinish();
     make_fbo(48);

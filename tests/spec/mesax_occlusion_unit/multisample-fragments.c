@@ -107,9 +107,9 @@ piglit_init(int argc, char **argv)
         glClearColor(0, 0, 0, 0);
         glClear(GL_COLOR_BUFFER_BIT);
         triangle(t, 0.5f);
-        f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, piglit_winsys_fbo);
         f.BlitFramebuffer(0, 0, S, S, 0, 0, S, S, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        f.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        f.BindFramebuffer(GL_FRAMEBUFFER, piglit_winsys_fbo);
         static GLubyte pixels[S * S * 4];
         glReadPixels(0, 0, S, S, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
         for (int i = 0; i < S * S; ++i)

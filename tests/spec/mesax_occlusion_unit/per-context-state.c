@@ -98,7 +98,7 @@ piglit_init(int argc, char **argv)
     const struct ou_fbo_functions f = ou_fbo_functions();
     GLuint rb[2];
     const GLuint fbo = ou_make_fbo(&f, S, S, 0, false, rb);
-    f.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    f.BindFramebuffer(GL_FRAMEBUFFER, piglit_winsys_fbo);
     const bool b_bound = piglit_check_gl_error(GL_NO_ERROR) && fbo != 0;
     static const unsigned char white[4] = {255, 255, 255, 255};
     const bool b_drew = ou_probe_rect_rgba_ub(0, 0, S, S, white, 0);

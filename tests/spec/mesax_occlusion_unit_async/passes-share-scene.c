@@ -204,7 +204,7 @@ opaque_draw_after_pass(void)
     subtest(no_error && overflowed == 0 && check_pass("colour-only", brief[0], e),
             "no-depth-buffer-then-opaque-draw");
     a.DeleteOcclusionPasses(1, &pass);
-    f.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    f.BindFramebuffer(GL_FRAMEBUFFER, piglit_winsys_fbo);
 }
 
 PIGLIT_GL_TEST_CONFIG_BEGIN
