@@ -254,7 +254,6 @@ for line in open(commands):
 root.set('count', str(n))
 with gzip.open(out, 'wt') as f:
     f.write(et.tostring(root, encoding='unicode'))
-print(n)
 EOF
 count=$(grep -c ' ::: ' "$commands")
 [ "$count" -gt 0 ] || die "the patched tests/opengl.py lists no spec@mesax_occlusion_unit* test"
@@ -311,13 +310,16 @@ for driver in ('softpipe', 'llvmpipe'):
     print('%s: %d tests, %d subtests' % (driver, len(tests), len(subtests)))
     print('  piglit framework: %s' % counts(p))
     print('  occu framework:   %s' % counts(o))
+    skipped = [n for n in tests if p[n] == 'skip' and o.get(n) == 'skip']
+    if skipped:
+        print('  skipped by both: %s' % ', '.join(n.split('@', 1)[1] for n in skipped))
     for n in sorted(set(p) | set(o)):
         a, b = p.get(n, 'not run'), o.get(n, 'not run')
         if a != b:
             differences += 1
             print('  DIFFERENT %s: piglit %s, occu %s' % (n, a, b))
 if differences:
-    print('%d results differ between piglit\'s framework and occu\'s' % differences)
+    print('%d results differ between piglit\'s framework and occu\'s (results: %s)' % (differences, results))
     sys.exit(1)
 print('every test and subtest has the same result on piglit\'s framework and occu\'s, under both drivers')
 EOF
