@@ -18,6 +18,9 @@
 #   tests/spec/mesax_occlusion_unit/GL/mesax_occlusion_unit.h  (include/GL/'s
 #       header beside ou_util.h, which includes it; piglit's gl.xml has no tokens
 #       of these extensions)
+#   the upstream behaviour tests of tests/spec/arb_occlusion_query/,
+#       arb_depth_clamp/ and glsl-1.10/ into piglit's folders of those features
+#       (glsl-1.10/execution/), each added to that folder's CMakeLists.gl.txt
 # adds the three folders to tests/spec/CMakeLists.txt and their tests to the
 # profile tests/opengl.py (one group per extension, as piglit lists every
 # other extension's), and the extensions' enums and commands to piglit's
@@ -60,13 +63,21 @@ work=$(cd "$work" && pwd)
 src=$work/src
 
 exts=(mesax_occlusion_unit mesax_occlusion_unit_async mesax_occlusion_unit_conservative)
+# The upstream behaviour the extensions' records follow (the series' fixes):
+# occu's folder, and the folder of piglit's tree that tests that feature.
+declare -A upstream=([arb_occlusion_query]=tests/spec/arb_occlusion_query
+                     [arb_depth_clamp]=tests/spec/arb_depth_clamp
+                     [glsl-1.10]=tests/spec/glsl-1.10/execution)
+# The tree's files the script patches, kept as they were in $work/orig.
+patched=(tests/opengl.py tests/spec/CMakeLists.txt registry/gl.xml)
+for folder in "${upstream[@]}"; do patched+=("$folder/CMakeLists.gl.txt"); done
 
 # --- occu's own build of the tests ---------------------------------------------
 if [ ! -f "$build/build.ninja" ]; then
     OCCU_MESA_PREFIX=$prefix OCCU_BUILD_DIR=$build "$OCCU_ROOT/tools/build.sh" >/dev/null
 fi
 occu_targets=()
-for ext in "${exts[@]}"; do
+for ext in "${exts[@]}" "${!upstream[@]}"; do
     for c in "$OCCU_ROOT"/tests/spec/"$ext"/*.c; do
         occu_targets+=("tests/occu-$ext-$(basename "$c" .c)")
     done
@@ -77,18 +88,20 @@ nice ninja -C "$build" -j2 "${occu_targets[@]}" >"$work/occu-ninja.log" 2>&1 ||
 
 # --- the scratch copy of the piglit tree, with the tests in it ---------------------
 # Copied once per tree: again when its path, its git commit or the times of
-# the three files the script patches change. The files the script writes are
+# the files the script patches change. The files the script writes are
 # replaced only when their content changes, so that the build stays
 # incremental.
-stamp="$tree $(git -C "$tree" rev-parse HEAD 2>/dev/null || true) $(stat -c %Y "$tree/tests/opengl.py" "$tree/tests/spec/CMakeLists.txt" "$tree/registry/gl.xml" | tr '\n' ' ')"
+stamp="$tree $(git -C "$tree" rev-parse HEAD 2>/dev/null || true) $(cd "$tree" && stat -c %Y "${patched[@]}" | tr '\n' ' ')"
 if [ "$(cat "$work/tree" 2>/dev/null)" != "$stamp" ] || [ ! -d "$src" ]; then
     say "copying $tree to $src"
     rm -rf "$src" "$work/build"
     mkdir -p "$src"
     (cd "$tree" && tar --exclude=./.git -cf - .) | (cd "$src" && tar -xf -)
-    cp "$src/tests/opengl.py" "$work/opengl.py.orig"
-    cp "$src/tests/spec/CMakeLists.txt" "$work/spec-CMakeLists.txt.orig"
-    cp "$src/registry/gl.xml" "$work/gl.xml.orig"
+    rm -rf "$work/orig"
+    for f in "${patched[@]}"; do
+        mkdir -p "$work/orig/$(dirname "$f")"
+        cp "$src/$f" "$work/orig/$f"
+    done
     echo "$stamp" >"$work/tree"
 fi
 put() {  # FILE DEST: copies FILE to DEST unless DEST has its content already
@@ -100,6 +113,13 @@ for ext in "${exts[@]}"; do
     done
 done
 put "$OCCU_ROOT/include/GL/mesax_occlusion_unit.h" "$src/tests/spec/mesax_occlusion_unit/GL/mesax_occlusion_unit.h"
+for ext in "${!upstream[@]}"; do
+    for f in "$OCCU_ROOT"/tests/spec/"$ext"/*.c; do
+        put "$f" "$src/${upstream[$ext]}/$(basename "$f")"
+    done
+done
+upstream_args=()
+for ext in "${!upstream[@]}"; do upstream_args+=("$ext=${upstream[$ext]}"); done
 
 # registry/gl.xml: the extensions' enums, commands and extension entries,
 # read from include/GL/mesax_occlusion_unit.h (names as spec/*.txt spell
@@ -110,9 +130,17 @@ put "$OCCU_ROOT/include/GL/mesax_occlusion_unit.h" "$src/tests/spec/mesax_occlus
 # tests/opengl.py: a group per extension, one test per piglit_add_executable of
 # its CMakeLists.gl.txt, plus the registrations with arguments that
 # tests/meson.build makes too (-tiles-4096, -base-extension-only).
-/usr/bin/python3 - "$work" "$src" "$OCCU_ROOT" "${exts[@]}" <<'EOF'
+# The upstream behaviour tests: each into piglit's folder of its feature, as
+# <folder>-<test> in its CMakeLists.gl.txt and in that feature's group.
+# $work/filters: the regular expressions of every test added (piglit run -t).
+/usr/bin/python3 - "$work" "$src" "$OCCU_ROOT" "${exts[@]}" -- "${upstream_args[@]}" <<'EOF'
 import os, re, sys
-work, src, root, exts = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
+work, src, root = sys.argv[1], sys.argv[2], sys.argv[3]
+sep = sys.argv.index('--')
+exts, upstream = sys.argv[4:sep], dict(a.split('=', 1) for a in sys.argv[sep + 1:])
+
+def orig(path):
+    return open(os.path.join(work, 'orig', path)).read()
 
 def put(path, text):
     old = open(path).read() if os.path.exists(path) else None
@@ -145,7 +173,7 @@ for ext, body in re.findall(r'#ifndef (GL_MESAX_\w+)\n#define \1 1\n(.*?)\n#endi
         required.append('                <command name="%s"/>\n' % name)
     extensions.append('        <extension name="%s" supported="gl">\n            <require>\n%s'
                       '            </require>\n        </extension>\n' % (ext, ''.join(required)))
-registry = open(os.path.join(work, 'gl.xml.orig')).read()
+registry = orig('registry/gl.xml')
 anchor = '    <!-- SECTION: GL command definitions. -->'
 assert anchor in registry and '    </commands>' in registry and '    </extensions>' in registry
 registry = registry.replace(anchor, '    <enums namespace="GL" group="MESAX_occlusion_unit" vendor="MESAX" '
@@ -165,7 +193,7 @@ for name, xml in commands:
 registry = registry.replace('    </extensions>', ''.join(extensions) + '    </extensions>', 1)
 put(os.path.join(src, 'registry/gl.xml'), registry)
 
-lines = open(os.path.join(work, 'spec-CMakeLists.txt.orig')).read().splitlines(keepends=True)
+lines = orig('tests/spec/CMakeLists.txt').splitlines(keepends=True)
 for ext in exts:
     entry = 'add_subdirectory (%s)\n' % ext
     if entry in lines:
@@ -198,7 +226,25 @@ for ext in exts:
         block.append("    g(['%s'], '%s')\n" % (exe, name))
         for suffix, args in variants.get((ext, name), []):
             block.append("    g(['%s', %s], '%s%s')\n" % (exe, ', '.join("'%s'" % a for a in args), name, suffix))
-opengl = open(os.path.join(work, 'opengl.py.orig')).read()
+filters = ['^spec@%s@' % ext for ext in exts]
+groups = {'arb_occlusion_query': "'spec', 'ARB_occlusion_query'", 'arb_depth_clamp': "'spec', 'ARB_depth_clamp'",
+          'glsl-1.10': "'spec', 'glsl-1.10', 'execution'"}
+for ext, folder in sorted(upstream.items()):
+    names = sorted(f[:-2] for f in os.listdir(os.path.join(root, 'tests/spec', ext)) if f.endswith('.c'))
+    cmake = orig(os.path.join(folder, 'CMakeLists.gl.txt'))
+    tail = ''.join('piglit_add_executable (%s-%s %s.c)\n' % (ext, n, n) for n in names)
+    anchor = '\n# vim: ft=cmake:'
+    cmake = cmake.replace(anchor, '\n' + tail + anchor, 1) if anchor in cmake else cmake + tail
+    put(os.path.join(src, folder, 'CMakeLists.gl.txt'), cmake)
+    block.append('\nwith profile.test_list.group_manager(\n'
+                 '        PiglitGLTest,\n'
+                 '        grouptools.join(%s)) as g:\n' % groups[ext])
+    for n in names:
+        block.append("    g(['%s-%s'], '%s')\n" % (ext, n, n))
+        filters.append('^%s@%s$' % (groups[ext].replace("'", '').replace(', ', '@').lower(), re.escape(n)))
+with open(os.path.join(work, 'filters'), 'w') as f:
+    f.write('\n'.join(filters) + '\n')
+opengl = orig('tests/opengl.py')
 anchor = "\nif platform.system() == 'Windows':"
 assert anchor in opengl, 'tests/opengl.py: no "%s" to add the groups before' % anchor.strip()
 opengl = opengl.replace(anchor, ''.join(block) + anchor, 1)
@@ -223,6 +269,11 @@ for ext in "${exts[@]}"; do
     while read -r exe; do piglit_targets+=("$exe"); done < <(
         sed -n 's/^piglit_add_executable (\([^ ]*\) .*/\1/p' "$src/tests/spec/$ext/CMakeLists.gl.txt")
 done
+for ext in "${!upstream[@]}"; do
+    for c in "$OCCU_ROOT"/tests/spec/"$ext"/*.c; do piglit_targets+=("$ext-$(basename "$c" .c)"); done
+done
+filter=()
+while read -r f; do filter+=(-t "$f"); done <"$work/filters"
 say "building ${#piglit_targets[@]} tests and piglit's util libraries in $work/build"
 nice ninja -C "$work/build" -j2 "${piglit_targets[@]}" >"$work/ninja.log" 2>&1 ||
     { grep -E 'error|FAILED' "$work/ninja.log" | head -n 30 >&2; die "piglit's build failed (log: $work/ninja.log)"; }
@@ -232,7 +283,7 @@ nice ninja -C "$work/build" -j2 "${piglit_targets[@]}" >"$work/ninja.log" 2>&1 |
 # occu's program of the same source (tests/occu-<ext>-<test>).
 export PIGLIT_BUILD_DIR=$work/build
 commands=$work/piglit-commands.txt
-/usr/bin/python3 "$src/piglit-print-commands.py" -t '^spec@mesax_occlusion_unit' opengl >"$commands"
+/usr/bin/python3 "$src/piglit-print-commands.py" "${filter[@]}" opengl >"$commands"
 /usr/bin/python3 - "$commands" "$build/tests" "$work/occu-profile.xml.gz" <<'EOF'
 import gzip, os, shlex, sys
 import xml.etree.ElementTree as et
@@ -256,7 +307,7 @@ with gzip.open(out, 'wt') as f:
     f.write(et.tostring(root, encoding='unicode'))
 EOF
 count=$(grep -c ' ::: ' "$commands")
-[ "$count" -gt 0 ] || die "the patched tests/opengl.py lists no spec@mesax_occlusion_unit* test"
+[ "$count" -gt 0 ] || die "the patched tests/opengl.py lists none of the tests added"
 
 results=$work/results
 rm -rf "$results"
@@ -264,11 +315,11 @@ mkdir -p "$results"
 for driver in softpipe llvmpipe; do
     for side in piglit occu; do
         profile=opengl
-        filter=(-t '^spec@mesax_occlusion_unit')
-        if [ $side = occu ]; then profile=$work/occu-profile.xml.gz; filter=(); fi
+        filters=("${filter[@]}")
+        if [ $side = occu ]; then profile=$work/occu-profile.xml.gz; filters=(); fi
         say "$side's build under $driver: piglit run ($count tests)"
         GALLIUM_DRIVER=$driver nice /usr/bin/python3 "$src/piglit" run -p surfaceless_egl -c -j 2 \
-            --timeout 300 -l dummy "${filter[@]}" "$profile" "$results/$side-$driver" >"$results/$side-$driver.log" 2>&1 ||
+            --timeout 300 -l dummy ${filters[@]+"${filters[@]}"} "$profile" "$results/$side-$driver" >"$results/$side-$driver.log" 2>&1 ||
             { tail -n 20 "$results/$side-$driver.log" >&2; die "piglit run failed (log: $results/$side-$driver.log)"; }
     done
 done
