@@ -89,7 +89,7 @@ other_thread(void *arg)
         return -1;
     const GLenum e = reallocate(1, S);
     glFinish();
-    OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
+    ou_release_current(&contexts);
     return (int)e;
 }
 
@@ -102,7 +102,7 @@ other_thread_grows(void *arg)
         return -1;
     const GLenum e = reallocate(1, 2 * S);
     glFinish();
-    OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
+    ou_release_current(&contexts);
     return (int)e;
 }
 

@@ -1,13 +1,99 @@
 /*
- * Two OSMesa contexts of one share group for the tests of what a context
- * shares and what it keeps (MESAX_occlusion_unit section 5.X, issue 23;
+ * Two contexts of one share group for the tests of what a context shares
+ * and what it keeps (MESAX_occlusion_unit section 5.X, issue 23;
  * MESAX_occlusion_unit_async section 5.X.1): A is the test's own context and
- * window-system buffer from ou_init; B shares A's objects and renders into a
- * client buffer of the same size. Include after ou_util.h.
+ * window from ou_init; B shares A's objects and renders into a window-system
+ * buffer of its own of the same size. Include after ou_util.h.
+ *
+ * The contexts are the window system's: OSMesa's on occu's framework
+ * (tests/piglit_util/), EGL's inside piglit (tools/check-in-piglit.sh), where
+ * B's buffer is a pbuffer of A's config and a platform without EGL (GLX)
+ * skips the test. Under piglit with -fbo, A's window is piglit's FBO, which
+ * stays bound in A; B's buffer is B's framebuffer 0 on both.
  */
 #ifndef OU_TWO_CONTEXTS_H
 #define OU_TWO_CONTEXTS_H
 
+#if defined(PIGLIT_USE_WAFFLE) && defined(PIGLIT_HAS_EGL)
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+struct ou_two_contexts {
+    EGLDisplay display;
+    EGLContext a, b;
+    EGLSurface a_draw, a_read, b_surface;
+    int size;
+};
+
+static inline bool
+ou_make_current(EGLDisplay display, EGLSurface draw, EGLSurface read, EGLContext context)
+{
+    if (!eglMakeCurrent(display, draw, read, context)) {
+        printf("eglMakeCurrent failed: 0x%x\n", eglGetError());
+        return false;
+    }
+    return true;
+}
+
+static inline bool
+ou_make_a_current(const struct ou_two_contexts *t)
+{
+    return ou_make_current(t->display, t->a_draw, t->a_read, t->a);
+}
+
+static inline bool
+ou_make_b_current(const struct ou_two_contexts *t)
+{
+    return ou_make_current(t->display, t->b_surface, t->b_surface, t->b);
+}
+
+/* Leaves the calling thread without a current context. */
+static inline void
+ou_release_current(const struct ou_two_contexts *t)
+{
+    eglMakeCurrent(t->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
+/* B, sharing the current context A; A stays current. A failure to make it
+ * fails the test: EGL's shared contexts and pbuffers are part of every
+ * driver here. */
+static inline struct ou_two_contexts
+ou_make_second_context(int size)
+{
+    struct ou_two_contexts t = {eglGetCurrentDisplay(), eglGetCurrentContext(), EGL_NO_CONTEXT,
+                                eglGetCurrentSurface(EGL_DRAW), eglGetCurrentSurface(EGL_READ),
+                                EGL_NO_SURFACE, size};
+    if (t.a == EGL_NO_CONTEXT) {
+        printf("the test's context is not EGL's: run it on an EGL platform\n");
+        piglit_report_result(PIGLIT_SKIP);
+    }
+    EGLint id = 0, count = 0;
+    EGLConfig config;
+    eglQueryContext(t.display, t.a, EGL_CONFIG_ID, &id);
+    const EGLint attribs[] = {EGL_CONFIG_ID, id, EGL_NONE};
+    const EGLint pbuffer[] = {EGL_WIDTH, size, EGL_HEIGHT, size, EGL_NONE};
+    const EGLint compat[] = {EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
+                             EGL_NONE};
+    if (!eglChooseConfig(t.display, attribs, &config, 1, &count) || count != 1 ||
+        !eglBindAPI(EGL_OPENGL_API) ||
+        (t.b = eglCreateContext(t.display, config, t.a, compat)) == EGL_NO_CONTEXT ||
+        (t.b_surface = eglCreatePbufferSurface(t.display, config, pbuffer)) == EGL_NO_SURFACE) {
+        printf("could not make a second context sharing the first: EGL error 0x%x\n", eglGetError());
+        piglit_report_result(PIGLIT_FAIL);
+    }
+    return t;
+}
+
+static inline void
+ou_destroy_second_context(struct ou_two_contexts *t)
+{
+    eglDestroySurface(t->display, t->b_surface);
+    eglDestroyContext(t->display, t->b);
+    t->b = EGL_NO_CONTEXT;
+    t->b_surface = EGL_NO_SURFACE;
+}
+
+#else
 #include <GL/osmesa.h>
 
 struct ou_two_contexts {
@@ -31,6 +117,14 @@ ou_make_current(const struct ou_two_contexts *t, OSMesaContext context, void *bu
 
 static inline bool ou_make_a_current(const struct ou_two_contexts *t) { return ou_make_current(t, t->a, t->a_buffer); }
 static inline bool ou_make_b_current(const struct ou_two_contexts *t) { return ou_make_current(t, t->b, t->b_pixels); }
+
+/* Leaves the calling thread without a current context. */
+static inline void
+ou_release_current(const struct ou_two_contexts *t)
+{
+    (void)t;
+    OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
+}
 
 /* B, sharing the current context A; A stays current. A failure to make it
  * fails the test: OSMesa share lists are part of every driver here. */
@@ -64,5 +158,6 @@ ou_destroy_second_context(struct ou_two_contexts *t)
     t->b = NULL;
     t->b_pixels = NULL;
 }
+#endif
 
 #endif

@@ -1,8 +1,8 @@
 /*
  * GL_MESAX_occlusion_unit's state is per context (spec section 5.X and
- * issue 23). Context A is the test's; context B shares A's objects (OSMesa
- * share list) and renders into a buffer of the same size. Depth tests are
- * off: every fragment passes. The pass objects of
+ * issue 23). Context A is the test's; context B shares A's objects
+ * (ou_two_contexts.h) and renders into a buffer of the same size. Depth
+ * tests are off: every fragment passes. The pass objects of
  * GL_MESAX_occlusion_unit_async: async-per-context-state.c.
  *
  * Subtests:
@@ -98,7 +98,7 @@ piglit_init(int argc, char **argv)
     const struct ou_fbo_functions f = ou_fbo_functions();
     GLuint rb[2];
     const GLuint fbo = ou_make_fbo(&f, S, S, 0, false, rb);
-    f.BindFramebuffer(GL_FRAMEBUFFER, piglit_winsys_fbo);
+    f.BindFramebuffer(GL_FRAMEBUFFER, 0);   /* B's own buffer, not the test's window */
     const bool b_bound = piglit_check_gl_error(GL_NO_ERROR) && fbo != 0;
     static const unsigned char white[4] = {255, 255, 255, 255};
     const bool b_drew = ou_probe_rect_rgba_ub(0, 0, S, S, white, 0);

@@ -2,7 +2,7 @@
  * GL_MESAX_occlusion_unit_async's pass objects are per context, not shared
  * (spec section 5.X.1 and issue 14), and a pass begun by
  * BeginOcclusionPassMESAX is the state of its context alone. Context A is
- * the test's; context B shares A's objects (OSMesa share list) and renders
+ * the test's; context B shares A's objects (ou_two_contexts.h) and renders
  * into a buffer of the same size. Depth tests are off: every fragment
  * passes. The base extension's state: per-context-state.c.
  *
