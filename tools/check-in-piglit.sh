@@ -124,7 +124,7 @@ for ext in "${!upstream[@]}"; do upstream_args+=("$ext=${upstream[$ext]}"); done
 # registry/gl.xml: the extensions' enums, commands and extension entries,
 # read from include/GL/mesax_occlusion_unit.h (names as spec/*.txt spell
 # them). piglit's dispatch resolves only the commands of its registry
-# (piglit_get_proc_address of any other name skips the test); Khronos's gl.xml,
+# (a call of any other function skips the test); Khronos's gl.xml,
 # from which piglit's is updated, has none of these extensions yet.
 # tests/spec/CMakeLists.txt: the three folders, in its alphabetical order.
 # tests/opengl.py: a group per extension, one test per piglit_add_executable of
