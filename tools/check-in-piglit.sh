@@ -126,7 +126,8 @@ for ext in "${!upstream[@]}"; do upstream_args+=("$ext=${upstream[$ext]}"); done
 # them). piglit's dispatch resolves only the commands of its registry
 # (a call of any other function skips the test); Khronos's gl.xml,
 # from which piglit's is updated, has none of these extensions yet.
-# tests/spec/CMakeLists.txt: the three folders, in its alphabetical order.
+# tests/spec/CMakeLists.txt: the three folders, at its end (its list has no
+# order to keep).
 # tests/opengl.py: a group per extension, one test per piglit_add_executable of
 # its CMakeLists.gl.txt, plus the registrations with arguments that
 # tests/meson.build makes too (-tiles-4096, -base-extension-only).
@@ -198,13 +199,7 @@ for ext in exts:
     entry = 'add_subdirectory (%s)\n' % ext
     if entry in lines:
         continue
-    at = len(lines)
-    for i, l in enumerate(lines):
-        m = re.match(r'add_subdirectory \((\S+)\)', l)
-        if m and m.group(1).lower() > ext:
-            at = i
-            break
-    lines.insert(at, entry)
+    lines.append(entry)
 put(os.path.join(src, 'tests/spec/CMakeLists.txt'), ''.join(lines))
 
 # Registrations with arguments: test -> [(name suffix, arguments)].
