@@ -2,8 +2,10 @@
  * GL_MESAX_occlusion_unit: the framebuffer of an occlusion pass is fixed for
  * the pass, a window-system-provided one too (Dependencies on framebuffer
  * objects and Errors; issue 24). MakeCurrent of a larger buffer in the middle
- * of a pass (OSMesaMakeCurrent with 64 x 64 for a pass begun on 32 x 32)
- * changes the framebuffer under the pass, which the GL cannot refuse: from
+ * of a pass (ou_make_current_on_new_buffer of 64 x 64 for a pass begun on
+ * 32 x 32: OSMesa's, or EGL's on a pbuffer inside piglit; the pass is on the
+ * window system's framebuffer 0, not on piglit's FBO) changes the
+ * framebuffer under the pass, which the GL cannot refuse: from
  * then on the pass's drawing commands generate INVALID_OPERATION and draw
  * nothing, so no fragment is counted against tiles set for the old buffer
  * (the old y-flip would credit a quad at the new buffer's top to tile 0, and
@@ -11,7 +13,7 @@
  * Depth tests are off: every fragment passes.
  *
  * Subtests:
- *   make-current-larger-no-error       OSMesaMakeCurrent itself succeeds, no GL error
+ *   make-current-larger-no-error       MakeCurrent itself succeeds, no GL error
  *   begin-after-change-invalid-operation  an 8 x 8 quad inside tile 0 (Begin/End)
  *   draw-arrays-after-change-invalid-operation  an 8 x 8 quad at (40, 40), outside
  *                                      tile 0, with DrawArrays
@@ -26,11 +28,9 @@
  */
 #include "ou_util.h"
 
-#include <GL/osmesa.h>
+#include "ou_two_contexts.h"
 
 enum { SMALL = 32, LARGE = 64 };
-
-static GLubyte large_pixels[LARGE * LARGE * 4];
 
 static void
 pixel_projection(int size)
@@ -63,6 +63,7 @@ void
 piglit_init(int argc, char **argv)
 {
     ou_init();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);   /* the window system's, not piglit_winsys_fbo */
     glDisable(GL_DEPTH_TEST);
     PFNGLGENQUERIESPROC GenQueries = glGenQueries;
     PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
@@ -83,8 +84,7 @@ piglit_init(int argc, char **argv)
     ou_rect(4, 4, 12, 12, 0.5f);
 
     /* The context's window-system framebuffer becomes 64 x 64. */
-    const bool made = OSMesaMakeCurrent(OSMesaGetCurrentContext(), large_pixels, GL_UNSIGNED_BYTE, LARGE, LARGE);
-    OSMesaPixelStore(OSMESA_Y_UP, 1);
+    const bool made = ou_make_current_on_new_buffer(LARGE);
     subtest(made && ou_first_error() == GL_NO_ERROR, "make-current-larger-no-error");
     pixel_projection(LARGE);
 

@@ -3,7 +3,9 @@
  * and what it keeps (MESAX_occlusion_unit section 5.X, issue 23;
  * MESAX_occlusion_unit_async section 5.X.1): A is the test's own context and
  * window from ou_init; B shares A's objects and renders into a window-system
- * buffer of its own of the same size. Include after ou_util.h.
+ * buffer of its own of the same size. ou_make_current_on_new_buffer moves the
+ * test's context to a new window-system buffer of another size. Include
+ * after ou_util.h.
  *
  * The contexts are the window system's: OSMesa's on occu's framework
  * (tests/piglit_util/), EGL's inside piglit (tools/check-in-piglit.sh), where
@@ -84,6 +86,32 @@ ou_make_second_context(int size)
     return t;
 }
 
+/* Makes the current context current on a new window-system buffer of
+ * size x size (a pbuffer of its config), its window-system framebuffer from
+ * then on; false, with the reason printed, when that fails. */
+static inline bool
+ou_make_current_on_new_buffer(int size)
+{
+    const EGLDisplay display = eglGetCurrentDisplay();
+    const EGLContext context = eglGetCurrentContext();
+    if (context == EGL_NO_CONTEXT) {
+        printf("the test's context is not EGL's: run it on an EGL platform\n");
+        piglit_report_result(PIGLIT_SKIP);
+    }
+    EGLint id = 0, count = 0;
+    EGLConfig config;
+    eglQueryContext(display, context, EGL_CONFIG_ID, &id);
+    const EGLint attribs[] = {EGL_CONFIG_ID, id, EGL_NONE};
+    const EGLint pbuffer[] = {EGL_WIDTH, size, EGL_HEIGHT, size, EGL_NONE};
+    EGLSurface surface = EGL_NO_SURFACE;
+    if (!eglChooseConfig(display, attribs, &config, 1, &count) || count != 1 ||
+        (surface = eglCreatePbufferSurface(display, config, pbuffer)) == EGL_NO_SURFACE) {
+        printf("no pbuffer of %d x %d: EGL error 0x%x\n", size, size, eglGetError());
+        return false;
+    }
+    return ou_make_current(display, surface, surface, context);
+}
+
 static inline void
 ou_destroy_second_context(struct ou_two_contexts *t)
 {
@@ -148,6 +176,22 @@ ou_make_second_context(int size)
         piglit_report_result(PIGLIT_FAIL);
     }
     return t;
+}
+
+/* Makes the current context current on a new window-system buffer of
+ * size x size (RGBA, y up; kept to the end of the test), its window-system
+ * framebuffer from then on; false, with the reason printed, when that
+ * fails. */
+static inline bool
+ou_make_current_on_new_buffer(int size)
+{
+    GLubyte *pixels = (GLubyte *)calloc((size_t)size * size, 4);
+    if (!pixels || !OSMesaMakeCurrent(OSMesaGetCurrentContext(), pixels, GL_UNSIGNED_BYTE, size, size)) {
+        printf("OSMesaMakeCurrent on a buffer of %d x %d failed\n", size, size);
+        return false;
+    }
+    OSMesaPixelStore(OSMESA_Y_UP, 1);
+    return true;
 }
 
 static inline void

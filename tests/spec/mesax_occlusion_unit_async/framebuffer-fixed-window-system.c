@@ -4,15 +4,16 @@
  * the async spec: "the framebuffer is fixed"), a window-system-provided
  * framebuffer's too (MESAX_occlusion_unit, issue 24). An async pass begun on
  * a 64 x 64 buffer with tiles (0, 0, 32, 32) and (32, 32, 32, 32) draws an
- * 8 x 8 quad at (40, 40); OSMesaMakeCurrent then makes the context's buffer
- * 32 x 32, which the GL cannot refuse. From then on the pass's drawing
+ * 8 x 8 quad at (40, 40) on the window system's framebuffer 0 (not piglit's
+ * FBO); MakeCurrent then moves the context to a buffer of 32 x 32
+ * (ou_make_current_on_new_buffer), which the GL cannot refuse. From then on the pass's drawing
  * commands generate INVALID_OPERATION and draw nothing: on the smaller buffer
  * a quad at (4, 4) would otherwise be credited to tile 0 with the old
  * buffer's y-flip. The pass ends as ever and its result counts what it drew
  * before the change. Depth tests are off: every fragment passes.
  *
  * Subtests:
- *   make-current-smaller-no-error      OSMesaMakeCurrent itself succeeds, no GL error
+ *   make-current-smaller-no-error      MakeCurrent itself succeeds, no GL error
  *   draw-after-change-invalid-operation  the quad at (4, 4): INVALID_OPERATION
  *   rejected-draw-draws-nothing        a SAMPLES_PASSED query around it reads 0
  *   result-counts-before-change        OCCLUSION_PASS_RESULT_MESAX 0, no error; NOHC 0
@@ -20,11 +21,9 @@
  */
 #include "ou_util.h"
 
-#include <GL/osmesa.h>
+#include "ou_two_contexts.h"
 
 enum { SMALL = 32, LARGE = 64 };
-
-static GLubyte small_pixels[SMALL * SMALL * 4];
 
 PIGLIT_GL_TEST_CONFIG_BEGIN
 
@@ -47,6 +46,7 @@ void
 piglit_init(int argc, char **argv)
 {
     const struct ou_async_functions a = ou_init_async();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);   /* the window system's, not piglit_winsys_fbo */
     glDisable(GL_DEPTH_TEST);
     PFNGLGENQUERIESPROC GenQueries = glGenQueries;
     PFNGLBEGINQUERYPROC BeginQuery = glBeginQuery;
@@ -68,11 +68,10 @@ piglit_init(int argc, char **argv)
     a.BeginOcclusionPass(GL_BRIEF_OCCLUSION_MESAX, pass);
     ou_rect(40, 40, 48, 48, 0.5f);
 
-    const bool made = OSMesaMakeCurrent(OSMesaGetCurrentContext(), small_pixels, GL_UNSIGNED_BYTE, SMALL, SMALL);
-    OSMesaPixelStore(OSMESA_Y_UP, 1);
+    const bool made = ou_make_current_on_new_buffer(SMALL);
     GLenum e = ou_first_error();
     if (!made || e != GL_NO_ERROR)
-        printf("OSMesaMakeCurrent to 32 x 32 in an async pass: %s, error 0x%x\n", made ? "made" : "failed", e);
+        printf("MakeCurrent on 32 x 32 in an async pass: %s, error 0x%x\n", made ? "made" : "failed", e);
     subtest(made && e == GL_NO_ERROR, "make-current-smaller-no-error");
     glViewport(0, 0, SMALL, SMALL);
     glMatrixMode(GL_PROJECTION);
