@@ -264,7 +264,7 @@ static void
 scenes(struct transcript *t, bool rects_only, bool multisampled)
 {
     piglit_osmesa_init(g_argc, g_argv, W, H);
-        ou_init();
+    ou_init();
     for (int i = 0; i < MAX_TILES; ++i)
         list_buffers[i] = malloc((8 + 2 * LIST_PAIRS) * sizeof(GLuint));
     build_programs();

@@ -170,7 +170,7 @@ static void
 init(void)
 {
     piglit_osmesa_init(g_argc, g_argv, W, H);
-        ou_init();
+    ou_init();
     UseProgram = glUseProgram;
     GenQueries = glGenQueries;
     BeginQuery = glBeginQuery;
