@@ -117,17 +117,20 @@ draw_occluders(int n)
 
 /* A pass's primitives: whole-pixel rectangles at constant depth, or
  * triangles with depth varying over them; with depth clamping some lie
- * beyond the near or the far plane. */
+ * beyond the near or the far plane. In half the passes, first one
+ * triangle over the whole framebuffer at the end of that depth range the
+ * pass's depth function `func` lets pass least (the far end for LESS),
+ * behind most of what is stored: llvmpipe bins it as covering whole bins,
+ * and the coarse test rejects it for a bin before its blocks where the
+ * bin's stored depth allows. Constant depth in the rectangle scenes, where
+ * it covers whole pixels as their rectangles do. */
 static void
-draw_primitives(bool rects, bool beyond)
+draw_primitives(bool rects, bool beyond, GLenum func)
 {
     const float z0 = beyond ? -0.3f : 0.02f, z1 = beyond ? 1.3f : 0.98f;
-    /* One triangle over the whole framebuffer: llvmpipe bins it as
-     * covering whole bins, which the coarse test may reject for a bin
-     * before its blocks. Constant depth in the rectangle scenes, where it
-     * covers whole pixels as their rectangles do. */
     if (rnd() < 0.5f) {
-        const float z = z0 + (z1 - z0) * rnd(), dz = rects ? 0.0f : 0.1f * (rnd() - 0.5f);
+        const float z = func == GL_GREATER || func == GL_GEQUAL ? z0 : z1;
+        const float dz = rects ? 0.0f : 0.01f * (rnd() - 0.5f);
         glBegin(GL_TRIANGLES);
         glVertex3f(-W, -H, z);
         glVertex3f(3 * W, -H, z + dz);
@@ -223,13 +226,14 @@ pass(struct transcript *t, unsigned scene, unsigned p, bool rects, enum feature 
         ou_fill(list_buffers[i], size);
         sizes[i] = size;
     }
-    glDepthFunc(funcs[rndi(8)]);
+    const GLenum func = funcs[rndi(8)];
+    glDepthFunc(func);
     glDepthMask(GL_FALSE);
     set_feature(f, p);
     OcclusionBuffersMESAX(lists, sizes, list_buffers);
     ScissorsMESAX(lists, tiles);
     glRenderMode(verbose ? GL_VERBOSE_OCCLUSION_MESAX : GL_BRIEF_OCCLUSION_MESAX);
-    draw_primitives(rects, f == F_CLAMP);
+    draw_primitives(rects, f == F_CLAMP, func);
     const GLint r = glRenderMode(GL_RENDER);
     ScissorsMESAX(0, NULL);
     reset_feature();
