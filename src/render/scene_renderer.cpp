@@ -40,7 +40,11 @@ SceneRenderer::SceneRenderer(const Scene &scene, const Hierarchy &hierarchy) : h
             for (int k = 0; k < 3; ++k) {
                 const std::uint32_t i = mesh.indices[ref.first_index + k];
                 Vertex v{{mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z}, {}};
-                prelit_rgba8(i < mesh.colors.size() ? mesh.colors[i] : mesh.color, mesh.normals[i], v.color);
+                const glm::vec3 &colour = i < mesh.colors.size() ? mesh.colors[i] : mesh.color;
+                if (mesh.shaded)
+                    prelit_rgba8(colour, mesh.normals[i], v.color);
+                else
+                    unlit_rgba8(colour, v.color);
                 if (!mesh.occluder)
                     v.color[3] = see_through_alpha;
                 vertices.push_back(v);

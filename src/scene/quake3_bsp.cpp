@@ -35,6 +35,9 @@ constexpr std::size_t header_bytes = 8 + 8 * lump_count;
 constexpr std::uint32_t surf_sky = 0x4, surf_nodraw = 0x80, surf_alphashadow = 0x10000;
 constexpr std::uint32_t contents_water = 0x20, contents_fog = 0x40, contents_translucent = 0x20000000;
 
+// The flat look's sky: one unlit colour, a clear day's.
+const glm::vec3 sky_colour{0.52f, 0.68f, 0.88f};
+
 constexpr int face_polygon = 1, face_patch = 2, face_mesh = 3, face_billboard = 4;
 
 // What a level may make at most: beyond it a file (or a patch level)
@@ -293,7 +296,8 @@ glm::vec3 bernstein2(float t) { return {(1 - t) * (1 - t), 2 * t * (1 - t), t * 
 struct Texture {
     std::string name;
     std::uint32_t surface_flags, content_flags;
-    bool drawn;       // not SURF_NODRAW nor SURF_SKY
+    bool drawn;       // not SURF_NODRAW
+    bool sky;         // SURF_SKY: drawn as the sky, unlit (scene/quake3_bsp.h)
     bool occluder;    // not see-through (scene/quake3_bsp.h)
 };
 
@@ -306,7 +310,8 @@ std::vector<Texture> read_textures(const Reader &r)
         tex.name.assign(name, static_cast<std::size_t>(std::find(name, name + 64, '\0') - name));
         tex.surface_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 64)));
         tex.content_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 68)));
-        tex.drawn = !(tex.surface_flags & (surf_nodraw | surf_sky));
+        tex.drawn = !(tex.surface_flags & surf_nodraw);
+        tex.sky = tex.surface_flags & surf_sky;
         tex.occluder = !(tex.content_flags & (contents_translucent | contents_water | contents_fog)) &&
                        !(tex.surface_flags & surf_alphashadow);
         textures.push_back(std::move(tex));
@@ -688,7 +693,8 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
             mesh_number = std::int32_t(scene.meshes.size());
             Mesh m;
             m.name = texture.name;
-            m.color = building_colours(std::uint32_t(face.texture), 0.5f, 0.0f).wall;
+            m.color = texture.sky ? sky_colour : building_colours(std::uint32_t(face.texture), 0.5f, 0.0f).wall;
+            m.shaded = !texture.sky;
             m.occluder = texture.occluder;
             scene.meshes.push_back(std::move(m));
         }

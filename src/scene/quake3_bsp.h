@@ -30,8 +30,12 @@
 // often curved one way only); faces of type 4
 // (billboards: flares, sprites) are not drawn, nor faces whose texture's
 // surface flags say SURF_NODRAW (0x80; clip, caulk, trigger and hint
-// brushes) or SURF_SKY (0x4: the sky is drawn at infinity, not where the
-// face is). Faces of every model are drawn, the world (model 0) and the
+// brushes). Faces whose texture says SURF_SKY (0x4) are drawn where they
+// are, opaque and unlit (Mesh::shaded false), in a sky colour: Quake III
+// draws the sky's images at infinity through exactly those faces, so a
+// player sees sky there and nothing behind them (a level may hold several
+// arenas, each sealed in its own box of sky brushes: OpenArena's delta).
+// Faces of every model are drawn, the world (model 0) and the
 // brush entities (doors, platforms: at their resting place).
 //
 // Translucency, from the format alone (a BSP records each texture's

@@ -20,6 +20,9 @@ struct Mesh {
     std::vector<std::uint32_t> indices;   // three per triangle, counter-clockwise seen from outside
     glm::vec3 color{0.8f};              // RGB in [0, 1], before lighting
     std::vector<glm::vec3> colors;       // one per position, or empty: `color` for every vertex
+    // False for a surface that gives its own light (a level's sky): drawn
+    // in its colours as they are, without the renderer's light (render/shading.h).
+    bool shaded = true;
     Aabb bounds;
     // False for a see-through mesh (glass, grates, water, foliage: a
     // Quake III level's translucent shaders, scene/quake3_bsp.h): drawn,

@@ -8,6 +8,12 @@
 # compared pixel for pixel with the unculled frame: no level loses a pixel.
 # Where players stand the unculled frame is the game's (the sky drawn as
 # walls), and the compiler's set must hold there.
+# One view is left out, named below with why (docs/real-scenes.md, "Every
+# spawn point of every level"): oa_koth2's frame 10 (spawn 5, its own
+# heading) looks through a side of a solid floor brush that the level's
+# author textured caulk (nodraw) into the brush and beyond; the compiler's
+# set rightly hides what lies behind a solid, and the game draws nothing
+# there. Its lost pixels are reported, not counted.
 # Runs on the driver GALLIUM_DRIVER names (llvmpipe if none), SIZE x SIZE
 # frames, every EVERY-th level in the order of the paks and their members
 # (softpipe draws a frame's many small batches several times slower).
@@ -26,6 +32,8 @@ if [ ! -r "$data/pak6-patch088.pk3" ] || [ ! -r "$data/pak1-maps.pk3" ]; then
     exit 1
 fi
 
+# PAK-LEVEL:FRAME of the views left out (above).
+left_out=" pak6-patch085-oa_koth2:10 pak6-patch088-oa_koth2:10 "
 levels=0
 frames=0
 listed=0
@@ -41,10 +49,16 @@ for n in zipfile.ZipFile(sys.argv[1]).namelist():
             --size "$size" --driver "$driver" --oracle off --report off --png-every 0 || continue
         levels=$((levels + 1))
         # Per frame: bsp-pvs's wrong pixels, a number (the comparison ran).
-        lost=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wrong_pixels") w = i; next }
-                        $1 == "bsp-pvs" { n++; if ($w !~ /^[0-9]+$/) bad++; else if ($w > 0) { f++; s += $w } }
-                        END { printf "%d %d %d %d\n", n, bad, f, s }' "$out/frames.csv")
+        lost=$(awk -F, -v level="$name" -v left_out="$left_out" '
+                        NR == 1 { for (i = 1; i <= NF; ++i) { if ($i == "wrong_pixels") w = i; if ($i == "frame") fr = i }; next }
+                        $1 == "bsp-pvs" { n++; if ($w !~ /^[0-9]+$/) bad++;
+                                          else if (index(left_out, " " level ":" $fr " ")) out = out " frame " $fr ": " $w " px";
+                                          else if ($w > 0) { f++; s += $w } }
+                        END { printf "%d %d %d %d%s\n", n, bad, f, s, out }' "$out/frames.csv")
         set -- $lost
+        case "$lost" in
+        *frame*) echo "left out: $pak:$member, ${lost#* * * * }, seen through a caulked side of a solid" ;;
+        esac
         frames=$((frames + $1))
         if [ "$1" -lt 2 ] || [ "$2" -ne 0 ]; then
             echo "FAIL: $pak:$member: $1 bsp-pvs frames, $2 of them not compared"

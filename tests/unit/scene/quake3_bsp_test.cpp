@@ -262,9 +262,16 @@ TEST(Quake3Bsp, EveryFaceTypeAndTextureRule)
 {
     for (int segments : {1, 8}) {
         const Scene s = read(minimal_level(), Quake3Options{segments});
-        const Mesh *wall = mesh_named(s, "textures/test/wall"), *glass = mesh_named(s, "textures/test/glass");
-        ASSERT_TRUE(wall && glass);
-        EXPECT_EQ(s.meshes.size(), 2u) << "nodraw, sky and billboard faces make no mesh";
+        const Mesh *wall = mesh_named(s, "textures/test/wall"), *glass = mesh_named(s, "textures/test/glass"),
+                   *sky = mesh_named(s, "textures/skies/sky");
+        ASSERT_TRUE(wall && glass && sky);
+        EXPECT_EQ(s.meshes.size(), 3u) << "nodraw and billboard faces make no mesh";
+        // The sky is drawn where its faces are, an opaque unlit wall: what
+        // a player sees there (scene/quake3_bsp.h).
+        EXPECT_EQ(sky->triangle_count(), 2u);
+        EXPECT_TRUE(sky->occluder);
+        EXPECT_FALSE(sky->shaded);
+        EXPECT_TRUE(wall->shaded);
         // Polygon 2 + mesh 1 + patch 2 a quad.
         EXPECT_EQ(wall->triangle_count(), std::size_t(3 + 2 * segments * segments));
         EXPECT_TRUE(wall->occluder);
@@ -274,9 +281,10 @@ TEST(Quake3Bsp, EveryFaceTypeAndTextureRule)
         ASSERT_EQ(level.faces.size(), 7u);
         EXPECT_EQ(level.patch_count, 1u);
         EXPECT_EQ(level.billboard_count, 1u);
-        EXPECT_EQ(level.hidden_face_count, 2u);
+        EXPECT_EQ(level.hidden_face_count, 1u);
         EXPECT_EQ(level.see_through_face_count, 1u);
-        for (int f : {3, 4, 5})
+        EXPECT_EQ(level.faces[5].mesh, std::int32_t(sky - s.meshes.data()));
+        for (int f : {3, 4})
             EXPECT_EQ(level.faces[std::size_t(f)].mesh, -1) << "face " << f;
         EXPECT_EQ(level.faces[2].index_count, std::uint32_t(6 * segments * segments));
         for (const Mesh &m : s.meshes) {
@@ -701,13 +709,14 @@ TEST(Quake3Bsp, LoadSceneReadsALevelFromAPk3OrAFile)
     }
     for (const std::string &name : {pk3 + ":maps/test.bsp", pk3 + ":MAPS/Test.BSP", bsp}) {
         const Scene s = load_scene(name);
-        EXPECT_EQ(s.triangle_count(), 3u + 128u + 2u) << name;
+        // Wall (polygon, mesh, patch), glass and sky.
+        EXPECT_EQ(s.triangle_count(), 3u + 128u + 2u + 2u) << name;
         ASSERT_TRUE(s.level) << name;
         EXPECT_EQ(s.level->spawns.size(), 2u) << name;
     }
     Quake3Options coarse;
     coarse.patch_segments = 2;
-    EXPECT_EQ(load_scene(bsp, nullptr, coarse).triangle_count(), 3u + 8u + 2u);
+    EXPECT_EQ(load_scene(bsp, nullptr, coarse).triangle_count(), 3u + 8u + 2u + 2u);
 
     // Missing archive, missing member, malformed member, not a zip file.
     std::string why = load_refusal(pk3 + ":maps/other.bsp");
