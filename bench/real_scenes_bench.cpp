@@ -106,7 +106,7 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-real-scenes [--scenes SCENE,...] [--strategies NAME,...] [--set KEY=VALUE]...\n"
                  "                              [--spawn-views K] [--orbit-frames N] [--random-views N] [--seed S]\n"
-                 "                              [--size PIXELS] [--driver llvmpipe|softpipe] [--leaf-triangles N|auto]\n"
+                 "                              [--size PIXELS|WxH] [--driver llvmpipe|softpipe] [--leaf-triangles N|auto]\n"
                  "                              [--batch N] [--switch-off F] [--coherence on|off] [--allocator keep|system]\n"
                  "                              [--load-levels LEVEL,...] [--repeat N] [--databases DIR]\n"
                  "                              [--make-databases required|all] [--out DIR]\n"
@@ -243,7 +243,7 @@ Run run_route(const Options &o, const SceneSetup &setup, const std::string &rout
     run.level = is_level(setup.scene());
     run.triangles = setup.scene().triangle_count();
     run.leaves = setup.hierarchy().leaf_count();
-    const std::vector<Camera> route = setup.route(route_name, o.orbit_frames);
+    const std::vector<Camera> route = setup.route(route_name, o.orbit_frames, o.session.aspect());
     run.frames = route.size();
 
     DatabaseProvider databases = o.session.database_provider();
@@ -264,7 +264,7 @@ Run run_route(const Options &o, const SceneSetup &setup, const std::string &rout
     }
     std::printf("\n%s (%zu triangles, %zu leaves of at most %u), route %s: %zu frames, %zu strategies, %dx%d, %s\n",
                 run.scene.c_str(), run.triangles, run.leaves, unsigned(setup.hierarchy().max_leaf_triangles()),
-                route_name.c_str(), route.size(), session.strategies().size(), o.session.size, o.session.size,
+                route_name.c_str(), route.size(), session.strategies().size(), o.session.width, o.session.height,
                 ctx.renderer().c_str());
     for (const std::string &l : run.left_out)
         std::printf("left out: %s\n", l.c_str());
@@ -473,7 +473,7 @@ int main(int argc, char **argv)
                           << triangles << '\n';
         }
 
-        gl::OffscreenContext ctx(o.session.size, o.session.size);
+        gl::OffscreenContext ctx(o.session.width, o.session.height);
         std::vector<Run> runs;
         for (std::size_t i = 0; i < o.scenes.size(); ++i) {
             const SceneSetup setup({o.scenes[i], 1, o.leaf_triangles});

@@ -65,7 +65,7 @@ struct Options {
                  "                   [--route dense|street|medium|open|orbit|overhead|random:N:SEED|spawn[:K]|FILE]\n"
                  "                   [--strategies NAME[:key=value...],...] [--set key=value]...\n"
                  "                   [--occluder-db FILE (= --set database=FILE)]\n"
-                 "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
+                 "                   [--frames N] [--size PIXELS|WIDTHxHEIGHT] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--patch-segments N] [--leaf-triangles N|auto] [--batch N] [--coherence on|off]\n"
                  "                   [--switch-off F] [--allocator keep|system]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
@@ -202,8 +202,8 @@ void write_images(const Options &o, gl::OffscreenContext &ctx, const SceneSetup 
     char number[24];
     std::snprintf(number, sizeof(number), "%04zu", f.index);
     const std::string base = o.out + "/" + file_name(s.label);
-    const int size = o.session.size;
-    write_png(base + "-" + number + ".png", size, size, ctx.pixels());
+    const int width = o.session.width, height = o.session.height;
+    write_png(base + "-" + number + ".png", width, height, ctx.pixels());
 
     TopViewCaption caption;
     caption.strategy = s.label;
@@ -221,15 +221,15 @@ void write_images(const Options &o, gl::OffscreenContext &ctx, const SceneSetup 
             caption.efficiency_percent = 100.0 * f.quality.efficiency();
     }
     render_top_view(setup.hierarchy(), f.frame->camera, f.stats.drawn, wrongly_culled,
-                    top_view_map_area(size, size));
+                    top_view_map_area(width, height));
     glFinish();
     // Top row first, for the caption.
-    const std::size_t row = std::size_t(size) * 4;
-    std::vector<std::uint8_t> top(row * std::size_t(size));
-    for (std::size_t y = 0; y < std::size_t(size); ++y)
-        std::memcpy(&top[y * row], ctx.pixels() + (std::size_t(size) - 1 - y) * row, row);
-    caption_top_view({top.data(), size, size}, caption);
-    write_png(base + "-top-" + number + ".png", size, size, top.data(), false);
+    const std::size_t row = std::size_t(width) * 4;
+    std::vector<std::uint8_t> top(row * std::size_t(height));
+    for (std::size_t y = 0; y < std::size_t(height); ++y)
+        std::memcpy(&top[y * row], ctx.pixels() + (std::size_t(height) - 1 - y) * row, row);
+    caption_top_view({top.data(), width, height}, caption);
+    write_png(base + "-top-" + number + ".png", width, height, top.data(), false);
 }
 
 }  // namespace
@@ -242,10 +242,9 @@ int main(int argc, char **argv)
         SceneChoice choice(o.scene, o.city_copies, o.leaf_triangles);
         choice.quake3.patch_segments = o.patch_segments;
         const SceneSetup setup(choice);
-        const std::vector<Camera> route = setup.route(o.route, o.frames);
+        const std::vector<Camera> route = setup.route(o.route, o.frames, o.session.aspect());
 
-        const int size = o.session.size;
-        gl::OffscreenContext ctx(size, size);
+        gl::OffscreenContext ctx(o.session.width, o.session.height);
         DatabaseProvider databases = o.session.database_provider();
         SessionOptions so = o.session.session_options(databases);
         so.oracle = o.oracle;
@@ -257,14 +256,14 @@ int main(int argc, char **argv)
         std::printf("scene: %zu triangles, %zu leaves of at most %u; route %s, %zu frames, %dx%d, %s; allocator %s\n",
                     setup.scene().triangle_count(), setup.hierarchy().leaf_count(),
                     unsigned(setup.hierarchy().max_leaf_triangles()), o.route.c_str(), route.size(),
-                    size, size, ctx.renderer().c_str(), allocator_policy_name(o.session.allocator));
+                    o.session.width, o.session.height, ctx.renderer().c_str(), allocator_policy_name(o.session.allocator));
         session.walk(route, "frames", [&](const SessionStrategy &s, const StrategyFrame &f) {
             if (o.png_every > 0 && f.index % std::size_t(o.png_every) == 0)
                 write_images(o, ctx, setup, s, f);
             csv.row(s, f);
         });
         csv.close();
-        write_summary(session, o.out + "/summary.csv", o.route, size);
+        write_summary(session, o.out + "/summary.csv", o.route, o.session.size_name());
         std::printf("\nvs vfc: vfc's mean ms / the strategy's; x floor: the strategy's mean ms / ideal's (the oracle's\n"
                     "visible leaves alone); efficiency: occluded leaves culled / occluded leaves.\n"
                     "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png\n",
