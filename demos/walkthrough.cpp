@@ -70,6 +70,7 @@ struct Options {
                  "                   [--switch-off F] [--allocator keep|system]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
                  "                   [--video STRATEGY,...] [--databases DIR] [--make-databases required|all]\n"
+                 "                   [--look flat|scene]\n"
                  "       walkthrough --list-strategies [--markdown]\n"
                  "--report (on) ends the run with the plots of frames.csv (tools/plot-walkthrough.sh, gnuplot)\n"
                  "and DIR/index.html, a page of the summary, the plots and the frames beside their top views\n"
@@ -79,6 +80,8 @@ struct Options {
                  "Quake III level only in its open BSP leaves, in a model read from a file only inside it (a\n"
                  "point whose rays in 14 directions all hit the model: its rooms), an error when none is found.\n"
                  "--patch-segments (8): quads along each way of a Quake III level's Bezier patch pieces.\n"
+                 "--look: scene (the default for a level or a model read from a file) draws a Quake III level's\n"
+                 "textures modulated by its lightmaps; flat (the city's and the field's) every mesh in one colour.\n"
                  "--set applies to every chosen strategy that has the setting. --coherence (temporal coherence)\n"
                  "applies to the strategies that query the rasterizer; --switch-off (least share of triangles\n"
                  "occlusion tests must cull; 0 never switches off) to those and to the strategies whose CPU\n"
@@ -241,6 +244,8 @@ int main(int argc, char **argv)
         gl::select_driver(o.session.driver);
         SceneChoice choice(o.scene, o.city_copies, o.leaf_triangles);
         choice.quake3.patch_segments = o.patch_segments;
+        const Look look = o.session.look_for(o.scene);
+        choice.quake3.look = look == Look::scene;
         const SceneSetup setup(choice);
         const std::vector<Camera> route = setup.route(o.route, o.frames, o.session.aspect());
 
@@ -248,6 +253,7 @@ int main(int argc, char **argv)
         DatabaseProvider databases = o.session.database_provider();
         SessionOptions so = o.session.session_options(databases);
         so.oracle = o.oracle;
+        so.look = look;
         MeasurementSession session(setup, ctx, so);
         for (const std::string &spec : o.session.strategies)
             session.add(spec, o.session.common);

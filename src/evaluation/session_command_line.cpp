@@ -45,6 +45,13 @@ bool SessionCommandLine::take(const std::string &name, const std::string &value)
         }
     } else if (a == "--allocator") {
         allocator = parse_allocator_policy(a, v);
+    } else if (a == "--look") {
+        if (v == "flat")
+            look = Look::flat;
+        else if (v == "scene")
+            look = Look::scene;
+        else
+            throw std::invalid_argument(a + " wants flat or scene, got '" + v + "'");
     } else if (a == "--databases") {
         databases = v;
     } else if (a == "--make-databases") {
@@ -63,6 +70,13 @@ bool SessionCommandLine::take(const std::string &name, const std::string &value)
         return false;
     }
     return true;
+}
+
+Look SessionCommandLine::look_for(const std::string &scene_name) const
+{
+    if (look)
+        return *look;
+    return scene_name.empty() || scene_name == "city" || scene_name == "field" ? Look::flat : Look::scene;
 }
 
 std::string SessionCommandLine::size_name() const
@@ -86,6 +100,7 @@ SessionOptions SessionCommandLine::session_options(DatabaseProvider &provider) c
     so.coherence = coherence;
     so.switch_off = switch_off;
     so.databases = &provider;
+    so.look = look.value_or(Look::flat);
     return so;
 }
 

@@ -10,9 +10,10 @@
 //   --strategies NAME[:key=value...],...   --set key=value (repeatable)
 //   --size PIXELS|WIDTHxHEIGHT   --driver llvmpipe|softpipe   --allocator keep|system
 //   --batch N   --coherence on|off   --switch-off F
-//   --databases DIR   --make-databases required|all
+//   --databases DIR   --make-databases required|all   --look flat|scene
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,12 @@ struct SessionCommandLine {
     double switch_off = 0.5;
     std::string databases = default_database_directory();
     DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
+    // --look; unset: the look the scene calls for (look_for).
+    std::optional<Look> look;
+    // The look of frames of scene `scene_name` (a program's --scene): --look
+    // where given, else scene for a scene read from a file (a Quake III
+    // level, a model), flat for the generated ones (city, field).
+    Look look_for(const std::string &scene_name) const;
     // False for a program that sets the traversal and the strategies'
     // settings itself, per run (occu-bench-knobs sweeps them): it takes no
     // --batch, --coherence, --switch-off nor --set.

@@ -51,6 +51,11 @@
 // MASK_OPAQUE). A shader that blends without any of these marks (a decal,
 // a flame) is taken as opaque: nothing in the BSP tells it apart.
 //
+// The look (Quake3Options::look): texture and lightmap coordinates and
+// vertex colours per vertex (interpolated over patches as positions are),
+// the faces' lightmap pages into one atlas (Scene::images), meshes one a
+// texture and lightmapping; the pictures themselves, scene/quake3_look.h.
+//
 // Coordinates. Quake's world is right-handed, z up, in game units (one
 // inch, by id's scale: a player stands 56 units tall); occu's is
 // right-handed, y up, in metres (geometry/aabb.h). A Quake point
@@ -79,6 +84,15 @@ struct Quake3Options {
     // Quake III's renderer subdivides until the chord is within 4 units
     // of the curve, which for OpenArena's pillars and arches is 4 to 16.
     int patch_segments = 8;
+    // Whether to read what the look of the level needs (Mesh::texcoords,
+    // lightmap_coords, vertex_light, lightmapped; the lightmaps into one
+    // atlas, Scene::images and lightmap_atlas): each face's texture
+    // coordinates, its lightmap (lump 14, 128 x 128 RGB pages, brightened
+    // as Quake III's renderer does by default: doubled, scaled back to the
+    // largest channel where one would clip) or, for a face without one,
+    // its vertex colours. Meshes are then one a texture and lightmapping.
+    // The textures' pictures come from the pk3 files (scene/quake3_look.h).
+    bool look = false;
 };
 
 // Reads a level from `bytes` (a .bsp file's, or a pk3 member's). `source`

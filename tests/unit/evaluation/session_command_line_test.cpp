@@ -76,6 +76,21 @@ TEST(SessionCommandLine, SizeIsSquareOrWidthByHeight)
     EXPECT_EQ(c.height, 8192);
 }
 
+TEST(SessionCommandLine, LookIsTheScenesUnlessGiven)
+{
+    SessionCommandLine c;
+    EXPECT_EQ(c.look_for("city"), Look::flat);
+    EXPECT_EQ(c.look_for(""), Look::flat);
+    EXPECT_EQ(c.look_for("field"), Look::flat);
+    EXPECT_EQ(c.look_for("pak.pk3:maps/x.bsp"), Look::scene);
+    EXPECT_EQ(c.look_for("house.ifc"), Look::scene);
+    EXPECT_TRUE(c.take("--look", "flat"));
+    EXPECT_EQ(c.look_for("pak.pk3:maps/x.bsp"), Look::flat);
+    EXPECT_TRUE(c.take("--look", "scene"));
+    EXPECT_EQ(c.look_for("city"), Look::scene);
+    EXPECT_EQ(refusal(c, "--look", "pretty"), "--look wants flat or scene, got 'pretty'");
+}
+
 TEST(SessionCommandLine, LeavesOtherNamesToTheProgram)
 {
     SessionCommandLine c;
