@@ -109,12 +109,13 @@ struct Options {
                  "                              [--size PIXELS|WxH] [--driver llvmpipe|softpipe] [--leaf-triangles N|auto]\n"
                  "                              [--batch N] [--switch-off F] [--coherence on|off] [--allocator keep|system]\n"
                  "                              [--load-levels LEVEL,...] [--repeat N] [--databases DIR]\n"
-                 "                              [--make-databases required|all] [--out DIR]\n"
+                 "                              [--make-databases required|all] [--look flat|scene] [--out DIR]\n"
                  "Every strategy (default: every name of the registry once, and bsp-pvs+ou-shared, bsp-pvs+om-ps)\n"
                  "on each scene (default: seven OpenArena levels and three assimp-testmodels buildings) along its\n"
                  "own route (a level: spawn:K, K views a spawn point, default 2; a model: orbit, default 60 frames)\n"
                  "and random:N:SEED (default 200 eyes in the scene's open space, seed %lu, one more a scene),\n"
-                 "512x512 llvmpipe by default, every frame compared with the unculled one (--coherence and\n"
+                 "512x512 llvmpipe in the flat look by default (--size 1280x720 --look scene: the levels' textures\n"
+                 "and lightmaps, the frame a player sees), every frame compared with the unculled one (--coherence and\n"
                  "--switch-off, default on and 0.5, apply to the own routes; random eyes run without either).\n"
                  "Prints each run, the targets (best conservative strategy within %.1fx of the floor; >= %.0f%%\n"
                  "efficiency where the floor hides >= half the frustum's triangles; best >= %.1fx over bsp-pvs\n"
@@ -453,7 +454,9 @@ int main(int argc, char **argv)
             std::size_t triangles = 0;
             for (int r = 0; r < o.repeat; ++r) {
                 auto t0 = std::chrono::steady_clock::now();
-                const Scene scene = load_scene(level);
+                Quake3Options read;
+                read.look = o.session.look == Look::scene;
+                const Scene scene = load_scene(level, nullptr, read);
                 load = std::min(load, ms_since(t0));
                 t0 = std::chrono::steady_clock::now();
                 HierarchyOptions h;
@@ -476,7 +479,11 @@ int main(int argc, char **argv)
         gl::OffscreenContext ctx(o.session.width, o.session.height);
         std::vector<Run> runs;
         for (std::size_t i = 0; i < o.scenes.size(); ++i) {
-            const SceneSetup setup({o.scenes[i], 1, o.leaf_triangles});
+            // Its tables are flat unless --look scene: then levels are read
+            // with their textures and lightmaps and drawn so.
+            SceneChoice choice(o.scenes[i], 1, o.leaf_triangles);
+            choice.quake3.look = o.session.look == Look::scene;
+            const SceneSetup setup(choice);
             if (is_level(setup.scene())) {
                 const LevelStatistics s = level_statistics(setup.scene());
                 std::printf("\nlevel %s: %s\n  (%s)\n", short_name(o.scenes[i]).c_str(), s.row().c_str(),
