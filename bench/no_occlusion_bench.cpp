@@ -146,7 +146,9 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
     SceneResult out;
     out.scene = scene_name;
     out.route = route_name;
-    const SceneSetup setup({scene_name, 1, HierarchyOptions{}.max_leaf_triangles});
+    SceneChoice choice(scene_name, 1, HierarchyOptions{}.max_leaf_triangles);
+    choice.quake3.look = o.session.look == Look::scene;   // flat unless --look scene
+    const SceneSetup setup(choice);
     const std::vector<Camera> route = setup.route(route_name, o.frames, o.session.aspect());
     out.triangles = setup.scene().triangle_count();
     out.leaves = setup.hierarchy().leaf_count();

@@ -263,8 +263,12 @@ int main(int argc, char **argv)
         gl::select_driver(o.session.driver);
         // Every scene is read before any is rendered: an unreadable one is named at once.
         std::vector<SceneSetup> scenes;
-        for (const std::string &s : o.scenes)
-            scenes.emplace_back(SceneChoice(s, 1, o.leaf_triangles));
+        for (const std::string &s : o.scenes) {
+            // Flat unless --look scene (session_options: the frames' look).
+            SceneChoice choice(s, 1, o.leaf_triangles);
+            choice.quake3.look = o.session.look == Look::scene;
+            scenes.emplace_back(choice);
+        }
         std::filesystem::create_directories(o.out);
         const std::string views_path = o.out + "/views.csv", summary_path = o.out + "/summary.csv";
         std::ofstream csv(views_path), summary(summary_path);
