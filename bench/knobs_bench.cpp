@@ -608,6 +608,7 @@ int main(int argc, char **argv)
                         SceneChoice choice;
                         choice.name = o.scenes[scene];
                         choice.hierarchy = leaf;
+                        choice.quake3.look = o.session.look == Look::scene;   // flat unless --look scene
                         setups[scene].emplace(v.leaf, SceneSetup(choice));
                     } else {
                         setups[scene].emplace(v.leaf, setups[scene].begin()->second.with_hierarchy(leaf));
