@@ -102,7 +102,7 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-knobs [--scenes SCENE,...] [--routes ROUTE,...] [--strategies NAME,...]\n"
                  "                        [--knob SETTING=V1,V2,...]...\n"
-                 "                        [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--out DIR]\n"
+                 "                        [--frames N] [--size PIXELS|WxH] [--driver llvmpipe|softpipe] [--out DIR]\n"
                  "                        [--allocator keep|system]\n"
                  "                        [--plots on|off] [--databases DIR] [--make-databases required|all]\n"
                  "Sweeps every approximation and cost setting of each strategy (default: every registered family\n"
@@ -370,7 +370,7 @@ void walk(const Options &o, std::size_t route_index, int leaf, const SceneSetup 
           gl::OffscreenContext &ctx, std::set<std::string> &notes)
 {
     const std::string &route_name = o.runs[route_index].route;
-    const std::vector<Camera> route = setup.route(route_name, o.frames);
+    const std::vector<Camera> route = setup.route(route_name, o.frames, o.session.aspect());
     DatabaseProvider databases = o.session.database_provider();
     SessionOptions so = o.session.session_options(databases);
     so.batch = default_batch;
@@ -555,7 +555,7 @@ bool plot(const Options &o, const std::string &strategy, const Sweep &sweep, dou
        << "set output " << gnuplot_quoted(png) << "\n"
        << "set multiplot layout 1,2 title "
        << gnuplot_quoted(strategy + ": every knob, means over the routes " + routes + " (" + std::to_string(o.frames) +
-                         " frames, " + std::to_string(o.session.size) + "x" + std::to_string(o.session.size) +
+                         " frames, " + std::to_string(o.session.width) + "x" + std::to_string(o.session.height) +
                          ", " + gl::driver_name(o.session.driver) + "); vfc " + fixed(vfc_ms, 2) + " ms")
        << "\nset grid\nset key outside bottom center horizontal\nset ylabel 'mean frame time, ms'\n";
     auto plots = [&](const std::string &x, const std::string &front) {
@@ -608,6 +608,7 @@ int main(int argc, char **argv)
                         SceneChoice choice;
                         choice.name = o.scenes[scene];
                         choice.hierarchy = leaf;
+                        choice.quake3.look = o.session.look == Look::scene;   // flat unless --look scene
                         setups[scene].emplace(v.leaf, SceneSetup(choice));
                     } else {
                         setups[scene].emplace(v.leaf, setups[scene].begin()->second.with_hierarchy(leaf));
@@ -615,14 +616,14 @@ int main(int argc, char **argv)
                 }
         // Routes are checked before any run.
         for (const Options::Run &r : o.runs)
-            setups[r.scene].begin()->second.route(r.route, o.frames);
-        gl::OffscreenContext ctx(o.session.size, o.session.size);
+            setups[r.scene].begin()->second.route(r.route, o.frames, o.session.aspect());
+        gl::OffscreenContext ctx(o.session.width, o.session.height);
         std::filesystem::create_directories(o.out);
         std::printf("occu-bench-knobs: %zu variants of %zu strategies, routes", sweep.variants.size() - 2,
                     o.session.strategies.size());
         for (const Options::Run &r : o.runs)
             std::printf(" %s", r.label.c_str());
-        std::printf(", %d frames, %dx%d, %s\n", o.frames, o.session.size, o.session.size, ctx.renderer().c_str());
+        std::printf(", %d frames, %dx%d, %s\n", o.frames, o.session.width, o.session.height, ctx.renderer().c_str());
         for (const std::string &l : sweep.left_out)
             std::printf("left out: %s\n", l.c_str());
         std::set<std::string> notes;

@@ -8,7 +8,8 @@
 // triangles, billboards and hidden faces, leaves (open and solid),
 // clusters, spawn points. One CSV row a level on standard output.
 //
-// Usage: occu-bench-level-load [--patch-segments N] [--repeat N] LEVEL...
+// Usage: occu-bench-level-load [--patch-segments N] [--repeat N] [--look] LEVEL...
+//        (--look: with the textures' pictures and the lightmaps, scene/quake3_look.h)
 //        occu-bench-level-load --all-debian   (every level of Debian's openarena-data
 //                                              and openarena-088-data pk3s)
 #include <algorithm>
@@ -33,7 +34,7 @@ namespace {
 [[noreturn]] void usage(const std::string &error)
 {
     std::fprintf(stderr, "occu-bench-level-load: %s\n", error.c_str());
-    std::fprintf(stderr, "usage: occu-bench-level-load [--patch-segments N] [--repeat N] (LEVEL... | --all-debian)\n"
+    std::fprintf(stderr, "usage: occu-bench-level-load [--patch-segments N] [--repeat N] [--look] (LEVEL... | --all-debian)\n"
                          "LEVEL: a .bsp file or PAK.pk3:maps/NAME.bsp\n");
     std::exit(2);
 }
@@ -82,6 +83,10 @@ int main(int argc, char **argv)
             if (*end || v < 1 || v > 1000)
                 usage(a + " takes a whole number of 1 to 1000");
             (a == "--repeat" ? repeat : options.patch_segments) = int(v);
+        } else if (a == "--look") {
+            // With what the look needs: texture coordinates, lightmaps,
+            // and the textures' pictures found and decoded (scene/quake3_look.h).
+            options.look = true;
         } else if (a == "--all-debian") {
             const std::vector<std::string> all = debian_levels();
             levels.insert(levels.end(), all.begin(), all.end());

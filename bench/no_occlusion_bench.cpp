@@ -67,7 +67,7 @@ struct Options {
         std::fprintf(to, "occu-bench-no-occlusion: %s\n", error.c_str());
     std::fprintf(to,
                  "usage: occu-bench-no-occlusion [--strategies NAME,...] [--set key=value]... [--frames N] [--rounds R]\n"
-                 "                               [--size PIXELS] [--driver llvmpipe|softpipe] [--batch N] [--switch-off F]\n"
+                 "                               [--size PIXELS|WxH] [--driver llvmpipe|softpipe] [--batch N] [--switch-off F]\n"
                  "                               [--allocator keep|system] [--coherence on|off] [--databases DIR]\n"
                  "                               [--make-databases required|all]\n"
                  "Runs every strategy (default: every name of the registry, a preset that repeats its family's\n"
@@ -146,8 +146,10 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
     SceneResult out;
     out.scene = scene_name;
     out.route = route_name;
-    const SceneSetup setup({scene_name, 1, HierarchyOptions{}.max_leaf_triangles});
-    const std::vector<Camera> route = setup.route(route_name, o.frames);
+    SceneChoice choice(scene_name, 1, HierarchyOptions{}.max_leaf_triangles);
+    choice.quake3.look = o.session.look == Look::scene;   // flat unless --look scene
+    const SceneSetup setup(choice);
+    const std::vector<Camera> route = setup.route(route_name, o.frames, o.session.aspect());
     out.triangles = setup.scene().triangle_count();
     out.leaves = setup.hierarchy().leaf_count();
     DatabaseProvider databases = o.session.database_provider();
@@ -173,7 +175,7 @@ SceneResult run_scene(const Options &o, const std::string &scene_name, const std
         if (first) {
             std::printf("%s (%zu triangles, %zu leaves), route %s: %zu strategies, %zu frames, %d round(s), %dx%d, %s\n",
                         scene_name.c_str(), out.triangles, out.leaves, route_name.c_str(), made.size(), route.size(),
-                        o.rounds, o.session.size, o.session.size, ctx.renderer().c_str());
+                        o.rounds, o.session.width, o.session.height, ctx.renderer().c_str());
             for (const std::string &l : out.left_out)
                 std::printf("left out: %s\n", l.c_str());
             std::fflush(stdout);
@@ -294,7 +296,7 @@ int main(int argc, char **argv)
     const Options o = parse(argc, argv);
     try {
         gl::select_driver(o.session.driver);
-        gl::OffscreenContext ctx(o.session.size, o.session.size);
+        gl::OffscreenContext ctx(o.session.width, o.session.height);
         std::vector<SceneResult> scenes;
         scenes.push_back(run_scene(o, "city", "open", ctx));
         scenes.push_back(run_scene(o, "field", "overhead", ctx));

@@ -106,15 +106,16 @@ struct Options {
     std::fprintf(to,
                  "usage: occu-bench-real-scenes [--scenes SCENE,...] [--strategies NAME,...] [--set KEY=VALUE]...\n"
                  "                              [--spawn-views K] [--orbit-frames N] [--random-views N] [--seed S]\n"
-                 "                              [--size PIXELS] [--driver llvmpipe|softpipe] [--leaf-triangles N|auto]\n"
+                 "                              [--size PIXELS|WxH] [--driver llvmpipe|softpipe] [--leaf-triangles N|auto]\n"
                  "                              [--batch N] [--switch-off F] [--coherence on|off] [--allocator keep|system]\n"
                  "                              [--load-levels LEVEL,...] [--repeat N] [--databases DIR]\n"
-                 "                              [--make-databases required|all] [--out DIR]\n"
+                 "                              [--make-databases required|all] [--look flat|scene] [--out DIR]\n"
                  "Every strategy (default: every name of the registry once, and bsp-pvs+ou-shared, bsp-pvs+om-ps)\n"
                  "on each scene (default: seven OpenArena levels and three assimp-testmodels buildings) along its\n"
                  "own route (a level: spawn:K, K views a spawn point, default 2; a model: orbit, default 60 frames)\n"
                  "and random:N:SEED (default 200 eyes in the scene's open space, seed %lu, one more a scene),\n"
-                 "512x512 llvmpipe by default, every frame compared with the unculled one (--coherence and\n"
+                 "512x512 llvmpipe in the flat look by default (--size 1280x720 --look scene: the levels' textures\n"
+                 "and lightmaps, the frame a player sees), every frame compared with the unculled one (--coherence and\n"
                  "--switch-off, default on and 0.5, apply to the own routes; random eyes run without either).\n"
                  "Prints each run, the targets (best conservative strategy within %.1fx of the floor; >= %.0f%%\n"
                  "efficiency where the floor hides >= half the frustum's triangles; best >= %.1fx over bsp-pvs\n"
@@ -243,7 +244,7 @@ Run run_route(const Options &o, const SceneSetup &setup, const std::string &rout
     run.level = is_level(setup.scene());
     run.triangles = setup.scene().triangle_count();
     run.leaves = setup.hierarchy().leaf_count();
-    const std::vector<Camera> route = setup.route(route_name, o.orbit_frames);
+    const std::vector<Camera> route = setup.route(route_name, o.orbit_frames, o.session.aspect());
     run.frames = route.size();
 
     DatabaseProvider databases = o.session.database_provider();
@@ -264,7 +265,7 @@ Run run_route(const Options &o, const SceneSetup &setup, const std::string &rout
     }
     std::printf("\n%s (%zu triangles, %zu leaves of at most %u), route %s: %zu frames, %zu strategies, %dx%d, %s\n",
                 run.scene.c_str(), run.triangles, run.leaves, unsigned(setup.hierarchy().max_leaf_triangles()),
-                route_name.c_str(), route.size(), session.strategies().size(), o.session.size, o.session.size,
+                route_name.c_str(), route.size(), session.strategies().size(), o.session.width, o.session.height,
                 ctx.renderer().c_str());
     for (const std::string &l : run.left_out)
         std::printf("left out: %s\n", l.c_str());
@@ -453,7 +454,9 @@ int main(int argc, char **argv)
             std::size_t triangles = 0;
             for (int r = 0; r < o.repeat; ++r) {
                 auto t0 = std::chrono::steady_clock::now();
-                const Scene scene = load_scene(level);
+                Quake3Options read;
+                read.look = o.session.look == Look::scene;
+                const Scene scene = load_scene(level, nullptr, read);
                 load = std::min(load, ms_since(t0));
                 t0 = std::chrono::steady_clock::now();
                 HierarchyOptions h;
@@ -473,10 +476,14 @@ int main(int argc, char **argv)
                           << triangles << '\n';
         }
 
-        gl::OffscreenContext ctx(o.session.size, o.session.size);
+        gl::OffscreenContext ctx(o.session.width, o.session.height);
         std::vector<Run> runs;
         for (std::size_t i = 0; i < o.scenes.size(); ++i) {
-            const SceneSetup setup({o.scenes[i], 1, o.leaf_triangles});
+            // Its tables are flat unless --look scene: then levels are read
+            // with their textures and lightmaps and drawn so.
+            SceneChoice choice(o.scenes[i], 1, o.leaf_triangles);
+            choice.quake3.look = o.session.look == Look::scene;
+            const SceneSetup setup(choice);
             if (is_level(setup.scene())) {
                 const LevelStatistics s = level_statistics(setup.scene());
                 std::printf("\nlevel %s: %s\n  (%s)\n", short_name(o.scenes[i]).c_str(), s.row().c_str(),

@@ -68,7 +68,7 @@ struct Options {
 SessionCommandLine session_defaults()
 {
     SessionCommandLine s;
-    s.size = 128;
+    s.square(128);
     s.max_size = 4096;
     s.coherence = false;
     s.switch_off = 0.0;
@@ -82,7 +82,7 @@ SessionCommandLine session_defaults()
         std::fprintf(to, "occu-random-views: %s\n", error.c_str());
     std::fprintf(to,
                  "usage: occu-random-views [--scene city|field|FILE[,...]]... [--views N] [--seed S]\n"
-                 "                         [--size PIXELS] [--strategies NAME[:key=value...],...]\n"
+                 "                         [--size PIXELS|WxH] [--strategies NAME[:key=value...],...]\n"
                  "                         [--driver llvmpipe|softpipe] [--fov MIN,MAX] [--leaf-triangles N|auto]\n"
                  "                         [--batch N] [--coherence on|off] [--switch-off F] [--set key=value]...\n"
                  "                         [--allocator keep|system]\n"
@@ -188,10 +188,9 @@ void run_scene(const Options &o, const SceneSetup &setup, long views, unsigned l
 {
     const std::string &scene_name = setup.name();
     const Scene &scene = setup.scene();
-    const std::vector<Camera> cameras = setup.random_views(views, seed, o.fov_min, o.fov_max);
+    const std::vector<Camera> cameras = setup.random_views(views, seed, o.fov_min, o.fov_max, o.session.aspect());
 
-    const int size = o.session.size;
-    gl::OffscreenContext ctx(size, size);
+    gl::OffscreenContext ctx(o.session.width, o.session.height);
     DatabaseProvider databases = o.session.database_provider();
     SessionOptions so = o.session.session_options(databases);
     so.lost_pixels = SessionOptions::PixelCheck::all;
@@ -203,8 +202,8 @@ void run_scene(const Options &o, const SceneSetup &setup, long views, unsigned l
             left_out.push_back(spec + " (" + why + ")");
     std::printf("\nscene %s: %zu triangles, %zu leaves of at most %u; %ld random views (seed %lu), %dx%d, fov %g..%g, %s\n",
                 scene_name.c_str(), scene.triangle_count(), setup.hierarchy().leaf_count(),
-                unsigned(setup.hierarchy().max_leaf_triangles()), views, seed, size,
-                size, double(o.fov_min), double(o.fov_max), ctx.renderer().c_str());
+                unsigned(setup.hierarchy().max_leaf_triangles()), views, seed, o.session.width,
+                o.session.height, double(o.fov_min), double(o.fov_max), ctx.renderer().c_str());
     for (const std::string &s : left_out)
         std::printf("left out: %s\n", s.c_str());
     std::fflush(stdout);
@@ -264,8 +263,12 @@ int main(int argc, char **argv)
         gl::select_driver(o.session.driver);
         // Every scene is read before any is rendered: an unreadable one is named at once.
         std::vector<SceneSetup> scenes;
-        for (const std::string &s : o.scenes)
-            scenes.emplace_back(SceneChoice(s, 1, o.leaf_triangles));
+        for (const std::string &s : o.scenes) {
+            // Flat unless --look scene (session_options: the frames' look).
+            SceneChoice choice(s, 1, o.leaf_triangles);
+            choice.quake3.look = o.session.look == Look::scene;
+            scenes.emplace_back(choice);
+        }
         std::filesystem::create_directories(o.out);
         const std::string views_path = o.out + "/views.csv", summary_path = o.out + "/summary.csv";
         std::ofstream csv(views_path), summary(summary_path);
@@ -276,7 +279,7 @@ int main(int argc, char **argv)
         summary << "scene,strategy,views,mean_ms,vs_vfc,x_ideal,triangles,occluded_leaves,occluded_leaves_culled,"
                    "efficiency_percent,visible_leaves_culled,lost_pixels,tied_pixels\n";
         std::printf("random views: %ld over %zu scenes, %zu strategies, %dx%d; views.csv and summary.csv in %s\n",
-                    o.views, o.scenes.size(), o.session.strategies.size(), o.session.size, o.session.size,
+                    o.views, o.scenes.size(), o.session.strategies.size(), o.session.width, o.session.height,
                     o.out.c_str());
         Totals totals;
         const auto start = std::chrono::steady_clock::now();

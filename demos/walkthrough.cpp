@@ -65,11 +65,12 @@ struct Options {
                  "                   [--route dense|street|medium|open|orbit|overhead|random:N:SEED|spawn[:K]|FILE]\n"
                  "                   [--strategies NAME[:key=value...],...] [--set key=value]...\n"
                  "                   [--occluder-db FILE (= --set database=FILE)]\n"
-                 "                   [--frames N] [--size PIXELS] [--driver llvmpipe|softpipe] [--city-copies N]\n"
+                 "                   [--frames N] [--size PIXELS|WIDTHxHEIGHT] [--driver llvmpipe|softpipe] [--city-copies N]\n"
                  "                   [--patch-segments N] [--leaf-triangles N|auto] [--batch N] [--coherence on|off]\n"
                  "                   [--switch-off F] [--allocator keep|system]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
                  "                   [--video STRATEGY,...] [--databases DIR] [--make-databases required|all]\n"
+                 "                   [--look flat|scene]\n"
                  "       walkthrough --list-strategies [--markdown]\n"
                  "--report (on) ends the run with the plots of frames.csv (tools/plot-walkthrough.sh, gnuplot)\n"
                  "and DIR/index.html, a page of the summary, the plots and the frames beside their top views\n"
@@ -79,6 +80,8 @@ struct Options {
                  "Quake III level only in its open BSP leaves, in a model read from a file only inside it (a\n"
                  "point whose rays in 14 directions all hit the model: its rooms), an error when none is found.\n"
                  "--patch-segments (8): quads along each way of a Quake III level's Bezier patch pieces.\n"
+                 "--look: scene (the default for a level or a model read from a file) draws a Quake III level's\n"
+                 "textures modulated by its lightmaps; flat (the city's and the field's) every mesh in one colour.\n"
                  "--set applies to every chosen strategy that has the setting. --coherence (temporal coherence)\n"
                  "applies to the strategies that query the rasterizer; --switch-off (least share of triangles\n"
                  "occlusion tests must cull; 0 never switches off) to those and to the strategies whose CPU\n"
@@ -202,8 +205,8 @@ void write_images(const Options &o, gl::OffscreenContext &ctx, const SceneSetup 
     char number[24];
     std::snprintf(number, sizeof(number), "%04zu", f.index);
     const std::string base = o.out + "/" + file_name(s.label);
-    const int size = o.session.size;
-    write_png(base + "-" + number + ".png", size, size, ctx.pixels());
+    const int width = o.session.width, height = o.session.height;
+    write_png(base + "-" + number + ".png", width, height, ctx.pixels());
 
     TopViewCaption caption;
     caption.strategy = s.label;
@@ -221,15 +224,15 @@ void write_images(const Options &o, gl::OffscreenContext &ctx, const SceneSetup 
             caption.efficiency_percent = 100.0 * f.quality.efficiency();
     }
     render_top_view(setup.hierarchy(), f.frame->camera, f.stats.drawn, wrongly_culled,
-                    top_view_map_area(size, size));
+                    top_view_map_area(width, height));
     glFinish();
     // Top row first, for the caption.
-    const std::size_t row = std::size_t(size) * 4;
-    std::vector<std::uint8_t> top(row * std::size_t(size));
-    for (std::size_t y = 0; y < std::size_t(size); ++y)
-        std::memcpy(&top[y * row], ctx.pixels() + (std::size_t(size) - 1 - y) * row, row);
-    caption_top_view({top.data(), size, size}, caption);
-    write_png(base + "-top-" + number + ".png", size, size, top.data(), false);
+    const std::size_t row = std::size_t(width) * 4;
+    std::vector<std::uint8_t> top(row * std::size_t(height));
+    for (std::size_t y = 0; y < std::size_t(height); ++y)
+        std::memcpy(&top[y * row], ctx.pixels() + (std::size_t(height) - 1 - y) * row, row);
+    caption_top_view({top.data(), width, height}, caption);
+    write_png(base + "-top-" + number + ".png", width, height, top.data(), false);
 }
 
 }  // namespace
@@ -241,14 +244,16 @@ int main(int argc, char **argv)
         gl::select_driver(o.session.driver);
         SceneChoice choice(o.scene, o.city_copies, o.leaf_triangles);
         choice.quake3.patch_segments = o.patch_segments;
+        const Look look = o.session.look_for(o.scene);
+        choice.quake3.look = look == Look::scene;
         const SceneSetup setup(choice);
-        const std::vector<Camera> route = setup.route(o.route, o.frames);
+        const std::vector<Camera> route = setup.route(o.route, o.frames, o.session.aspect());
 
-        const int size = o.session.size;
-        gl::OffscreenContext ctx(size, size);
+        gl::OffscreenContext ctx(o.session.width, o.session.height);
         DatabaseProvider databases = o.session.database_provider();
         SessionOptions so = o.session.session_options(databases);
         so.oracle = o.oracle;
+        so.look = look;
         MeasurementSession session(setup, ctx, so);
         for (const std::string &spec : o.session.strategies)
             session.add(spec, o.session.common);
@@ -257,14 +262,14 @@ int main(int argc, char **argv)
         std::printf("scene: %zu triangles, %zu leaves of at most %u; route %s, %zu frames, %dx%d, %s; allocator %s\n",
                     setup.scene().triangle_count(), setup.hierarchy().leaf_count(),
                     unsigned(setup.hierarchy().max_leaf_triangles()), o.route.c_str(), route.size(),
-                    size, size, ctx.renderer().c_str(), allocator_policy_name(o.session.allocator));
+                    o.session.width, o.session.height, ctx.renderer().c_str(), allocator_policy_name(o.session.allocator));
         session.walk(route, "frames", [&](const SessionStrategy &s, const StrategyFrame &f) {
             if (o.png_every > 0 && f.index % std::size_t(o.png_every) == 0)
                 write_images(o, ctx, setup, s, f);
             csv.row(s, f);
         });
         csv.close();
-        write_summary(session, o.out + "/summary.csv", o.route, size);
+        write_summary(session, o.out + "/summary.csv", o.route, o.session.size_name());
         std::printf("\nvs vfc: vfc's mean ms / the strategy's; x floor: the strategy's mean ms / ideal's (the oracle's\n"
                     "visible leaves alone); efficiency: occluded leaves culled / occluded leaves.\n"
                     "summary: %s/summary.csv; per frame: %s/frames.csv; frames and top views: %s/<strategy>-NNNN.png\n",

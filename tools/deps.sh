@@ -18,6 +18,7 @@ BUILD_PACKAGES=(
     g++ libglm-dev libgtest-dev libpng-dev
     libassimp-dev       # user scenes (OBJ, glTF)
     libzip-dev          # Quake III levels inside pk3 archives (src/scene/pk3_archive.cpp)
+    libstb-dev          # stb_image: a level's JPEG and TGA textures for its look (src/scene/quake3_look.cpp)
     libcgal-dev libpolyclipping-dev   # view cells (constrained Delaunay) and occluder shrinking (polygon offsets)
 )
 # To run the piglit regression run on the patched driver.

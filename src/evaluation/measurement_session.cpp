@@ -105,7 +105,7 @@ void Measured::pool(const Measured &o)
 MeasurementSession::MeasurementSession(const SceneSetup &scene, gl::OffscreenContext &context,
                                        const SessionOptions &options)
     : scene_(scene), gl_(context), options_(options), width_(context.width()), height_(context.height()),
-      renderer_(scene_.scene(), scene_.hierarchy()),
+      renderer_(scene_.scene(), scene_.hierarchy(), options.look),
       unculled_strategy_(make_strategy("none", {scene_.scene(), scene_.hierarchy(), renderer_})),
       order_state_(options.order_seed)
 {

@@ -75,6 +75,9 @@ struct SessionOptions {
     // Applied to the process when the session is made (evaluation/allocator.h).
     AllocatorPolicy allocator = AllocatorPolicy::keep_freed;
     float clear_colour[4] = {0.55f, 0.7f, 0.9f, 1.0f};
+    // How frames look (render/scene_renderer.h): the colour pass alone
+    // textures; what a strategy draws to cull never does.
+    Look look = Look::flat;
     // Makes or finds the databases the strategies read and were not given
     // (culling/databases.h); none: a strategy that requires one and was
     // not given it refuses to be made.

@@ -8,11 +8,12 @@
 // first and handles the pairs take() leaves.
 //
 //   --strategies NAME[:key=value...],...   --set key=value (repeatable)
-//   --size PIXELS   --driver llvmpipe|softpipe   --allocator keep|system
+//   --size PIXELS|WIDTHxHEIGHT   --driver llvmpipe|softpipe   --allocator keep|system
 //   --batch N   --coherence on|off   --switch-off F
-//   --databases DIR   --make-databases required|all
+//   --databases DIR   --make-databases required|all   --look flat|scene
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,16 @@ struct SessionCommandLine {
     // Empty: the program's own list (which it checks with check_strategies).
     std::vector<std::string> strategies;
     std::vector<std::string> common;   // --set key=value, for every strategy that has the key
-    int size = 512;                    // square frames
-    int max_size = 8192;               // the largest --size the program takes
+    // Frames of width x height pixels: --size N is N x N, --size WxH
+    // (1280x720) any other; each side 16..max_size.
+    int width = 512, height = 512;
+    int max_size = 8192;               // the largest side --size takes
+    // Sets both sides to `pixels`: a program's own default of square frames.
+    void square(int pixels) { width = height = pixels; }
+    // The frames' width over their height, the cameras' aspect ratio.
+    float aspect() const { return float(width) / float(height); }
+    // "512" for square frames, "1280x720" otherwise (as --size takes it).
+    std::string size_name() const;
     gl::Driver driver = gl::Driver::llvmpipe;
     AllocatorPolicy allocator = AllocatorPolicy::keep_freed;
     int batch = 32;
@@ -36,6 +45,12 @@ struct SessionCommandLine {
     double switch_off = 0.5;
     std::string databases = default_database_directory();
     DatabaseProvider::Makes make_databases = DatabaseProvider::Makes::required;
+    // --look; unset: the look the scene calls for (look_for).
+    std::optional<Look> look;
+    // The look of frames of scene `scene_name` (a program's --scene): --look
+    // where given, else scene for a scene read from a file (a Quake III
+    // level, a model), flat for the generated ones (city, field).
+    Look look_for(const std::string &scene_name) const;
     // False for a program that sets the traversal and the strategies'
     // settings itself, per run (occu-bench-knobs sweeps them): it takes no
     // --batch, --coherence, --switch-off nor --set.

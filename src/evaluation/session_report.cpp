@@ -54,7 +54,7 @@ std::string ratio(double a, double b)
 
 }  // namespace
 
-void write_summary(const MeasurementSession &session, const std::string &path, const std::string &route, int size)
+void write_summary(const MeasurementSession &session, const std::string &path, const std::string &route, const std::string &size)
 {
     const double vfc_ms = session.reference_ms("vfc"), ideal_ms = session.reference_ms("ideal");
     std::ofstream csv(path);

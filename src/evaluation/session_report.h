@@ -41,6 +41,6 @@ private:
 // with the strategies' notes under it. vs_vfc: vfc's mean ms / the
 // strategy's; x_floor: the strategy's mean ms / ideal's. Throws
 // std::runtime_error naming the file when it cannot write it.
-void write_summary(const MeasurementSession &session, const std::string &path, const std::string &route, int size);
+void write_summary(const MeasurementSession &session, const std::string &path, const std::string &route, const std::string &size);
 
 }  // namespace occu

@@ -31,6 +31,16 @@
 
 namespace occu {
 
+// How a frame looks. flat: every mesh in its one colour, pre-lit
+// (render/shading.h): what the procedural city calls for. scene: what the
+// scene itself carries (Mesh::texcoords, image, lightmapped, vertex_light:
+// a Quake III level read with its look, scene/quake3_bsp.h): each mesh's
+// texture modulated by its lightmap, or by its vertex light where it has
+// none; a mesh without such data is drawn flat. Only the colour pass
+// (draw_leaf, draw_see_through) uses the look; the passes that write no
+// colour (draw_leaf_flat: occluders' depth, ID buffers) never texture.
+enum class Look { flat, scene };
+
 // Which of a leaf's triangles to draw: those of occluder meshes, those of
 // see-through meshes (Mesh::occluder), or both.
 enum class LeafPart { occluders, see_through, all };
@@ -38,7 +48,7 @@ enum class LeafPart { occluders, see_through, all };
 class SceneRenderer {
 public:
     // Needs a current context.
-    SceneRenderer(const Scene &scene, const Hierarchy &hierarchy);
+    SceneRenderer(const Scene &scene, const Hierarchy &hierarchy, Look look = Look::flat);
     ~SceneRenderer();
     SceneRenderer(const SceneRenderer &) = delete;
     SceneRenderer &operator=(const SceneRenderer &) = delete;
@@ -65,8 +75,29 @@ public:
     // Draws the faces of `box` (an occlusion proxy: no colour needed).
     static void draw_box(const Aabb &box);
 
+    // Whether frames are textured (Look::scene on a scene that carries a look).
+    bool textured() const { return textured_; }
+
 private:
+    // A run of a leaf's vertices drawn with one texture and lightmapping:
+    // [first, first + count) of its buffer.
+    struct Batch {
+        GLint first;
+        GLsizei count;
+        GLuint texture;   // 0: none
+        bool lightmapped;
+    };
+    std::uint32_t draw_batches(std::uint32_t node, GLint first, GLsizei count) const;
+
     const Hierarchy &hierarchy_;
+    bool textured_ = false;
+    GLsizei stride_ = 0;
+    std::vector<GLuint> textures_;              // per Scene::images (0: not used by any mesh)
+    GLuint atlas_ = 0;                          // the lightmap atlas
+    std::vector<std::vector<Batch>> batches_;   // per node, when textured
+    // glActiveTexture and glClientActiveTexture (GL 1.3).
+    using TextureUnitProc = void(APIENTRY *)(GLenum);
+    TextureUnitProc ActiveTexture_ = nullptr, ClientActiveTexture_ = nullptr;
     std::vector<GLuint> buffers_;          // per node; 0 for inner nodes
     std::vector<GLsizei> vertex_counts_;       // per node: its occluders' vertices, then the see-through ones
     std::vector<GLsizei> see_through_counts_;  // per node: the see-through vertices

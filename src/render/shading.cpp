@@ -36,4 +36,12 @@ void prelit_rgba8(const glm::vec3 &albedo, const glm::vec3 &normal, std::uint8_t
     rgba[3] = 255;
 }
 
+void unlit_rgba8(const glm::vec3 &colour, std::uint8_t rgba[4])
+{
+    const glm::vec3 c = finite(colour) ? colour : glm::vec3(0.5f);
+    for (int k = 0; k < 3; ++k)
+        rgba[k] = std::uint8_t(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
+    rgba[3] = 255;
+}
+
 }  // namespace occu

@@ -21,4 +21,8 @@ glm::vec3 prelit_colour(const glm::vec3 &albedo, const glm::vec3 &normal);
 // The same as RGBA8 (alpha 255); a non-finite albedo or normal gives grey.
 void prelit_rgba8(const glm::vec3 &albedo, const glm::vec3 &normal, std::uint8_t rgba[4]);
 
+// `colour` itself as RGBA8 (alpha 255), for surfaces that give their own
+// light (Mesh::shaded false); a non-finite colour gives grey.
+void unlit_rgba8(const glm::vec3 &colour, std::uint8_t rgba[4]);
+
 }  // namespace occu

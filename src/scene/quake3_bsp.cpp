@@ -35,6 +35,9 @@ constexpr std::size_t header_bytes = 8 + 8 * lump_count;
 constexpr std::uint32_t surf_sky = 0x4, surf_nodraw = 0x80, surf_alphashadow = 0x10000;
 constexpr std::uint32_t contents_water = 0x20, contents_fog = 0x40, contents_translucent = 0x20000000;
 
+// The flat look's sky: one unlit colour, a clear day's.
+const glm::vec3 sky_colour{0.52f, 0.68f, 0.88f};
+
 constexpr int face_polygon = 1, face_patch = 2, face_mesh = 3, face_billboard = 4;
 
 // What a level may make at most: beyond it a file (or a patch level)
@@ -262,10 +265,25 @@ std::vector<LevelSpawn> spawns_of(const Reader &r, const std::vector<Entity> &en
     return out;
 }
 
-// One vertex of the file, in occu's coordinates.
+// One vertex of the file, in occu's coordinates, with what the look reads:
+// texture and lightmap coordinates, and its colour (RGBA8).
 struct FileVertex {
     glm::vec3 position, normal;
+    glm::vec2 st{0.0f}, lightmap{0.0f};
+    glm::vec4 colour{1.0f};
 };
+
+// Quake III's default brightening of baked light (its renderer's
+// R_ColorShiftLightingBytes with two overbright bits and no hardware
+// gamma: one bit): doubled, and where a channel would pass 255 all three
+// scaled back so that the hue stays.
+void brighten(const std::uint8_t in[3], std::uint8_t out[3])
+{
+    int c[3] = {in[0] * 2, in[1] * 2, in[2] * 2};
+    const int top = std::max({c[0], c[1], c[2]});
+    for (int k = 0; k < 3; ++k)
+        out[k] = std::uint8_t(top > 255 ? c[k] * 255 / top : c[k]);
+}
 
 // Whether the curves of a patch's control grid along one direction are
 // all straight and evenly parameterized: along `n` points spaced `step`
@@ -293,7 +311,8 @@ glm::vec3 bernstein2(float t) { return {(1 - t) * (1 - t), 2 * t * (1 - t), t * 
 struct Texture {
     std::string name;
     std::uint32_t surface_flags, content_flags;
-    bool drawn;       // not SURF_NODRAW nor SURF_SKY
+    bool drawn;       // not SURF_NODRAW
+    bool sky;         // SURF_SKY: drawn as the sky, unlit (scene/quake3_bsp.h)
     bool occluder;    // not see-through (scene/quake3_bsp.h)
 };
 
@@ -306,7 +325,8 @@ std::vector<Texture> read_textures(const Reader &r)
         tex.name.assign(name, static_cast<std::size_t>(std::find(name, name + 64, '\0') - name));
         tex.surface_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 64)));
         tex.content_flags = std::uint32_t(r.i32(r.at(textures_lump, t, 68)));
-        tex.drawn = !(tex.surface_flags & (surf_nodraw | surf_sky));
+        tex.drawn = !(tex.surface_flags & surf_nodraw);
+        tex.sky = tex.surface_flags & surf_sky;
         tex.occluder = !(tex.content_flags & (contents_translucent | contents_water | contents_fog)) &&
                        !(tex.surface_flags & surf_alphashadow);
         textures.push_back(std::move(tex));
@@ -480,7 +500,7 @@ void read_opaque_solids(const Reader &r, const std::vector<Texture> &textures, L
     }
 }
 
-std::vector<FileVertex> read_vertices(const Reader &r)
+std::vector<FileVertex> read_vertices(const Reader &r, bool look, std::size_t &bad_coordinates)
 {
     const std::size_t vertex_count = r.count(vertices_lump);
     std::vector<FileVertex> vertices(vertex_count);
@@ -491,6 +511,22 @@ std::vector<FileVertex> read_vertices(const Reader &r)
                                            std::to_string(p.z) + ") is not finite");
         const glm::vec3 n = r.vec3(r.at(vertices_lump, i, 28));
         vertices[i] = {quake3_to_occu(p), glm::vec3(n.x, n.z, -n.y)};
+        if (look) {
+            FileVertex &v = vertices[i];
+            v.st = {r.f32(r.at(vertices_lump, i, 12)), r.f32(r.at(vertices_lump, i, 16))};
+            v.lightmap = {r.f32(r.at(vertices_lump, i, 20)), r.f32(r.at(vertices_lump, i, 24))};
+            // A level Debian ships has such vertices (pak1's ctf_gate1): the
+            // picture's corner instead, counted in a warning.
+            if (!std::isfinite(v.st.x) || !std::isfinite(v.st.y) || !std::isfinite(v.lightmap.x) ||
+                !std::isfinite(v.lightmap.y)) {
+                v.st = v.lightmap = glm::vec2(0.0f);
+                ++bad_coordinates;
+            }
+            const auto *c = reinterpret_cast<const std::uint8_t *>(r.data() + r.at(vertices_lump, i, 40));
+            std::uint8_t lit[3];
+            brighten(c, lit);
+            v.colour = glm::vec4(lit[0], lit[1], lit[2], c[3]) / 255.0f;
+        }
     }
     return vertices;
 }
@@ -552,12 +588,16 @@ void patch_triangles(const Reader &r, const FaceRecord &f, const FileVertex *con
         for (std::int64_t col = 0; col < columns; ++col) {
             const std::int64_t pi = std::min<std::int64_t>(col / su, (w - 1) / 2 - 1);
             const glm::vec3 bu = bernstein2(float(col - pi * su) / float(su));
-            FileVertex v{glm::vec3(0.0f), glm::vec3(0.0f)};
+            FileVertex v{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec2(0.0f), glm::vec2(0.0f), glm::vec4(0.0f)};
             for (int b = 0; b < 3; ++b)
                 for (int a = 0; a < 3; ++a) {
                     const FileVertex &c = control[(2 * pj + b) * w + 2 * pi + a];
-                    v.position += bu[a] * bv[b] * c.position;
-                    v.normal += bu[a] * bv[b] * c.normal;
+                    const float weight = bu[a] * bv[b];
+                    v.position += weight * c.position;
+                    v.normal += weight * c.normal;
+                    v.st += weight * c.st;
+                    v.lightmap += weight * c.lightmap;
+                    v.colour += weight * c.colour;
                 }
             made.push_back(v);
         }
@@ -630,9 +670,14 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
                        const std::vector<std::int32_t> &face_model, const std::vector<FileVertex> &vertices, Level &level,
                        Scene &scene)
 {
-    std::vector<std::int32_t> texture_mesh(textures.size(), -1);
+    // Per texture, its mesh without and with a lightmap.
+    std::vector<std::int32_t> texture_mesh(2 * textures.size(), -1);
     MadeSoFar made_so_far;
     std::size_t bad_normals = 0;
+    // The lightmap pages side by side in the atlas (read_lightmaps).
+    const std::int64_t pages = std::int64_t(r.count(lightmaps_lump));
+    const std::int64_t columns = std::max<std::int64_t>(1, std::int64_t(std::ceil(std::sqrt(double(pages)))));
+    const std::int64_t rows = std::max<std::int64_t>(1, (pages + columns - 1) / columns);
     for (std::size_t i = 0; i < r.count(faces_lump); ++i) {
         Level::Face face;
         face.texture = r.i32(r.at(faces_lump, i, 0));
@@ -647,6 +692,12 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
         if (face.type != face_billboard)
             r.require_range(faces_lump, i, "meshverts", record.first_meshvert, record.n_meshverts, meshverts_lump);
         const Texture &texture = textures[std::size_t(face.texture)];
+        // Its lightmap page: < 0 none (vertex light), else one of the lump's.
+        const std::int32_t page = r.i32(r.at(faces_lump, i, 28));
+        if (options.look && page >= pages)
+            r.refuse(faces_lump, i, "lightmap " + std::to_string(page) + " is not one of the " +
+                                        std::to_string(pages) + " lightmaps");
+        const bool lightmapped = options.look && page >= 0 && !texture.sky;
 
         // The face's triangles (indices into the file's vertices) and, for
         // a patch, the vertices it makes.
@@ -683,13 +734,15 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
         if (!texture.occluder)
             ++level.see_through_face_count;
 
-        std::int32_t &mesh_number = texture_mesh[std::size_t(face.texture)];
+        std::int32_t &mesh_number = texture_mesh[2 * std::size_t(face.texture) + (lightmapped ? 1 : 0)];
         if (mesh_number < 0) {
             mesh_number = std::int32_t(scene.meshes.size());
             Mesh m;
             m.name = texture.name;
-            m.color = building_colours(std::uint32_t(face.texture), 0.5f, 0.0f).wall;
+            m.color = texture.sky ? sky_colour : building_colours(std::uint32_t(face.texture), 0.5f, 0.0f).wall;
+            m.shaded = !texture.sky;
             m.occluder = texture.occluder;
+            m.lightmapped = lightmapped;
             scene.meshes.push_back(std::move(m));
         }
         Mesh &mesh = scene.meshes[std::size_t(mesh_number)];
@@ -700,10 +753,22 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
         // The face's vertices into the mesh (a polygon's or mesh's own
         // range of the file's, a patch's made ones).
         const auto base = std::uint32_t(mesh.positions.size());
+        auto look_of = [&](const FileVertex &v) {
+            if (!options.look)
+                return;
+            mesh.texcoords.push_back(v.st);
+            if (lightmapped)
+                mesh.lightmap_coords.push_back(
+                    {(float(page % columns) + v.lightmap.x) / float(columns), (float(page / columns) + v.lightmap.y) / float(rows)});
+            const glm::vec4 c = glm::clamp(v.colour, 0.0f, 1.0f) * 255.0f + 0.5f;
+            mesh.vertex_light.push_back(std::uint32_t(c.r) | std::uint32_t(c.g) << 8 | std::uint32_t(c.b) << 16 |
+                                        std::uint32_t(c.a) << 24);
+        };
         if (face.type == face_patch) {
             for (const FileVertex &v : made) {
                 mesh.positions.push_back(v.position);
                 mesh.normals.push_back(v.normal);
+                look_of(v);
             }
             for (std::uint32_t t : triangles)
                 mesh.indices.push_back(base + t);
@@ -714,6 +779,7 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
             for (std::int32_t k = 0; k < record.n_vertices; ++k) {
                 mesh.positions.push_back(vertices[std::size_t(record.first_vertex + k)].position);
                 mesh.normals.push_back(vertices[std::size_t(record.first_vertex + k)].normal);
+                look_of(vertices[std::size_t(record.first_vertex + k)]);
             }
             for (std::uint32_t t : triangles)
                 mesh.indices.push_back(base + t - std::uint32_t(record.first_vertex));
@@ -723,6 +789,31 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
         level.faces.push_back(face);
     }
     return bad_normals;
+}
+
+// The lightmap pages (lump 14: 128 x 128 RGB each, rows from the top)
+// into one atlas of ceil(sqrt(n)) columns, brightened as the game does
+// (brighten), as read_faces maps the faces' lightmap coordinates into it.
+Image read_lightmaps(const Reader &r)
+{
+    const std::size_t pages = r.count(lightmaps_lump);
+    const std::size_t columns = std::max<std::size_t>(1, std::size_t(std::ceil(std::sqrt(double(pages)))));
+    const std::size_t rows = std::max<std::size_t>(1, (pages + columns - 1) / columns);
+    Image atlas;
+    atlas.name = "lightmaps";
+    atlas.width = int(columns * 128);
+    atlas.height = int(rows * 128);
+    atlas.rgba.assign(std::size_t(atlas.width) * std::size_t(atlas.height) * 4, 255);
+    for (std::size_t p = 0; p < pages; ++p) {
+        const auto *page = reinterpret_cast<const std::uint8_t *>(r.data() + r.at(lightmaps_lump, p, 0));
+        for (std::size_t y = 0; y < 128; ++y)
+            for (std::size_t x = 0; x < 128; ++x) {
+                std::uint8_t *out = &atlas.rgba[(((p / columns) * 128 + y) * std::size_t(atlas.width) +
+                                                 (p % columns) * 128 + x) * 4];
+                brighten(page + (y * 128 + x) * 3, out);
+            }
+    }
+    return atlas;
 }
 
 }  // namespace
@@ -747,7 +838,11 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
     read_leaves(r, *level);
     const std::vector<std::int32_t> face_model = face_models(r);
     read_opaque_solids(r, textures, *level);
-    const std::vector<FileVertex> vertices = read_vertices(r);
+    std::size_t bad_coordinates = 0;
+    const std::vector<FileVertex> vertices = read_vertices(r, options.look, bad_coordinates);
+    if (bad_coordinates)
+        warnings.push_back("scene '" + source + "': " + std::to_string(bad_coordinates) +
+                           " vertices have texture or lightmap coordinates that are not finite; 0 instead");
 
     Scene scene;
     const std::size_t bad_normals = read_faces(r, options, textures, face_model, vertices, *level, scene);
@@ -757,6 +852,10 @@ Scene read_quake3_bsp(const std::string &source, const std::vector<char> &bytes,
     if (scene.meshes.empty())
         r.refuse(faces_lump, "none of its " + std::to_string(r.count(faces_lump)) + " faces is drawn");
 
+    if (options.look && r.count(lightmaps_lump) > 0) {
+        scene.lightmap_atlas = std::int32_t(scene.images.size());
+        scene.images.push_back(read_lightmaps(r));
+    }
     level->spawns = spawns_of(r, parse_entities(r));
     scene.update_bounds();
     scene.level = std::move(level);

@@ -30,8 +30,12 @@
 // often curved one way only); faces of type 4
 // (billboards: flares, sprites) are not drawn, nor faces whose texture's
 // surface flags say SURF_NODRAW (0x80; clip, caulk, trigger and hint
-// brushes) or SURF_SKY (0x4: the sky is drawn at infinity, not where the
-// face is). Faces of every model are drawn, the world (model 0) and the
+// brushes). Faces whose texture says SURF_SKY (0x4) are drawn where they
+// are, opaque and unlit (Mesh::shaded false), in a sky colour: Quake III
+// draws the sky's images at infinity through exactly those faces, so a
+// player sees sky there and nothing behind them (a level may hold several
+// arenas, each sealed in its own box of sky brushes: OpenArena's delta).
+// Faces of every model are drawn, the world (model 0) and the
 // brush entities (doors, platforms: at their resting place).
 //
 // Translucency, from the format alone (a BSP records each texture's
@@ -46,6 +50,11 @@
 // alpha-tested shadows from it). Lava and slime are opaque (Quake III's
 // MASK_OPAQUE). A shader that blends without any of these marks (a decal,
 // a flame) is taken as opaque: nothing in the BSP tells it apart.
+//
+// The look (Quake3Options::look): texture and lightmap coordinates and
+// vertex colours per vertex (interpolated over patches as positions are),
+// the faces' lightmap pages into one atlas (Scene::images), meshes one a
+// texture and lightmapping; the pictures themselves, scene/quake3_look.h.
 //
 // Coordinates. Quake's world is right-handed, z up, in game units (one
 // inch, by id's scale: a player stands 56 units tall); occu's is
@@ -75,6 +84,15 @@ struct Quake3Options {
     // Quake III's renderer subdivides until the chord is within 4 units
     // of the curve, which for OpenArena's pillars and arches is 4 to 16.
     int patch_segments = 8;
+    // Whether to read what the look of the level needs (Mesh::texcoords,
+    // lightmap_coords, vertex_light, lightmapped; the lightmaps into one
+    // atlas, Scene::images and lightmap_atlas): each face's texture
+    // coordinates, its lightmap (lump 14, 128 x 128 RGB pages, brightened
+    // as Quake III's renderer does by default: doubled, scaled back to the
+    // largest channel where one would clip) or, for a face without one,
+    // its vertex colours. Meshes are then one a texture and lightmapping.
+    // The textures' pictures come from the pk3 files (scene/quake3_look.h).
+    bool look = false;
 };
 
 // Reads a level from `bytes` (a .bsp file's, or a pk3 member's). `source`

@@ -20,12 +20,26 @@ struct Mesh {
     std::vector<std::uint32_t> indices;   // three per triangle, counter-clockwise seen from outside
     glm::vec3 color{0.8f};              // RGB in [0, 1], before lighting
     std::vector<glm::vec3> colors;       // one per position, or empty: `color` for every vertex
+    // False for a surface that gives its own light (a level's sky): drawn
+    // in its colours as they are, without the renderer's light (render/shading.h).
+    bool shaded = true;
     Aabb bounds;
     // False for a see-through mesh (glass, grates, water, foliage: a
     // Quake III level's translucent shaders, scene/quake3_bsp.h): drawn,
     // but hiding nothing behind it, so no strategy or preprocessing step
     // may take it as an occluder.
     bool occluder = true;
+
+    // The look the scene calls for (render/scene_renderer.h, Look::scene),
+    // read only where a reader was asked for it; empty otherwise. Per
+    // position, or empty: the texture's coordinates, the coordinates in the
+    // scene's lightmap atlas (Scene::lightmap_atlas; `lightmapped` meshes
+    // only) and the light baked into the vertices (RGBA8: Quake III's vertex
+    // colours, the light of faces without a lightmap).
+    std::vector<glm::vec2> texcoords, lightmap_coords;
+    std::vector<std::uint32_t> vertex_light;   // RGBA8, R in the low byte
+    std::int32_t image = -1;                   // Scene::images: the mesh's texture; -1: none
+    bool lightmapped = false;
 
     std::size_t triangle_count() const { return indices.size() / 3; }
     // Recomputes `bounds` from the positions.
@@ -49,6 +63,13 @@ struct PrismOccluder {
 
 struct Level;
 
+// A decoded picture: RGBA8 rows, the top row first.
+struct Image {
+    std::string name;
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgba;
+};
+
 struct Scene {
     std::vector<Mesh> meshes;
     Aabb bounds;
@@ -59,6 +80,10 @@ struct Scene {
     // points (scene/level.h: a Quake III level's, scene/quake3_bsp.h), where
     // the scene is one; null otherwise.
     std::shared_ptr<const Level> level;
+    // The look's pictures (Mesh::image) and the lightmap atlas among them
+    // (-1: none), where the reader was asked for the look.
+    std::vector<Image> images;
+    std::int32_t lightmap_atlas = -1;
 
     std::size_t triangle_count() const;
     void update_bounds();

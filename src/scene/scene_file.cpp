@@ -17,6 +17,7 @@
 #include "scene/field.h"
 #include "scene/palette.h"
 #include "scene/pk3_archive.h"
+#include "scene/quake3_look.h"
 #include "scene/ply_file.h"
 #include "scene/scene_file_guard.h"
 
@@ -207,8 +208,16 @@ Scene quake3_scene(const std::string &source, const std::vector<char> &bytes, co
 Scene load_scene(const std::string &path, std::vector<std::string> *warnings, const Quake3Options &quake3)
 {
     std::string archive, member;
-    if (split_pk3_path(path, archive, member))
-        return quake3_scene(path, read_pk3_member(archive, member), quake3, warnings);
+    if (split_pk3_path(path, archive, member)) {
+        Scene level = quake3_scene(path, read_pk3_member(archive, member), quake3, warnings);
+        if (quake3.look) {
+            std::vector<std::string> picture_warnings;
+            read_level_pictures(level, archive, picture_warnings);
+            for (const std::string &w : picture_warnings)
+                Warnings{warnings}(w);
+        }
+        return level;
+    }
     // Read once: to choose occu's PLY or BSP reader, and for the guard's
     // checks. A file that cannot be opened is assimp's to name below,
     // except a level's (assimp's BSP importer is not used).

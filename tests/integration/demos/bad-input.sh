@@ -33,6 +33,10 @@ pak=/usr/share/games/openarena/baseoa/pak6-patch088.pk3
 
 expect_error "zbuffer-magic" "$walkthrough" --strategies vfc,zbuffer-magic
 expect_error "--frames" "$walkthrough" --frames -3
+expect_error "--size wants PIXELS or WIDTHxHEIGHT" "$walkthrough" --size 1280x
+expect_error "--look wants flat or scene" "$walkthrough" --look pretty
+expect_error "--size wants PIXELS or WIDTHxHEIGHT" "$walkthrough" --size 1280x8
+expect_error "--size wants PIXELS or WIDTHxHEIGHT" "$walkthrough" --size 64x64x64
 expect_error "--leaf-triangles wants auto or an integer" "$walkthrough" --leaf-triangles automatic
 expect_error "tolerance" "$walkthrough" --strategies ou:tolerance=1.5
 expect_error "tolerance" "$walkthrough" --strategies ou --set tolerance=nan

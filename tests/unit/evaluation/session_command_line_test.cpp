@@ -43,7 +43,9 @@ TEST(SessionCommandLine, TakesItsOptions)
     EXPECT_TRUE(c.take("--switch-off", "0.25"));
     EXPECT_TRUE(c.take("--databases", "/tmp/dbs"));
     EXPECT_TRUE(c.take("--make-databases", "all"));
-    EXPECT_EQ(c.size, 96);
+    EXPECT_EQ(c.width, 96);
+    EXPECT_EQ(c.height, 96);
+    EXPECT_EQ(c.size_name(), "96");
     EXPECT_EQ(c.driver, gl::Driver::softpipe);
     EXPECT_EQ(c.allocator, AllocatorPolicy::system);
     EXPECT_EQ(c.databases, "/tmp/dbs");
@@ -57,6 +59,36 @@ TEST(SessionCommandLine, TakesItsOptions)
     EXPECT_EQ(so.allocator, AllocatorPolicy::system);
     EXPECT_EQ(so.databases, &provider);
     EXPECT_EQ(provider.directory(), "/tmp/dbs");
+}
+
+TEST(SessionCommandLine, SizeIsSquareOrWidthByHeight)
+{
+    SessionCommandLine c;
+    EXPECT_TRUE(c.take("--size", "1280x720"));
+    EXPECT_EQ(c.width, 1280);
+    EXPECT_EQ(c.height, 720);
+    EXPECT_FLOAT_EQ(c.aspect(), 1280.0f / 720.0f);
+    EXPECT_EQ(c.size_name(), "1280x720");
+    EXPECT_TRUE(c.take("--size", "64"));
+    EXPECT_EQ(c.width, 64);
+    EXPECT_EQ(c.height, 64);
+    EXPECT_TRUE(c.take("--size", "16x8192"));
+    EXPECT_EQ(c.height, 8192);
+}
+
+TEST(SessionCommandLine, LookIsTheScenesUnlessGiven)
+{
+    SessionCommandLine c;
+    EXPECT_EQ(c.look_for("city"), Look::flat);
+    EXPECT_EQ(c.look_for(""), Look::flat);
+    EXPECT_EQ(c.look_for("field"), Look::flat);
+    EXPECT_EQ(c.look_for("pak.pk3:maps/x.bsp"), Look::scene);
+    EXPECT_EQ(c.look_for("house.ifc"), Look::scene);
+    EXPECT_TRUE(c.take("--look", "flat"));
+    EXPECT_EQ(c.look_for("pak.pk3:maps/x.bsp"), Look::flat);
+    EXPECT_TRUE(c.take("--look", "scene"));
+    EXPECT_EQ(c.look_for("city"), Look::scene);
+    EXPECT_EQ(refusal(c, "--look", "pretty"), "--look wants flat or scene, got 'pretty'");
 }
 
 TEST(SessionCommandLine, LeavesOtherNamesToTheProgram)
@@ -76,7 +108,11 @@ TEST(SessionCommandLine, RefusesBadValuesNamingTheOption)
 {
     SessionCommandLine c;
     c.max_size = 4096;
-    EXPECT_EQ(refusal(c, "--size", "8192"), "--size wants an integer in 16..4096, got '8192'");
+    EXPECT_EQ(refusal(c, "--size", "8192"), "--size wants PIXELS or WIDTHxHEIGHT, each side an integer in 16..4096, got '8192'");
+    for (const char *bad : {"1280x", "x720", "1280x720x2", "1280X720", "1280x15", "8000x720", " 64x64", "64x+64", "64x6e1",
+                            "-64x64", "64 x 64", "nanxnan", ""})
+        EXPECT_EQ(refusal(c, "--size", bad),
+                  std::string("--size wants PIXELS or WIDTHxHEIGHT, each side an integer in 16..4096, got '") + bad + "'");
     EXPECT_EQ(refusal(c, "--batch", "0"), "--batch wants an integer in 1..4096, got '0'");
     EXPECT_EQ(refusal(c, "--switch-off", "1.5"), "--switch-off wants a number in [0, 1], got '1.5'");
     EXPECT_EQ(refusal(c, "--coherence", "maybe"), "--coherence wants on or off, got 'maybe'");
@@ -85,7 +121,8 @@ TEST(SessionCommandLine, RefusesBadValuesNamingTheOption)
     EXPECT_NE(refusal(c, "--allocator", "glibc").find("--allocator"), std::string::npos);
     EXPECT_NE(refusal(c, "--make-databases", "some").find("--make-databases"), std::string::npos);
     // Nothing refused changed: the defaults stand.
-    EXPECT_EQ(c.size, 512);
+    EXPECT_EQ(c.width, 512);
+    EXPECT_EQ(c.height, 512);
     EXPECT_EQ(c.batch, 32);
     EXPECT_EQ(c.driver, gl::Driver::llvmpipe);
 }

@@ -50,3 +50,15 @@ TEST(Shading, NotANumberGivesGrey)
     prelit_rgba8({0.5f, 0.5f, 0.5f}, {nan, nan, nan}, c);
     EXPECT_EQ(c[0], c[2]);
 }
+
+TEST(Shading, UnlitIsTheColourItself)
+{
+    std::uint8_t c[4];
+    unlit_rgba8({0.2f, 0.6f, 1.0f}, c);
+    EXPECT_EQ(c[0], 51);
+    EXPECT_EQ(c[1], 153);
+    EXPECT_EQ(c[2], 255);
+    EXPECT_EQ(c[3], 255);
+    unlit_rgba8({std::numeric_limits<float>::infinity(), 0.5f, 0.5f}, c);
+    EXPECT_EQ(c[0], c[1]);
+}

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -262,9 +263,16 @@ TEST(Quake3Bsp, EveryFaceTypeAndTextureRule)
 {
     for (int segments : {1, 8}) {
         const Scene s = read(minimal_level(), Quake3Options{segments});
-        const Mesh *wall = mesh_named(s, "textures/test/wall"), *glass = mesh_named(s, "textures/test/glass");
-        ASSERT_TRUE(wall && glass);
-        EXPECT_EQ(s.meshes.size(), 2u) << "nodraw, sky and billboard faces make no mesh";
+        const Mesh *wall = mesh_named(s, "textures/test/wall"), *glass = mesh_named(s, "textures/test/glass"),
+                   *sky = mesh_named(s, "textures/skies/sky");
+        ASSERT_TRUE(wall && glass && sky);
+        EXPECT_EQ(s.meshes.size(), 3u) << "nodraw and billboard faces make no mesh";
+        // The sky is drawn where its faces are, an opaque unlit wall: what
+        // a player sees there (scene/quake3_bsp.h).
+        EXPECT_EQ(sky->triangle_count(), 2u);
+        EXPECT_TRUE(sky->occluder);
+        EXPECT_FALSE(sky->shaded);
+        EXPECT_TRUE(wall->shaded);
         // Polygon 2 + mesh 1 + patch 2 a quad.
         EXPECT_EQ(wall->triangle_count(), std::size_t(3 + 2 * segments * segments));
         EXPECT_TRUE(wall->occluder);
@@ -274,9 +282,10 @@ TEST(Quake3Bsp, EveryFaceTypeAndTextureRule)
         ASSERT_EQ(level.faces.size(), 7u);
         EXPECT_EQ(level.patch_count, 1u);
         EXPECT_EQ(level.billboard_count, 1u);
-        EXPECT_EQ(level.hidden_face_count, 2u);
+        EXPECT_EQ(level.hidden_face_count, 1u);
         EXPECT_EQ(level.see_through_face_count, 1u);
-        for (int f : {3, 4, 5})
+        EXPECT_EQ(level.faces[5].mesh, std::int32_t(sky - s.meshes.data()));
+        for (int f : {3, 4})
             EXPECT_EQ(level.faces[std::size_t(f)].mesh, -1) << "face " << f;
         EXPECT_EQ(level.faces[2].index_count, std::uint32_t(6 * segments * segments));
         for (const Mesh &m : s.meshes) {
@@ -701,13 +710,14 @@ TEST(Quake3Bsp, LoadSceneReadsALevelFromAPk3OrAFile)
     }
     for (const std::string &name : {pk3 + ":maps/test.bsp", pk3 + ":MAPS/Test.BSP", bsp}) {
         const Scene s = load_scene(name);
-        EXPECT_EQ(s.triangle_count(), 3u + 128u + 2u) << name;
+        // Wall (polygon, mesh, patch), glass and sky.
+        EXPECT_EQ(s.triangle_count(), 3u + 128u + 2u + 2u) << name;
         ASSERT_TRUE(s.level) << name;
         EXPECT_EQ(s.level->spawns.size(), 2u) << name;
     }
     Quake3Options coarse;
     coarse.patch_segments = 2;
-    EXPECT_EQ(load_scene(bsp, nullptr, coarse).triangle_count(), 3u + 8u + 2u);
+    EXPECT_EQ(load_scene(bsp, nullptr, coarse).triangle_count(), 3u + 8u + 2u + 2u);
 
     // Missing archive, missing member, malformed member, not a zip file.
     std::string why = load_refusal(pk3 + ":maps/other.bsp");
@@ -771,4 +781,90 @@ TEST(Quake3Bsp, OpenArenaLevelFromDebian)
             EXPECT_LE(face.first_index + face.index_count, s.meshes[std::size_t(face.mesh)].indices.size());
         }
     }
+}
+
+namespace {
+
+// A w x h TGA (uncompressed true colour, top row first) of one RGB colour.
+std::vector<char> tga(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b)
+{
+    std::vector<char> out = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, char(w), char(w >> 8), char(h), char(h >> 8), 24, 0x20};
+    for (int i = 0; i < w * h; ++i)
+        out.insert(out.end(), {char(b), char(g), char(r)});
+    return out;
+}
+
+void write_pk3_members(const std::string &path, const std::vector<std::pair<std::string, std::vector<char>>> &members)
+{
+    int error = 0;
+    zip_t *z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
+    ASSERT_NE(z, nullptr);
+    for (const auto &[name, bytes] : members) {
+        zip_source_t *source = zip_source_buffer(z, bytes.data(), bytes.size(), 0);
+        ASSERT_NE(source, nullptr);
+        ASSERT_GE(zip_file_add(z, name.c_str(), source, ZIP_FL_OVERWRITE), 0);
+    }
+    ASSERT_EQ(zip_close(z), 0);
+}
+
+}  // namespace
+
+TEST(Quake3Bsp, TheLookReadsCoordinatesVertexLightAndPictures)
+{
+    // Two paks in a directory of their own: the later one's wall replaces
+    // the earlier one's; the glass's shader names its picture as .jpg in its
+    // second stage (the first draws the lightmap), which is found as .tga.
+    const std::string dir = temp("look");
+    std::filesystem::create_directories(dir);
+    const std::string shader = "// a comment\ntextures/test/glass\n{\n  surfaceparm trans\n  {\n    map $lightmap\n  }\n"
+                               "  {\n    map textures/test/pane.jpg\n    blendfunc add\n  }\n}\n";
+    write_pk3_members(dir + "/pak0.pk3", {{"maps/test.bsp", minimal_level().bytes()},
+                                          {"textures/test/wall.tga", tga(2, 1, 255, 0, 0)},
+                                          {"scripts/test.shader", std::vector<char>(shader.begin(), shader.end())},
+                                          {"textures/test/pane.tga", tga(1, 1, 0, 0, 255)}});
+    write_pk3_members(dir + "/pak1.pk3", {{"textures/test/wall.tga", tga(2, 2, 0, 255, 0)}});
+
+    Quake3Options look;
+    look.look = true;
+    std::vector<std::string> warnings;
+    const Scene s = load_scene(dir + "/pak0.pk3:maps/test.bsp", &warnings, look);
+    const Mesh *wall = mesh_named(s, "textures/test/wall"), *glass = mesh_named(s, "textures/test/glass"),
+               *sky = mesh_named(s, "textures/skies/sky");
+    ASSERT_TRUE(wall && glass && sky);
+    for (const Mesh *m : {wall, glass, sky}) {
+        EXPECT_EQ(m->texcoords.size(), m->positions.size()) << m->name;
+        EXPECT_EQ(m->vertex_light.size(), m->positions.size()) << m->name;
+        EXPECT_FALSE(m->lightmapped) << m->name << ": the faces name no lightmap";
+        // The file's white vertex colour, doubled and held at white.
+        for (std::uint32_t v : m->vertex_light)
+            EXPECT_EQ(v, 0xffffffffu) << m->name;
+    }
+    EXPECT_EQ(s.lightmap_atlas, -1) << "the level has no lightmaps";
+    ASSERT_GE(wall->image, 0);
+    const Image &w = s.images[std::size_t(wall->image)];
+    EXPECT_EQ(w.width, 2);
+    EXPECT_EQ(w.height, 2) << "the later pak's picture";
+    EXPECT_EQ(int(w.rgba[1]), 255);
+    ASSERT_GE(glass->image, 0);
+    const Image &g = s.images[std::size_t(glass->image)];
+    EXPECT_EQ(g.name, "textures/test/pane.tga");
+    EXPECT_EQ(int(g.rgba[2]), 255);
+    EXPECT_EQ(sky->image, -1) << "the sky keeps its colour";
+    EXPECT_EQ(s.images.size(), 2u) << "only the pictures a mesh uses";
+    EXPECT_TRUE(warnings.empty());
+
+    // Without the look, none of it is read.
+    const Scene flat = load_scene(dir + "/pak0.pk3:maps/test.bsp");
+    EXPECT_TRUE(flat.images.empty());
+    EXPECT_TRUE(mesh_named(flat, "textures/test/wall")->texcoords.empty());
+
+    // A texture found nowhere is named in a warning and drawn without a picture.
+    write_pk3_members(dir + "/pak1.pk3", {{"textures/other/thing.tga", tga(1, 1, 1, 2, 3)}});
+    write_pk3_members(dir + "/pak0.pk3", {{"maps/test.bsp", minimal_level().bytes()}});
+    warnings.clear();
+    const Scene bare = load_scene(dir + "/pak0.pk3:maps/test.bsp", &warnings, look);
+    EXPECT_EQ(mesh_named(bare, "textures/test/wall")->image, -1);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("textures/test/wall"), std::string::npos) << warnings[0];
+    std::filesystem::remove_all(dir);
 }
