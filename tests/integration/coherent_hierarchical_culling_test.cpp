@@ -133,6 +133,34 @@ TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIn
         EXPECT_EQ(chc.measured.frames(), cameras.size()) << chc.label;
 }
 
+// The first frame has no history: nothing is drawn untested, so tests run
+// ahead of the results of the nodes in front of them would all find an
+// empty depth buffer. It tests front to back instead, the nodes behind
+// after what lies in front is drawn: from behind the wall the cluster is
+// culled in the first frame already, whatever the passes and conditional
+// draws, and the frame is the unculled one.
+TEST(CoherentHierarchicalCulling, TheFirstFrameCullsWhatLiesBehindWhatItDraws)
+{
+    WallAndCluster s;
+    const std::vector<std::uint32_t> cluster = s.cluster_leaves();
+    ASSERT_FALSE(cluster.empty());
+    MeasurementSession session(s.setup, s.ctx, checking_session_options());
+    for (const char *variant : {"chc", "chc:passes=shared", "chc:conditional=always", "chc:max-test-area=1"})
+        add_variant(session, StrategyTestVariant(variant));
+    const Camera behind = looking({0, 0, 0}, {0, 0, -15});
+    std::size_t frames = 0;
+    session.walk({behind}, "chc", [&](const SessionStrategy &chc, const StrategyFrame &f) {
+        SCOPED_TRACE(chc.label);
+        ++frames;
+        EXPECT_EQ(differing_pixels(f), 0u);
+        EXPECT_GT(f.stats.leaves_drawn, 0u) << "the wall is drawn";
+        for (std::uint32_t leaf : cluster)
+            EXPECT_FALSE(drew(f, leaf)) << "leaf " << leaf << " behind the wall drawn in the first frame";
+        EXPECT_GT(f.stats.nodes_occluded, 0u);
+    });
+    EXPECT_EQ(frames, 4u);
+}
+
 namespace {
 
 // Draws what chc asks for, and beside each leaf drawn conditionally a
