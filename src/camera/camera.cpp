@@ -62,8 +62,19 @@ Frustum::Frustum(const glm::mat4 &m)
 
 Frustum::Side Frustum::classify(const Aabb &box) const
 {
+    unsigned crossing = all_planes;
+    return classify(box, crossing);
+}
+
+Frustum::Side Frustum::classify(const Aabb &box, unsigned &crossing) const
+{
     Side side = Side::inside;
-    for (const glm::vec4 &p : planes_) {
+    const unsigned planes = crossing;
+    crossing = 0;
+    for (unsigned i = 0; i < planes_.size(); ++i) {
+        if (!(planes & (1u << i)))
+            continue;
+        const glm::vec4 &p = planes_[i];
         const glm::vec3 n(p);
         // The corner farthest along the normal, and the nearest.
         const glm::vec3 far_corner{n.x >= 0 ? box.max.x : box.min.x, n.y >= 0 ? box.max.y : box.min.y,
@@ -72,8 +83,10 @@ Frustum::Side Frustum::classify(const Aabb &box) const
                                     n.z >= 0 ? box.min.z : box.max.z};
         if (glm::dot(n, far_corner) + p.w < 0.0f)
             return Side::outside;
-        if (glm::dot(n, near_corner) + p.w < 0.0f)
+        if (glm::dot(n, near_corner) + p.w < 0.0f) {
             side = Side::intersecting;
+            crossing |= 1u << i;
+        }
     }
     return side;
 }

@@ -46,6 +46,14 @@ public:
 
     // Conservative: `outside` only when one plane has the whole box behind it.
     Side classify(const Aabb &box) const;
+    // The same answer for a box inside one classified before (a child's box
+    // inside its parent's), testing only the planes in `crossing` (bit i:
+    // planes()[i]), those the enclosing box reaches across: a box has the
+    // others wholly in front of it as its enclosing box does. On return
+    // `crossing` holds the planes this box reaches across, for the boxes
+    // inside it. All six: classify(box).
+    static constexpr unsigned all_planes = 0x3Fu;
+    Side classify(const Aabb &box, unsigned &crossing) const;
 
     const std::array<glm::vec4, 6> &planes() const { return planes_; }
 

@@ -22,6 +22,8 @@ struct FrameStats {
     // In the subtrees of nodes found occluded, less the leaves wholly outside
     // the frustum (view-frustum culling would not have drawn them either):
     // what the occlusion tests saved, which the switch-off judges by.
+    // Counted only where a policy reads it
+    // (TraversalPolicy::reads_triangles_occluded); 0 elsewhere.
     std::uint64_t triangles_occluded = 0;
     bool occlusion_tested = true;           // false while switched off
     // Wall time in the culler, apart from what it saves: begin_frame

@@ -44,6 +44,10 @@ public:
     virtual bool stop_testing(const FrameStats &so_far) { (void)so_far; return false; }
     // The frame ended, having done `stats`.
     virtual void end_frame(const FrameStats &stats) = 0;
+    // Whether it reads FrameStats::triangles_occluded, which the traversal
+    // counts only for a policy that does (a total over the subtree of every
+    // occluded node, classified against the frustum where it crosses it).
+    virtual bool reads_triangles_occluded() const { return false; }
 };
 
 // Temporal coherence: Greene et al.'s visible node list, as Moeller and
@@ -114,6 +118,7 @@ public:
     // Judged by the frame's triangles drawn and triangles in the subtrees
     // found occluded, as far as the frame tested (for a cut probe, up to the cut).
     void end_frame(const FrameStats &stats) override;
+    bool reads_triangles_occluded() const override { return true; }
     bool off() const { return off_; }
 
 private:

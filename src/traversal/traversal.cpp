@@ -33,7 +33,9 @@ class FrameTraversal {
 public:
     FrameTraversal(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler, const Frame &frame,
                    const TraversalOptions &options)
-        : renderer_(renderer), nodes_(hierarchy.nodes()), culler_(culler), frame_(frame), options_(options)
+        : renderer_(renderer), nodes_(hierarchy.nodes()), culler_(culler), frame_(frame), options_(options),
+          count_occluded_(std::any_of(options.policies.begin(), options.policies.end(),
+                                      [](const TraversalPolicy *p) { return p->reads_triangles_occluded(); }))
     {
     }
 
@@ -191,7 +193,8 @@ private:
         }
         if (visibility == Visibility::occluded) {
             ++stats_.nodes_occluded;
-            stats_.triangles_occluded += in_frustum_triangles(node);
+            if (count_occluded_)
+                stats_.triangles_occluded += in_frustum_triangles(node, Frustum::all_planes);
             return;
         }
         if (!ordered_)
@@ -223,11 +226,13 @@ private:
     // (chc does on the field, scene/field.h, whose leaves at the frame's
     // edges show nothing); counted whole, they would look like a gain to
     // the switch-off where there is none. Only nodes crossing a frustum
-    // plane are opened, so the cost stays at the frame's edges.
-    std::uint64_t in_frustum_triangles(std::uint32_t node) const
+    // plane are opened, and their children are classified against the
+    // planes they cross alone (`crossing`, Frustum::classify), so the cost
+    // stays at the frame's edges.
+    std::uint64_t in_frustum_triangles(std::uint32_t node, unsigned crossing) const
     {
         const HierarchyNode &n = nodes_[node];
-        switch (frame_.frustum.classify(n.bounds)) {
+        switch (frame_.frustum.classify(n.bounds, crossing)) {
         case Frustum::Side::inside:
             return n.subtree_triangles;
         case Frustum::Side::outside:
@@ -239,7 +244,7 @@ private:
             return n.triangle_count;
         std::uint64_t t = 0;
         for (std::uint32_t c = 0; c < n.child_count; ++c)
-            t += in_frustum_triangles(n.first_child + c);
+            t += in_frustum_triangles(n.first_child + c, crossing);
         return t;
     }
 
@@ -254,6 +259,8 @@ private:
     bool testing_ = true;    // the frame tests occlusion (until a policy stops it)
     FrameTesting frame_testing_ = FrameTesting::full;
     bool ordered_ = false;   // the culler orders the frame (run_ordered)
+    // FrameStats::triangles_occluded is counted: a policy judges by it.
+    bool count_occluded_;
     Stopwatch watch_;
     FrameStats stats_;
 };

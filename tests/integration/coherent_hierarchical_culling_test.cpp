@@ -101,10 +101,9 @@ TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIn
     WallAndCluster s;
     const std::vector<std::uint32_t> cluster = s.cluster_leaves();
     ASSERT_FALSE(cluster.empty());
-    // period=1: visible leaves are re-tested every frame, so that the
-    // cluster, which the first frame finds visible (its nodes are tested
-    // in the pass that tests the wall, before the wall is drawn) and the
-    // second draws untested, is hidden from the third frame on.
+    // period=1: visible leaves are re-tested every frame, so that a
+    // cluster leaf found visible in one frame (drawn untested in the next)
+    // is found hidden again by the third frame on.
     // poll=0: results are asked for only when the traversal has nothing
     // else to do; the frames must be the same.
     MeasurementSession session(s.setup, s.ctx, checking_session_options());
@@ -131,6 +130,36 @@ TEST(CoherentHierarchicalCulling, ALeafHiddenLastFrameIsDrawnInTheFrameItComesIn
     });
     for (const SessionStrategy &chc : session.strategies())
         EXPECT_EQ(chc.measured.frames(), cameras.size()) << chc.label;
+}
+
+// The first frame has no history: nothing is drawn untested, so tests run
+// ahead of the results of the nodes in front of them would all find an
+// empty depth buffer. It tests front to back instead, the nodes behind
+// after what lies in front is drawn: from behind the wall the cluster is
+// culled in the first frame already, whatever the passes and conditional
+// draws, and the frame is the unculled one.
+TEST(CoherentHierarchicalCulling, TheFirstFrameCullsWhatLiesBehindWhatItDraws)
+{
+    WallAndCluster s;
+    const std::vector<std::uint32_t> cluster = s.cluster_leaves();
+    ASSERT_FALSE(cluster.empty());
+    MeasurementSession session(s.setup, s.ctx, checking_session_options());
+    const std::vector<std::string> variants = {"chc", "chc:passes=shared", "chc:conditional=always",
+                                               "chc:max-test-area=1", "chc:max-test-area=1:answer=exact"};
+    for (const std::string &variant : variants)
+        add_variant(session, StrategyTestVariant(variant));
+    const Camera behind = looking({0, 0, 0}, {0, 0, -15});
+    std::size_t frames = 0;
+    session.walk({behind}, "chc", [&](const SessionStrategy &chc, const StrategyFrame &f) {
+        SCOPED_TRACE(chc.label);
+        ++frames;
+        EXPECT_EQ(differing_pixels(f), 0u);
+        EXPECT_GT(f.stats.leaves_drawn, 0u) << "the wall is drawn";
+        for (std::uint32_t leaf : cluster)
+            EXPECT_FALSE(drew(f, leaf)) << "leaf " << leaf << " behind the wall drawn in the first frame";
+        EXPECT_GT(f.stats.nodes_occluded, 0u);
+    });
+    EXPECT_EQ(frames, variants.size());
 }
 
 namespace {

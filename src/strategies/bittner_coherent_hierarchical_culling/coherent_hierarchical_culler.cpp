@@ -91,6 +91,8 @@ public:
         carried.swap(flight_);
         for (InFlight &f : carried)
             handle(f);
+        // Pull-up makes the root visible in every frame that saw anything.
+        history_ = was_visible(0);
     }
 
     // Callers that test nodes themselves get plain answers: one batch per
@@ -146,22 +148,24 @@ public:
             // as a wait and start rendering the pass at once (llvmpipe then
             // ends the scene being binned: spec MESAX_occlusion_unit_async,
             // issue 19), and steps that open inner nodes draw nothing.
-            const bool busy = !distance_.empty() || !iqueue_.empty();
+            const bool walk = walks_on();
+            const bool busy = walk || issues();
             const bool ask = !busy || (poll_every_ > 0 && ++steps_ % poll_every_ == 0);
             while (ask && !flight_.empty()) {
                 auto next = flight_.begin();
                 if (!async_->ready(next->batch)) {
-                    if (!distance_.empty() || !iqueue_.empty())
+                    if (walk || issues())
                         break;   // traverse (or issue the batch) first
                     if (!vqueue_.empty()) {
                         issue_batch();   // fill the wait with re-tests
                         continue;
                     }
                     // Nothing to do but wait: leaves whose results are all
-                    // that is left go to the GL under conditions instead.
-                    if (conditional_ == Conditional::waits && std::none_of(flight_.begin(), flight_.end(), [&](const InFlight &f) {
-                            return opens_nodes(f);
-                        }))
+                    // that is left go to the GL under conditions instead
+                    // (not in a frame without history: its culled leaves
+                    // are what the next frame's coherence starts from).
+                    if (history_ && conditional_ == Conditional::waits &&
+                        std::none_of(flight_.begin(), flight_.end(), [&](const InFlight &f) { return opens_nodes(f); }))
                         for (InFlight &f : flight_)
                             draw_conditionally(f);
                     // Wait only for a result this frame needs; the others
@@ -175,13 +179,13 @@ public:
                 flight_.erase(next);
                 handle(f);
             }
-            if (!distance_.empty()) {
+            if (walks_on()) {   // results handled above may have let it go on
                 const std::uint32_t n = distance_.top().second;
                 distance_.pop();
                 visit(n);
                 continue;
             }
-            if (!iqueue_.empty() || (flight_.empty() && !vqueue_.empty())) {
+            if (issues() || (flight_.empty() && !vqueue_.empty())) {
                 issue_batch();
                 continue;
             }
@@ -198,6 +202,29 @@ private:
     static constexpr std::uint32_t none = 0xFFFFFFFFu;
 
     bool was_visible(std::uint32_t n) const { return visible_frame_[n] == frame_number_ - 1; }
+
+    // Whether the traversal takes the next node off the distance queue now.
+    // In a frame with history it goes on while results are pending: the
+    // previously visible nodes it draws meanwhile are the occluders of the
+    // nodes it tests. A frame without history (the first, or the first
+    // after the switch-off kept the strategy off) draws nothing untested,
+    // so a test issued ahead of the results of the nodes before it would
+    // find an empty depth buffer: the whole front would be tested at once
+    // and found visible. There it waits as the general algorithm does
+    // (Moeller and Haines, figure 2; Bartz et al. 1998, section 3: a node
+    // is tested after what lies in front of it is drawn): a batch of the
+    // nearest nodes, then their results, then the nodes behind them; and
+    // where passes are disjoint, a node whose area overlaps one of the
+    // batch's waits for that one's result (it may lie behind it).
+    bool walks_on() const { return !distance_.empty() && (history_ || (iqueue_.size() < tiles_per_pass_ && may_issue())); }
+
+    // Whether the i-queue's nodes may be tested now: in a frame without
+    // history, only once the results this frame needs are in (walks_on).
+    bool may_issue() const
+    {
+        return history_ || std::none_of(flight_.begin(), flight_.end(), [](const InFlight &f) { return f.needed; });
+    }
+    bool issues() const { return !iqueue_.empty() && may_issue(); }
 
     // Pull-up: n and its ancestors are visible in frame `frame` (this one,
     // or the previous one for a pass carried over). A node is never marked
@@ -292,7 +319,7 @@ private:
         InFlight f = issue(std::move(queries));
         f.frame = frame_number_;
         f.needed = std::any_of(f.queries.begin(), f.queries.end(), [](const Query &q) { return !q.retest; });
-        if (conditional_ == Conditional::always)
+        if (history_ && conditional_ == Conditional::always)
             draw_conditionally(f);
         flight_.push_back(std::move(f));
     }
@@ -418,6 +445,9 @@ private:
     std::vector<std::int64_t> visible_frame_;   // the last frame a node was visible in
     std::int64_t frame_number_ = 0;
     std::optional<Frame> frame_;
+    // Something was visible in the previous frame: it is drawn untested
+    // while this frame's tests are pending (walks_on).
+    bool history_ = false;
     std::uint64_t waits_ = 0;   // times the traversal had nothing to do but wait for a pass
 
     // One frame's traversal state (traverse()).

@@ -20,6 +20,14 @@
 // ancestors visible for the next frame, and an inner node none of whose
 // descendants stayed visible is tested as a whole the next frame.
 //
+// A frame without history (the first, or the first after the switch-off
+// kept chc off: nothing was visible in the previous frame) has nothing to
+// draw while its tests are pending, so tests issued ahead of the results in
+// front of them would all meet an empty depth buffer. There the traversal
+// waits as the general algorithm does (Moeller and Haines, figure 2; Bartz
+// et al. 1998, section 3): a batch of the nearest nodes, its results, the
+// leaves found visible drawn, then the nodes behind them.
+//
 // CHC++ (2008): previously visible leaves are re-tested only
 // every `period` frames, each from its own random offset so that the tests
 // spread over frames (their results only classify the leaf for the next

@@ -81,3 +81,46 @@ TEST(ProjectBox, FootprintOrNothingNearTheEye)
     const glm::vec4 clip = vp * glm::vec4(1, 1, -5, 1);
     EXPECT_NEAR(p->window_z_near, 0.5f * clip.z / clip.w + 0.5f, 1e-7f);
 }
+
+// A box inside another, classified against the planes its enclosing box
+// crosses alone, gets the answer of a classification against all six, and
+// the planes it reports crossing are those its own classification reaches
+// across.
+TEST(Frustum, PlaneMaskOfAnEnclosingBoxGivesTheSameAnswer)
+{
+    Camera c = looking_down_minus_z();
+    c.position = {3, 2, 1};
+    c.target = {-5, 1, -20};
+    c.aspect = 1.5f;
+    const Frustum f(c.view_projection());
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> pos(-60, 60), size(0.01f, 60), unit(0, 1);
+    int masked = 0, inside = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const glm::vec3 lo{pos(rng), pos(rng) * 0.3f, pos(rng)};
+        const Aabb outer = Aabb::of(lo, lo + glm::vec3(size(rng), size(rng), size(rng)));
+        unsigned crossing = Frustum::all_planes;
+        if (f.classify(outer, crossing) == Frustum::Side::outside)
+            continue;
+        // Two nested boxes inside it: the mask carries down two levels.
+        const glm::vec3 a = outer.min + glm::vec3(unit(rng), unit(rng), unit(rng)) * outer.extent();
+        const glm::vec3 b = outer.min + glm::vec3(unit(rng), unit(rng), unit(rng)) * outer.extent();
+        const Aabb middle = Aabb::of(glm::min(a, b), glm::max(a, b));
+        const glm::vec3 d = middle.min + glm::vec3(unit(rng), unit(rng), unit(rng)) * middle.extent();
+        const Aabb inner = Aabb::of(d, glm::min(d + glm::vec3(size(rng)), middle.max));
+        masked += crossing != Frustum::all_planes;
+        unsigned middle_crossing = crossing;
+        const Frustum::Side m = f.classify(middle, middle_crossing);
+        ASSERT_EQ(m, f.classify(middle)) << "box " << i;
+        if (m == Frustum::Side::outside)
+            continue;
+        unsigned full = Frustum::all_planes;
+        f.classify(middle, full);
+        ASSERT_EQ(middle_crossing, full) << "box " << i;
+        const Frustum::Side n = f.classify(inner, middle_crossing);
+        ASSERT_EQ(n, f.classify(inner)) << "box " << i;
+        inside += n == Frustum::Side::inside;
+    }
+    EXPECT_GT(masked, 500);   // enclosing boxes left planes out
+    EXPECT_GT(inside, 100);   // and answers came from the masked planes alone
+}

@@ -156,6 +156,48 @@ TEST(Traversal, ProbesTestInnerNodesOnlyAndDrawWhatAFrameDraws)
     EXPECT_GT(probe_only.inner, 0u) << "a probe tested no inner node";
 }
 
+// Answers occluded for every node but the root, which it finds visible.
+class HidesAllButTheRoot final : public Culler {
+public:
+    void begin_frame(const Frame &frame) override { frustum_.emplace(frame.frustum); }
+    void test(std::vector<NodeTest> &tests) override
+    {
+        for (NodeTest &t : tests)
+            t.result = frustum_->classify(t.box) == Frustum::Side::outside ? Visibility::view_culled
+                       : t.node == 0                                       ? Visibility::visible
+                                                                           : Visibility::occluded;
+    }
+
+private:
+    std::optional<Frustum> frustum_;
+};
+
+// The triangles in the subtrees of occluded nodes are totalled for a
+// policy that reads them (the switch-off): those of the leaves in the
+// frustum, as view-frustum culling draws them; without such a policy
+// nothing is totalled.
+TEST(Traversal, OccludedTrianglesAreCountedOnlyForAPolicyThatReadsThem)
+{
+    const BoxRow row(40);
+    const Hierarchy &h = *row.h;
+    const Strategy vfc = make_strategy("vfc", {row.scene, h, *row.renderer});
+    const Frame frame(row.camera, 32, 32);
+    const FrameStats v = render_hierarchy(*row.renderer, h, *vfc.culler, frame);
+    ASSERT_GT(v.triangles, 0u);
+    HidesAllButTheRoot hides;
+    const FrameStats plain = render_hierarchy(*row.renderer, h, hides, frame);
+    EXPECT_EQ(plain.leaves_drawn, 0u);
+    EXPECT_GT(plain.nodes_occluded, 0u);
+    EXPECT_EQ(plain.triangles_occluded, 0u);
+    SwitchOff switch_off;
+    TraversalOptions options;
+    options.policies = {&switch_off};
+    const FrameStats judged = render_hierarchy(*row.renderer, h, hides, frame, options);
+    EXPECT_EQ(judged.nodes_occluded, plain.nodes_occluded);
+    EXPECT_EQ(judged.triangles_occluded, v.triangles);
+    EXPECT_FALSE(switch_off.off());
+}
+
 // Nodes visible last frame are drawn untested, except every retest_period
 // frames; so a second frame tests fewer nodes and draws the same.
 TEST(Traversal, VisibleNodeListSkipsTestsOfLastFramesVisibleNodes)
