@@ -169,10 +169,8 @@ void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::ui
         across = nullptr;
     // One triangle alone (skins_culler draws some so) is quicker one at a
     // time than in a batch of eight lanes with seven idle.
-    // The AVX2 screen drops triangles that cover no depth pixel wholly,
-    // which merging partial coverage needs.
-    if (isa_ == Isa::avx2 && triangle_count >= 2 && !options_.merge_partial_coverage) {
-        render_triangles_avx2(positions, indices, triangle_count);
+    if (isa_ == Isa::avx2 && triangle_count >= 2) {
+        render_triangles_avx2(positions, indices, triangle_count, across);
         return;
     }
     glm::vec4 clip[3];
@@ -190,10 +188,12 @@ void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::ui
 }
 
 void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices,
-                                            std::size_t triangle_count)
+                                            std::size_t triangle_count, const glm::vec3 *across)
 {
     // Eight at a time through the setup (raster::screen_triangles_avx2);
-    // those that need clipping go on one at a time.
+    // those that need clipping go on one at a time. With merged partial
+    // coverage the screen keeps the triangles that cover no depth pixel
+    // wholly, with their corners and transform error, for merge_partial.
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && sizeof(glm::mat4) == 16 * sizeof(float),
                   "the AVX2 screen reads positions and the matrix as packed floats");
     constexpr std::size_t batch = 64;
@@ -210,7 +210,11 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
                                         edge_margin / k,
                                         guard * std::max(width_, height_) + tile_size,
                                         float_error,
-                                        depth_margin};
+                                        depth_margin,
+                                        options_.merge_partial_coverage,
+                                        product_error,
+                                        0.5 * double(frame_width_) / options_.divisor,
+                                        0.5 * double(frame_height_) / options_.divisor};
     const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
     for (std::size_t first = 0; first < triangle_count; first += batch) {
         const std::size_t count = std::min(batch, triangle_count - first);
@@ -219,6 +223,15 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
         stats_.polygons += count;
         for (std::size_t i = 0; i < n; ++i) {
             const raster::ScreenedTriangle &t = kept[i];
+            const glm::vec3 *t_across = across ? across + 3 * (first + t.triangle) : nullptr;
+            if (t.set_up && options_.merge_partial_coverage) {
+                const glm::vec2 window[3] = {{t.wx[0], t.wy[0]}, {t.wx[1], t.wy[1]}, {t.wx[2], t.wy[2]}};
+                if (behind_everything(window, t.depth, 3))
+                    continue;
+                ++stats_.rasterized;
+                draw(window, t.depth, 3, t.setup, t_across, {t.error_window, t.error_depth});
+                continue;
+            }
             if (t.set_up) {
                 ++stats_.rasterized;
                 raster::fill_avx2(t.setup, buffer);
@@ -226,10 +239,16 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
                 continue;
             }
             glm::vec4 clip[3];
-            for (int v = 0; v < 3; ++v)
-                clip[v] = clip_position(view_projection_, positions[batch_indices[3 * t.triangle + std::uint32_t(v)]]);
+            glm::vec3 corners[3];
+            for (int v = 0; v < 3; ++v) {
+                corners[v] = positions[batch_indices[3 * t.triangle + std::uint32_t(v)]];
+                clip[v] = clip_position(view_projection_, corners[v]);
+            }
             --stats_.polygons;   // polygon counts it
-            polygon(clip, 3);
+            if (options_.merge_partial_coverage)
+                polygon(clip, 3, t_across, transform_error(corners, 3));
+            else
+                polygon(clip, 3);
         }
     }
 }
@@ -370,21 +389,8 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     const bool whole_pixels = s.x0 < s.x1 && s.y0 < s.y1;
     if (!whole_pixels && !options_.merge_partial_coverage)
         return;
-    if (options_.merge_partial_coverage) {
-        // Drawn nearest first, a mesh's later triangles mostly lie behind
-        // what is already there: where every depth pixel the polygon (or a
-        // sample beyond its shared edges) may reach is nearer than its
-        // nearest vertex, it adds nothing, and its setup is skipped.
-        float nearest = depth[0];
-        for (int i = 1; i < n; ++i)
-            nearest = std::min(nearest, depth[i]);
-        const int x0 = std::max(0, int(std::floor(double(lo.x))) - 1);
-        const int y0 = std::max(0, int(std::floor(double(lo.y))) - 1);
-        const int x1 = std::min(width_, int(std::floor(double(hi.x))) + 2);
-        const int y1 = std::min(height_, int(std::floor(double(hi.y))) + 2);
-        if (x0 >= x1 || y0 >= y1 || all_nearer(x0, y0, x1, y1, float(double(nearest) - depth_margin)))
-            return;
-    }
+    if (options_.merge_partial_coverage && behind_everything(window, depth, n))
+        return;
 
     // Front faces wind counter-clockwise in window coordinates (y up).
     double area = 0.0;
@@ -415,8 +421,33 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     }
 
     depth_plane(window, depth, n, first, last, extent, options_.per_pixel_depth, s);
+    draw(window, depth, n, s, across, error);
+}
 
-    if (whole_pixels) {
+bool DepthRasterizer::behind_everything(const glm::vec2 *window, const float *depth, int n) const
+{
+    // Drawn nearest first, a mesh's later triangles mostly lie behind
+    // what is already there: where every depth pixel the polygon (or a
+    // sample beyond its shared edges) may reach is nearer than its
+    // nearest vertex, it adds nothing.
+    glm::vec2 lo = window[0], hi = window[0];
+    float nearest = depth[0];
+    for (int i = 1; i < n; ++i) {
+        lo = glm::min(lo, window[i]);
+        hi = glm::max(hi, window[i]);
+        nearest = std::min(nearest, depth[i]);
+    }
+    const int x0 = std::max(0, int(std::floor(double(lo.x))) - 1);
+    const int y0 = std::max(0, int(std::floor(double(lo.y))) - 1);
+    const int x1 = std::min(width_, int(std::floor(double(hi.x))) + 2);
+    const int y1 = std::min(height_, int(std::floor(double(hi.y))) + 2);
+    return x0 >= x1 || y0 >= y1 || all_nearer(x0, y0, x1, y1, float(double(nearest) - depth_margin));
+}
+
+void DepthRasterizer::draw(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
+                           const glm::vec3 *across, TransformError error)
+{
+    if (s.x0 < s.x1 && s.y0 < s.y1) {
         const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
         if (isa_ == Isa::avx2)
             raster::fill_avx2(s, buffer);

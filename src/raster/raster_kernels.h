@@ -61,12 +61,24 @@ struct TriangleScreen {
     // offsets, the edge margin per unit of edge normal, the coordinate
     // extent and relative float error its margins scale, the depth margin.
     double first, last, edge_margin, extent, float_error, depth_margin;
+    // Merged partial coverage: triangles that cover no depth pixel wholly
+    // are kept too (their samples may fuse with others'), with their
+    // window corners and the bound of GL's transform error at them
+    // (DepthRasterizer::add_transform_error's expressions, in double,
+    // product_error its relative error of a matrix product).
+    bool keep_partial;
+    double product_error;
+    double error_scale_x, error_scale_y;   // half the buffer's size, in double
 };
 
 struct ScreenedTriangle {
     std::uint32_t triangle;   // its number in the call
     bool set_up;              // false: it needs clipping
     PolygonSetup setup;
+    // keep_partial only: the corners in window coordinates of the buffer
+    // and window depth, and the transform error's bound over them.
+    float wx[3], wy[3], depth[3];
+    double error_window, error_depth;
 };
 
 // Writes the triangles among indices[0 .. 3 count) that may cover a depth
