@@ -60,7 +60,9 @@
 // path screens and sets up triangles eight at a time in this mode too,
 // keeping those that cover no depth pixel wholly, with the same float and
 // double expressions (the transform error's bound included) as the one
-// at a time way, so the two paths' buffers stay equal.
+// at a time way, and the samples of eight depth pixels are tested at once
+// in float (raster::PartialEdges8 derives the bound of the float error
+// its thresholds carry), so the two paths' buffers stay equal.
 //
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
 // the caller); both evaluate the same float expressions in the same order,
@@ -199,16 +201,11 @@ private:
                        const glm::vec3 *across, TransformError error);
     // merge_partial's parts: the polygon's edges at sample precision and
     // the depth pixels they may reach; the triangle across edge e, set up
-    // on first need (false where it cannot count); a row's spans of pixels
-    // the polygon may reach but does not cover wholly (false: none); the
-    // samples of pixel (x, y) it holds, `used` the edges whose triangle
-    // across some sample needed.
+    // on first need (false where it cannot count).
     struct PartialEdges;
     PartialEdges partial_edges(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across,
                                TransformError error) const;
     bool set_up_across(PartialEdges &edges, int e) const;
-    bool partial_row_spans(const PartialEdges &edges, int y, int spans[2][2]) const;
-    std::uint64_t partial_sample_mask(PartialEdges &edges, int x, int y, bool used[3]) const;
     // Adds sample mask `mask` held no farther than z to the pixel at
     // `index` (tile layout); returns whether its depth changed.
     bool add_partial(std::size_t index, std::uint64_t mask, float z);
