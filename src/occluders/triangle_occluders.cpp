@@ -8,10 +8,11 @@
 
 namespace occu {
 
-TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &settings) : scene_(&scene)
+TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &settings, std::size_t least_budget)
+    : scene_(&scene), budget_(least_budget)
 {
     if (settings.knows("occluder-triangles"))
-        budget_ = std::size_t(settings.integer("occluder-triangles"));
+        budget_ = std::max(budget_, std::size_t(settings.integer("occluder-triangles")));
     if (budget_ == 0)
         return;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {

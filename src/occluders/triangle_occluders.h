@@ -29,9 +29,9 @@ class TriangleOccluders {
 public:
     // As the settings ask (occluders/sources.h, triangle_occluder_source):
     // occluder-triangles, the budget (0, or a family without the setting:
-    // none), and with coverage=merged the triangle across each edge. Keeps
-    // `scene` by reference.
-    TriangleOccluders(const Scene &scene, const Settings &settings);
+    // none), at least `least_budget`, and with coverage=merged the
+    // triangle across each edge. Keeps `scene` by reference.
+    TriangleOccluders(const Scene &scene, const Settings &settings, std::size_t least_budget = 0);
 
     // Renders into `raster` at most budget() of the scene's occluder
     // triangles that face the eye in `frame`'s frustum, the largest

@@ -16,13 +16,13 @@ namespace {
 class OccluderSkinCuller final : public Culler {
 public:
     OccluderSkinCuller(const StrategyContext &context, const Settings &settings)
-        : scene_(context.scene), hierarchy_(context.hierarchy), drawn_(settings.text("occluders") != "skins"),
+        : scene_(context.scene), hierarchy_(context.hierarchy), settings_(settings),
+          drawn_(settings.text("occluders") != "skins"),
           limit_(std::size_t(settings.integer("max-occluders"))), box_test_(settings.text("occludee") != "rect"),
           triangle_test_(settings.text("occludee") == "triangles")
     {
-        options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
-        options_.merge_partial_coverage = merges_partial_coverage(settings, options_.divisor);
+        options_.merge_partial_coverage = merges_partial_coverage(settings, int(settings.integer("map-divisor")));
         if (settings.text("occluders") != "drawn")
             occluders_.emplace(context.scene, settings);
     }
@@ -30,6 +30,7 @@ public:
     void begin_frame(const Frame &frame) override
     {
         frame_.emplace(frame);
+        options_.divisor = map_divisor(settings_, frame.width, frame.height);
         raster_.begin(frame.view_projection, frame.width, frame.height, options_);
         if (occluders_)
             occluders_->render(frame, raster_, limit_);
@@ -84,6 +85,7 @@ public:
 private:
     const Scene &scene_;
     const Hierarchy &hierarchy_;
+    Settings settings_;
     bool drawn_;
     std::size_t limit_;
     bool box_test_;
@@ -113,7 +115,8 @@ StrategyFamily occluder_skins_family()
                        "a leaf is its screen rectangle at its nearest depth and, where that fails, its box's faces "
                        "pixel by pixel; or the rectangle alone (section 6); or, where the box fails too, its own "
                        "triangles pixel by pixel (what it draws, tighter than its box)"),
-        integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per depth pixel, each way"),
+        map_size_setting(256, "depth pixels"),
+        map_divisor_setting("depth pixel"),
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),
     };
@@ -144,6 +147,10 @@ StrategyFamily occluder_skins_family()
         StrategyTestVariant("skins:occludee=triangles"),
         StrategyTestVariant("skins:occludee=rect"),
         StrategyTestVariant("skins:depth=polygon"),
+        // A buffer of its own resolution, the divisor from the frame's size
+        // (3 at the tests' frames of 128 pixels), and the exact end.
+        StrategyTestVariant("skins:map-size=50"),
+        StrategyTestVariant("skins:map-divisor=1"),
         StrategyTestVariant("skins-drawn:occludee=triangles"),
         StrategyTestVariant("skins-drawn").with_probing_switch_off(),
     };
