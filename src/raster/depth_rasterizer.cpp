@@ -655,17 +655,70 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         return;
     const raster::PartialEdges8 &f = p.f;
     const float first_offset = f.offset[0], last_offset = f.offset[f.k - 1];
+    double inverse[raster::max_edges];
+    for (int e = 0; e < n; ++e)
+        inverse[e] = f.ea[e] != 0.0f ? 1.0 / double(f.ea[e]) : 0.0;
     // Row by row, eight pixels of a tile row at a time: those some sample
-    // of which the polygon may reach, and whose depth the polygon's bound
-    // there would lower (the pixels it covers wholly the fill has taken,
-    // and a pixel already nearer gains nothing, whatever the samples).
+    // of which the polygon may reach, less those it holds wholly (the fill
+    // has taken them), and of these the pixels whose depth the polygon's
+    // bound there would lower (a pixel already nearer gains nothing,
+    // whatever the samples).
     bool wrote = false;
     std::uint64_t held[8], maybe[3][8];
+    float nearest = depth[0];
+    for (int i = 1; i < n; ++i)
+        nearest = std::min(nearest, depth[i]);
+    const float behind = float(double(nearest) - depth_margin);
     for (int y = p.y0; y < p.y1; ++y) {
         const float depth_term = s.zb * float(y) + s.zc;
         const float v_low = float(y) + first_offset, v_high = float(y) + last_offset;
         const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
-        for (int x8 = p.x0 / tile_size * tile_size; x8 < p.x1; x8 += tile_size) {
+        // The row's span of pixels some sample of which reaches every edge
+        // (its largest value over the pixel's samples at least the reach
+        // threshold) and of pixels all of whose samples every edge holds,
+        // one pixel wider and narrower than the arithmetic says: the
+        // samples decide, the spans only skip pixels.
+        const auto column = [&](double x) { return std::max(double(p.x0 - 2), std::min(double(p.x1 + 1), x)); };
+        double reach_lo = p.x0, reach_hi = p.x1 - 1, whole_lo = p.x0, whole_hi = p.x1 - 1;
+        bool reached = true, whole = true;
+        for (int e = 0; e < n && reached; ++e) {
+            const double ea = f.ea[e], eb = f.eb[e];
+            const double v_largest = eb > 0.0 ? v_high : v_low, v_least = eb > 0.0 ? v_low : v_high;
+            const double reach_x = (double(f.reach[e]) - eb * v_largest) * inverse[e];
+            const double whole_x = (double(f.held[e]) - eb * v_least) * inverse[e];
+            if (ea > 0.0) {
+                reach_lo = std::max(reach_lo, std::ceil(column(reach_x - last_offset)) - 1.0);
+                whole_lo = std::max(whole_lo, std::ceil(column(whole_x - first_offset)) + 1.0);
+            } else if (ea < 0.0) {
+                reach_hi = std::min(reach_hi, std::floor(column(reach_x - first_offset)) + 1.0);
+                whole_hi = std::min(whole_hi, std::floor(column(whole_x - last_offset)) - 1.0);
+            } else {
+                reached = eb * v_largest >= double(f.reach[e]);
+                whole = whole && eb * v_least >= double(f.held[e]);
+            }
+            reached = reached && reach_lo <= reach_hi;   // NaN included
+        }
+        if (!reached)
+            continue;
+        if (!(whole && whole_lo <= whole_hi))
+            whole_lo = reach_hi + 1, whole_hi = reach_hi;
+        const int r0 = int(reach_lo), r1 = int(reach_hi) + 1, w0 = int(whole_lo), w1 = int(whole_hi) + 1;
+        // The two runs of partial pixels, each in chunks of a tile row.
+        const int runs[2][2] = {{r0, std::min(w0, r1)}, {std::max(w1, r0), r1}};
+        for (const auto &run : runs)
+        for (int x8 = run[0] / tile_size * tile_size; x8 < run[1]; x8 += tile_size) {
+            // A tile nearer everywhere than the polygon's nearest corner
+            // takes nothing from it (behind_everything, tile by tile).
+            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
+            if (dirty_[tile])
+                refresh_tile_maximum(tile);
+            if (tile_max_[tile] < behind)
+                continue;
+            int lanes = 0;
+            for (int l = 0; l < tile_size; ++l)
+                lanes |= int(x8 + l >= run[0] && x8 + l < run[1]) << l;
+            if (lanes == 0)
+                continue;
             // No sample of the eight within reach of some edge: each
             // float edge value is monotone in u and v, so its largest over
             // the samples is at a corner, by the samples' own expression.
@@ -677,13 +730,9 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
             }
             if (missed)
                 continue;
-            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
             float *row = tiles_.data() + tile * tile_pixels + std::size_t(y % tile_size) * tile_size;
             // The fill's depth: the farthest over all the pixel's samples,
             // so over those the polygon holds, widened by the transform's error.
-            int lanes = 0;
-            for (int l = 0; l < tile_size; ++l)
-                lanes |= int(x8 + l >= p.x0 && x8 + l < p.x1) << l;
             const raster::PartialDepth d{s.za, depth_term, s.zcap, error.depth};
             float z[tile_size];
             lanes = isa_ == Isa::avx2 ? raster::partial_masks_avx2(f, d, x8, y, lanes, row, z, held, maybe)

@@ -30,7 +30,7 @@ public:
         options_.per_pixel_depth = settings.text("depth") == "pixel";
         options_.merge_partial_coverage = merges_partial_coverage(settings, int(settings.integer("map-divisor")));
         if (!last_frame_)
-            occluders_.emplace(context.scene, settings);
+            occluders_.emplace(context.scene, settings, &context.hierarchy);
     }
 
     void begin_frame(const Frame &frame) override
