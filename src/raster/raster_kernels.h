@@ -182,14 +182,16 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer);
 // float(X) + offset[i] and float(Y) + offset[j], and ea u + eb v is
 // summed as fl(fl(ea u) + fl(eb v)), the same in both loops.
 //
-// Single precision suffices because the caller lowers each threshold by a
-// bound of the float error (merge_partial's `float_slack`): with unit
-// roundoff eps = 2^-24, rounding the coefficients (eps |a|, eps |b|), the
-// sample coordinates (eps |u|, eps |v|, offsets such as 1/6 having no
-// exact float), both products and the sum (three roundings) and the
-// threshold (eps |c|) moves the value by at most 6 eps (|a| |u| + |b| |v|
-// + |c|) <= 6 eps ((|a| + |b|) extent + |c|), extent bounding every
-// sample coordinate (the guard band); the slack is 8 eps times that, so a
+// Single precision suffices because the caller raises each threshold
+// (-c, for an edge function a u + b v + c) by a bound of the float error
+// and rounds it up (depth_rasterizer.cpp, float_threshold): with unit
+// roundoff eps = 2^-24, rounding the coefficients to float (eps |a| |u|,
+// eps |b| |v|), the sample coordinates (offset and sum, 2 eps of each
+// term; offsets such as 1/6 have no exact float), both products and the
+// sum (eps each of at most |a| |u| + |b| |v|) move the value by at most
+// 5 eps (|a| |u| + |b| |v|) and terms in eps^2, below 6 eps ((|a| + |b|)
+// extent + |c|), extent bounding every sample coordinate (the guard
+// band); the threshold is raised by 8 eps times that (float_error), so a
 // sample the float test holds is held by the exact edge function too.
 struct PartialEdges8 {
     int edges, k;
