@@ -678,10 +678,13 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         // threshold) and of pixels all of whose samples every edge holds,
         // one pixel wider and narrower than the arithmetic says: the
         // samples decide, the spans only skip pixels.
+        // A polygon two chunks wide or less is walked whole: its chunks
+        // cost less than the spans.
         const auto column = [&](double x) { return std::max(double(p.x0 - 2), std::min(double(p.x1 + 1), x)); };
         double reach_lo = p.x0, reach_hi = p.x1 - 1, whole_lo = p.x0, whole_hi = p.x1 - 1;
-        bool reached = true, whole = true;
-        for (int e = 0; e < n && reached; ++e) {
+        const bool spans = p.x1 - p.x0 > 2 * tile_size;
+        bool reached = true, whole = spans;
+        for (int e = 0; e < n && reached && spans; ++e) {
             const double ea = f.ea[e], eb = f.eb[e];
             const double v_largest = eb > 0.0 ? v_high : v_low, v_least = eb > 0.0 ? v_low : v_high;
             const double reach_x = (double(f.reach[e]) - eb * v_largest) * inverse[e];
@@ -708,11 +711,11 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         for (const auto &run : runs)
         for (int x8 = run[0] / tile_size * tile_size; x8 < run[1]; x8 += tile_size) {
             // A tile nearer everywhere than the polygon's nearest corner
-            // takes nothing from it (behind_everything, tile by tile).
+            // takes nothing from it (behind_everything, tile by tile), by
+            // its maximum where up to date: the partial layer writes tiles
+            // often, and taking a maximum costs more than the test saves.
             const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
-            if (dirty_[tile])
-                refresh_tile_maximum(tile);
-            if (tile_max_[tile] < behind)
+            if (!dirty_[tile] && tile_max_[tile] < behind)
                 continue;
             int lanes = 0;
             for (int l = 0; l < tile_size; ++l)
