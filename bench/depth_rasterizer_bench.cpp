@@ -20,6 +20,11 @@
 // same work split over two threads (each half the batches into a buffer
 // of its own, then merged, nearest wins), best of 5 rounds:
 //   route,two-threads,DIVISOR,ISA,polygons,ms_per_frame,million_polygons_per_second
+// and last, per route and divisor (1 and 2) and loops, the occluder
+// triangles per second of whole pixels and of merged coverage side by
+// side, and the merged frame's time over the whole pixels' one (the
+// cost of fusing samples, from the rows above):
+//   route,divisor,isa,whole_million_triangles_per_second,merged_million_triangles_per_second,merged_over_whole
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -27,6 +32,7 @@
 #include <map>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "culling/culler.h"
@@ -60,6 +66,8 @@ int main(int argc, char **argv)
         isas.push_back(DepthRasterizer::Isa::avx2);
 
     std::printf("route,load,divisor,isa,polygons,ms_per_frame,million_polygons_per_second\n");
+    // (route, load, divisor, isa) -> ms a frame and million polygons a second.
+    std::map<std::tuple<std::string, std::string, int, int>, std::pair<double, double>> measured;
     for (const char *route : {"dense", "street", "medium", "open"}) {
         const auto cameras = setup.route(route, frames);
         // Per frame, the triangles of the leaves in the frustum, gathered
@@ -130,11 +138,14 @@ int main(int argc, char **argv)
                                            std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
                     }
                 polygons /= 5 * isas.size();
-                for (std::size_t i = 0; i < isas.size(); ++i)
+                for (std::size_t i = 0; i < isas.size(); ++i) {
                     std::printf("%s,%s,%d,%s,%llu,%.3f,%.1f\n", route, load, divisor,
                                 isas[i] == DepthRasterizer::Isa::avx2 ? "avx2" : "scalar",
                                 (unsigned long long)(polygons / cameras.size()), best[i] / double(cameras.size()),
                                 double(polygons) / (best[i] * 1e3));
+                    measured[{route, load, divisor, int(isas[i])}] = {best[i] / double(cameras.size()),
+                                                                      double(polygons) / (best[i] * 1e3)};
+                }
             }
         }
         // The second core: the frame's batches split in two halves, one per
@@ -171,5 +182,16 @@ int main(int argc, char **argv)
         }
         (void)triangles;
     }
+    std::printf("route,divisor,isa,whole_million_triangles_per_second,merged_million_triangles_per_second,"
+                "merged_over_whole\n");
+    for (const char *route : {"dense", "street", "medium", "open"})
+        for (int divisor : {1, 2})
+            for (DepthRasterizer::Isa isa : isas) {
+                const auto whole = measured[{route, "leaf-triangles", divisor, int(isa)}];
+                const auto merged = measured[{route, "leaf-triangles-merged", divisor, int(isa)}];
+                std::printf("%s,%d,%s,%.1f,%.1f,%.2f\n", route, divisor,
+                            isa == DepthRasterizer::Isa::avx2 ? "avx2" : "scalar", whole.second, merged.second,
+                            merged.first / whole.first);
+            }
     return 0;
 }

@@ -12,6 +12,7 @@
 #include "culling/culler.h"
 #include "culling/settings.h"
 #include "occluders/skin_occluders.h"
+#include "occluders/sources.h"
 #include "occluders/triangle_occluders.h"
 #include "raster/depth_rasterizer.h"
 #include "scene/scene.h"
@@ -20,8 +21,18 @@ namespace occu {
 
 class DepthOccluders {
 public:
-    // Keeps `scene` by reference.
-    DepthOccluders(const Scene &scene, const Settings &settings) : skins_(scene, settings), triangles_(scene, settings)
+    // Keeps `scene` and `hierarchy` by reference; the triangles are chosen
+    // leaf by leaf of `hierarchy` where given (TriangleOccluders). Where
+    // the scene has no skin at all and the settings ask for
+    // scene-triangles, the triangle budget is at least
+    // scene_triangle_budget (occluders/sources.h).
+    DepthOccluders(const Scene &scene, const Settings &settings, const Hierarchy *hierarchy = nullptr)
+        : skins_(scene, settings),
+          triangles_(scene, settings,
+                     skins_.size() == 0 && settings.knows("scene-triangles") && settings.on("scene-triangles")
+                         ? std::size_t(scene_triangle_budget)
+                         : 0,
+                     hierarchy)
     {
     }
 

@@ -2,6 +2,7 @@
 // The shared occluder sources and their settings: see sources.h.
 #include "occluders/sources.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +13,32 @@ SkinOptions skin_options(const Settings &settings)
     SkinOptions options;
     options.voxel_size = float(settings.number("skin-voxel"));
     return options;
+}
+
+SettingSpec map_size_setting(long default_size, std::string what)
+{
+    return integer_setting("map-size", default_size, 1, 1 << 14, SettingSpec::Role::cost,
+                           what + " along the frame's larger side, whatever the frame's size (the divisor is that "
+                                  "side over it, rounded up; map-divisor above 0 fixes the divisor instead)");
+}
+
+SettingSpec map_divisor_setting(std::string what)
+{
+    return integer_setting("map-divisor", 0, 0, 64, SettingSpec::Role::cost,
+                           "frame pixels per " + what + ", each way (1: the frame's resolution, exact); 0: from "
+                           "map-size");
+}
+
+int map_divisor(const Settings &settings, int frame_width, int frame_height)
+{
+    const long fixed = settings.integer("map-divisor");
+    if (fixed > 0)
+        return int(fixed);
+    const long side = std::max(frame_width, frame_height), size = settings.integer("map-size");
+    const int divisor = int(std::max(1L, (side + size - 1) / size));
+    // Merged coverage keeps a mask of at most 8 x 8 samples a pixel.
+    const bool merged = settings.knows("coverage") && settings.text("coverage") == "merged";
+    return merged ? std::min(divisor, 8) : divisor;
 }
 
 SettingSpec occluder_triangles_setting()
@@ -28,6 +55,14 @@ SettingSpec coverage_setting()
                           "depth pixels an occluder polygon covers wholly, or also samples of a pixel that "
                           "several polygons cover together (Masked Occlusion Culling's merge; map divisor 8 or less)",
                           SettingSpec::Role::cost);
+}
+
+SettingSpec scene_triangles_setting()
+{
+    return on_off_setting("scene-triangles", true, SettingSpec::Role::choice,
+                          "where no mesh of the scene has a skin (a level, open models), its own largest triangles "
+                          "stand in (occluder-triangles " + std::to_string(scene_triangle_budget) +
+                              " unless set higher); off: occluder-triangles alone");
 }
 
 bool merges_partial_coverage(const Settings &settings, int divisor)
@@ -81,7 +116,7 @@ const OccluderSource &skin_occluder_source()
 
 const OccluderSource &triangle_occluder_source()
 {
-    static const OccluderSource source{"the scene's own triangles", {occluder_triangles_setting(), coverage_setting()},
+    static const OccluderSource source{"the scene's own triangles", {occluder_triangles_setting(), coverage_setting(), scene_triangles_setting()},
                                        {}};
     return source;
 }

@@ -51,8 +51,25 @@ SkinOptions skin_options(const Settings &settings);
 // pixel's samples also fuses across polygons, as in Masked Occlusion
 // Culling (raster/depth_rasterizer.h), so that a mesh's triangles leave no
 // seam of empty pixels along their shared edges.
+// The CPU depth buffer's resolution (skins, hzb): map-size, its pixels
+// along the frame's larger side whatever the frame's size, as Masked
+// Occlusion Culling's buffer has a resolution of its own, so that its
+// cost does not grow with the frame; the divisor (frame pixels per depth
+// pixel, each way) is the larger side over it, rounded up, at most 8 with
+// merged coverage. map-divisor, where above 0 (its default is 0), fixes
+// the divisor instead: 1 is the frame's own resolution, exact.
+SettingSpec map_size_setting(long default_size, std::string what);
+SettingSpec map_divisor_setting(std::string what);
+int map_divisor(const Settings &settings, int frame_width, int frame_height);
+
 SettingSpec occluder_triangles_setting();
 SettingSpec coverage_setting();
+// scene-triangles (on): where no mesh of the scene has a skin (no closed
+// mesh: a game level, open models), its own largest triangles stand in,
+// at least scene_triangle_budget of them, so that a family culls with the
+// occluders the scene has at its defaults; off: occluder-triangles alone.
+SettingSpec scene_triangles_setting();
+constexpr long scene_triangle_budget = 1024;
 // Whether `settings` ask for merged coverage; throws std::invalid_argument
 // naming the setting where the rasterizer's divisor is above 8.
 bool merges_partial_coverage(const Settings &settings, int divisor);

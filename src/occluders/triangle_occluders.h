@@ -11,6 +11,16 @@
 // pixel is a safe occluder (Leone, section 3: occluders fuse in the
 // buffer). A triangle across the near plane is clipped there by the
 // rasterizer (the part GL draws), never dropped nor taken whole.
+//
+// Choosing does not look at every triangle every frame: the triangles are
+// grouped by the hierarchy's leaves, each group ranked by world area, and
+// a frame visits the leaves in the frustum in order of the largest
+// projected area any of their triangles may have (its largest world area
+// over the leaf's nearest view depth squared); it stops at the first
+// leaf, and within a leaf at the first triangle, that cannot beat the
+// budget's smallest score so far. Which triangles are chosen decides only
+// how much is culled, never whether it is safe: every one drawn is a
+// triangle GL draws.
 #pragma once
 
 #include <cstddef>
@@ -22,6 +32,7 @@
 #include "culling/settings.h"
 #include "raster/depth_rasterizer.h"
 #include "scene/scene.h"
+#include "spatial/hierarchy.h"
 
 namespace occu {
 
@@ -29,9 +40,12 @@ class TriangleOccluders {
 public:
     // As the settings ask (occluders/sources.h, triangle_occluder_source):
     // occluder-triangles, the budget (0, or a family without the setting:
-    // none), and with coverage=merged the triangle across each edge. Keeps
-    // `scene` by reference.
-    TriangleOccluders(const Scene &scene, const Settings &settings);
+    // none), at least `least_budget`, and with coverage=merged the
+    // triangle across each edge. Grouped by `hierarchy`'s leaves where
+    // given (null: one group of all). Keeps `scene` and `hierarchy` by
+    // reference.
+    TriangleOccluders(const Scene &scene, const Settings &settings, std::size_t least_budget = 0,
+                      const Hierarchy *hierarchy = nullptr);
 
     // Renders into `raster` at most budget() of the scene's occluder
     // triangles that face the eye in `frame`'s frustum, the largest
@@ -40,12 +54,28 @@ public:
     std::size_t budget() const { return budget_; }
 
 private:
-    const Scene *scene_;
+    struct Group {
+        Aabb bounds;
+        std::uint32_t first = 0, count = 0;   // in corners_ / 3, the largest world area first
+        float largest = 0.0f;                 // twice the world area of its first triangle
+    };
+    // The score of triangle t (twice its projected area, see render), or
+    // nothing (back-facing, outside the frustum).
+    bool score(std::uint32_t t, const glm::mat4 &vp, const Frame &frame, float &out) const;
+
+    const Hierarchy *hierarchy_ = nullptr;
     std::size_t budget_ = 0;
-    // Mesh and first index of each, from occluder meshes only.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> triangles_;
+    std::vector<glm::vec3> corners_;   // 3 per triangle, grouped
+    std::vector<float> twice_area_;    // per triangle, world
+    std::vector<Group> groups_;
+    std::vector<std::uint32_t> leaf_group_;   // per hierarchy node: its group, or none (~0)
     std::vector<glm::vec3> across_;   // coverage=merged: 3 per triangle (shared_edge_opposites)
-    std::vector<std::pair<float, std::uint32_t>> chosen_triangles_;
+    // Per frame: (score, triangle) of the best so far, a min-heap; then
+    // (nearest w, triangle); the corners and triangles across drawn.
+    std::vector<std::pair<float, std::uint32_t>> chosen_;
+    std::vector<std::pair<float, std::uint32_t>> groups_by_bound_;
+    std::vector<glm::vec3> drawn_corners_, drawn_across_;
+    std::vector<std::uint32_t> drawn_indices_;
 };
 
 }  // namespace occu

@@ -169,10 +169,8 @@ void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::ui
         across = nullptr;
     // One triangle alone (skins_culler draws some so) is quicker one at a
     // time than in a batch of eight lanes with seven idle.
-    // The AVX2 screen drops triangles that cover no depth pixel wholly,
-    // which merging partial coverage needs.
-    if (isa_ == Isa::avx2 && triangle_count >= 2 && !options_.merge_partial_coverage) {
-        render_triangles_avx2(positions, indices, triangle_count);
+    if (isa_ == Isa::avx2 && triangle_count >= 2) {
+        render_triangles_avx2(positions, indices, triangle_count, across);
         return;
     }
     glm::vec4 clip[3];
@@ -190,10 +188,12 @@ void DepthRasterizer::render_triangles(const glm::vec3 *positions, const std::ui
 }
 
 void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices,
-                                            std::size_t triangle_count)
+                                            std::size_t triangle_count, const glm::vec3 *across)
 {
     // Eight at a time through the setup (raster::screen_triangles_avx2);
-    // those that need clipping go on one at a time.
+    // those that need clipping go on one at a time. With merged partial
+    // coverage the screen keeps the triangles that cover no depth pixel
+    // wholly, with their corners and transform error, for merge_partial.
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && sizeof(glm::mat4) == 16 * sizeof(float),
                   "the AVX2 screen reads positions and the matrix as packed floats");
     constexpr std::size_t batch = 64;
@@ -210,7 +210,11 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
                                         edge_margin / k,
                                         guard * std::max(width_, height_) + tile_size,
                                         float_error,
-                                        depth_margin};
+                                        depth_margin,
+                                        options_.merge_partial_coverage,
+                                        product_error,
+                                        0.5 * double(frame_width_) / options_.divisor,
+                                        0.5 * double(frame_height_) / options_.divisor};
     const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
     for (std::size_t first = 0; first < triangle_count; first += batch) {
         const std::size_t count = std::min(batch, triangle_count - first);
@@ -219,6 +223,15 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
         stats_.polygons += count;
         for (std::size_t i = 0; i < n; ++i) {
             const raster::ScreenedTriangle &t = kept[i];
+            const glm::vec3 *t_across = across ? across + 3 * (first + t.triangle) : nullptr;
+            if (t.set_up && options_.merge_partial_coverage) {
+                const glm::vec2 window[3] = {{t.wx[0], t.wy[0]}, {t.wx[1], t.wy[1]}, {t.wx[2], t.wy[2]}};
+                if (behind_everything(window, t.depth, 3))
+                    continue;
+                ++stats_.rasterized;
+                draw(window, t.depth, 3, t.setup, t_across, {t.error_window, t.error_depth});
+                continue;
+            }
             if (t.set_up) {
                 ++stats_.rasterized;
                 raster::fill_avx2(t.setup, buffer);
@@ -226,10 +239,16 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
                 continue;
             }
             glm::vec4 clip[3];
-            for (int v = 0; v < 3; ++v)
-                clip[v] = clip_position(view_projection_, positions[batch_indices[3 * t.triangle + std::uint32_t(v)]]);
+            glm::vec3 corners[3];
+            for (int v = 0; v < 3; ++v) {
+                corners[v] = positions[batch_indices[3 * t.triangle + std::uint32_t(v)]];
+                clip[v] = clip_position(view_projection_, corners[v]);
+            }
             --stats_.polygons;   // polygon counts it
-            polygon(clip, 3);
+            if (options_.merge_partial_coverage)
+                polygon(clip, 3, t_across, transform_error(corners, 3));
+            else
+                polygon(clip, 3);
         }
     }
 }
@@ -370,21 +389,8 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     const bool whole_pixels = s.x0 < s.x1 && s.y0 < s.y1;
     if (!whole_pixels && !options_.merge_partial_coverage)
         return;
-    if (options_.merge_partial_coverage) {
-        // Drawn nearest first, a mesh's later triangles mostly lie behind
-        // what is already there: where every depth pixel the polygon (or a
-        // sample beyond its shared edges) may reach is nearer than its
-        // nearest vertex, it adds nothing, and its setup is skipped.
-        float nearest = depth[0];
-        for (int i = 1; i < n; ++i)
-            nearest = std::min(nearest, depth[i]);
-        const int x0 = std::max(0, int(std::floor(double(lo.x))) - 1);
-        const int y0 = std::max(0, int(std::floor(double(lo.y))) - 1);
-        const int x1 = std::min(width_, int(std::floor(double(hi.x))) + 2);
-        const int y1 = std::min(height_, int(std::floor(double(hi.y))) + 2);
-        if (x0 >= x1 || y0 >= y1 || all_nearer(x0, y0, x1, y1, float(double(nearest) - depth_margin)))
-            return;
-    }
+    if (options_.merge_partial_coverage && behind_everything(window, depth, n))
+        return;
 
     // Front faces wind counter-clockwise in window coordinates (y up).
     double area = 0.0;
@@ -415,8 +421,33 @@ void DepthRasterizer::rasterize(const glm::vec2 *window, const float *depth, int
     }
 
     depth_plane(window, depth, n, first, last, extent, options_.per_pixel_depth, s);
+    draw(window, depth, n, s, across, error);
+}
 
-    if (whole_pixels) {
+bool DepthRasterizer::behind_everything(const glm::vec2 *window, const float *depth, int n) const
+{
+    // Drawn nearest first, a mesh's later triangles mostly lie behind
+    // what is already there: where every depth pixel the polygon (or a
+    // sample beyond its shared edges) may reach is nearer than its
+    // nearest vertex, it adds nothing.
+    glm::vec2 lo = window[0], hi = window[0];
+    float nearest = depth[0];
+    for (int i = 1; i < n; ++i) {
+        lo = glm::min(lo, window[i]);
+        hi = glm::max(hi, window[i]);
+        nearest = std::min(nearest, depth[i]);
+    }
+    const int x0 = std::max(0, int(std::floor(double(lo.x))) - 1);
+    const int y0 = std::max(0, int(std::floor(double(lo.y))) - 1);
+    const int x1 = std::min(width_, int(std::floor(double(hi.x))) + 2);
+    const int y1 = std::min(height_, int(std::floor(double(hi.y))) + 2);
+    return x0 >= x1 || y0 >= y1 || all_nearer(x0, y0, x1, y1, float(double(nearest) - depth_margin));
+}
+
+void DepthRasterizer::draw(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
+                           const glm::vec3 *across, TransformError error)
+{
+    if (s.x0 < s.x1 && s.y0 < s.y1) {
         const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
         if (isa_ == Isa::avx2)
             raster::fill_avx2(s, buffer);
@@ -460,8 +491,9 @@ void DepthRasterizer::add_transform_error(const glm::dmat4 &m, const glm::dvec3 
 
 // The polygon's edges as rasterize sets them up, with the same margins,
 // but tested at each sample rather than folded to a pixel's worst one
-// (merge_partial), and the triangle across each edge where the caller
-// named one.
+// (merge_partial), in float (raster::PartialEdges8, whose thresholds
+// carry the bound of the float error), and the triangle across each edge
+// where the caller named one.
 struct DepthRasterizer::PartialEdges {
     const glm::vec2 *window;
     const float *depth;
@@ -471,30 +503,47 @@ struct DepthRasterizer::PartialEdges {
     int k;
     double first, last, extent;
     // Held where a u + b v + held_c >= 0, the edge function at least the
-    // margin; reach_c: the constant below which no sample is held at all
-    // (the margin beyond a shared edge, inside it elsewhere).
-    double ea[raster::max_edges], eb[raster::max_edges], held_c[raster::max_edges], margin[raster::max_edges],
-        reach_c[raster::max_edges];
-    // Sample offsets within a depth pixel.
-    double offset[8];
+    // margin (in double: set_up_across measures room with them).
+    double ea[raster::max_edges], eb[raster::max_edges], held_c[raster::max_edges], margin[raster::max_edges];
+    // The same tests in float, and the reach: the constant below which no
+    // sample is held at all (the margin beyond a shared edge, inside it
+    // elsewhere).
+    raster::PartialEdges8 f;
     // The triangle across each edge, where the caller named one GL draws
     // whole (between the near and far planes, inside the guard band) and
     // both face the eye by more than twice the margin: a sample within
     // the margin of the shared edge, inside the other edges of both, is
-    // drawn by one of the two. Its two other edges, and its depth plane.
-    // Set up on first need (set_up_across): most triangles of a detailed
-    // mesh have no sample in the margin of an edge.
+    // drawn by one of the two. Its two other edges (in float, as f), and
+    // its depth plane. Set up on first need (set_up_across): most
+    // triangles of a detailed mesh have no sample in the margin of an edge.
     struct Across {
         int state = 0;   // 0: not yet looked at; 1: usable; -1: not
-        double ea[2], eb[2], held_c[2];
+        float ea[2], eb[2], held[2];
         double depth_error;   // the transform's, of both triangles' corners
         raster::PolygonSetup depth;
     } neighbour[3];
-    bool candidate[3] = {false, false, false}, any_candidate = false;
     // The depth pixels holding a sample the polygon may reach, one more
     // each way where a sample beyond a shared edge may count.
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
+
+namespace {
+
+// The float threshold for an edge a u + b v + c >= 0 tested as
+// fl(fl(a u) + fl(b v)) >= threshold (raster::PartialEdges8): -c raised
+// by the bound of the float error there (raster_kernels.h derives it:
+// 6 eps of ((|a| + |b|) extent + |c|), float_error being 8 eps), and
+// rounded up, so that a sample passing in float passes exactly.
+float float_threshold(double a, double b, double c, double extent)
+{
+    const double t = -c + float_error * ((std::abs(a) + std::abs(b)) * extent + std::abs(c));
+    float f = float(t);
+    if (double(f) < t)
+        f = raster::partial_next_up(f);
+    return f;
+}
+
+}  // namespace
 
 DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *window, const float *depth, int n,
                                                              const glm::vec3 *across, TransformError error) const
@@ -509,6 +558,9 @@ DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *wi
     p.first = 0.5 / k;
     p.last = (k - 0.5) / k;
     p.extent = guard * std::max(width_, height_) + tile_size;
+    p.f.edges = n;
+    p.f.k = k;
+    p.f.candidates = 0;
     for (int e = 0; e < n; ++e) {
         const glm::dvec2 a_point(window[e]), b_point(window[e + 1 == n ? 0 : e + 1]);
         const double a = a_point.y - b_point.y, b = b_point.x - a_point.x, c = -(a * a_point.x + b * a_point.y);
@@ -517,26 +569,30 @@ DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *wi
         p.ea[e] = a;
         p.eb[e] = b;
         p.held_c[e] = c - p.margin[e];
+        p.f.ea[e] = float(a);
+        p.f.eb[e] = float(b);
+        p.f.held[e] = float_threshold(a, b, p.held_c[e], p.extent);
     }
     if (across && n == 3)
-        for (int e = 0; e < 3; ++e) {
-            p.candidate[e] = std::isfinite(across[e].x + across[e].y + across[e].z);
-            p.any_candidate = p.any_candidate || p.candidate[e];
-        }
+        for (int e = 0; e < 3; ++e)
+            if (std::isfinite(across[e].x + across[e].y + across[e].z))
+                p.f.candidates |= 1 << e;
     glm::vec2 lo = window[0], hi = window[0];
     for (int i = 1; i < n; ++i) {
         lo = glm::min(lo, window[i]);
         hi = glm::max(hi, window[i]);
     }
-    const int grow = p.any_candidate ? 1 : 0;
+    const int grow = p.f.candidates ? 1 : 0;
     p.x0 = std::max(0, int(std::ceil(double(lo.x) - p.last)) - grow);
     p.y0 = std::max(0, int(std::ceil(double(lo.y) - p.last)) - grow);
     p.x1 = std::min(width_, int(std::floor(double(hi.x) - p.first)) + 1 + grow);
     p.y1 = std::min(height_, int(std::floor(double(hi.y) - p.first)) + 1 + grow);
     for (int e = 0; e < n; ++e)
-        p.reach_c[e] = p.held_c[e] + (e < 3 && p.candidate[e] ? 2.0 * p.margin[e] : 0.0);
+        p.f.reach[e] = (p.f.candidates >> e & 1)
+                           ? float_threshold(p.ea[e], p.eb[e], p.held_c[e] + 2.0 * p.margin[e], p.extent)
+                           : p.f.held[e];
     for (int i = 0; i < k; ++i)
-        p.offset[i] = (i + 0.5) / k;
+        p.f.offset[i] = float((i + 0.5) / k);
     return p;
 }
 
@@ -580,87 +636,13 @@ bool DepthRasterizer::set_up_across(PartialEdges &p, int e) const
         const double ta = from.y - to.y, tb = to.x - from.x, tc = -(ta * from.x + tb * from.y);
         const double m = (std::abs(ta) + std::abs(tb)) * (edge_margin / k + extra) +
                          float_error * ((std::abs(ta) + std::abs(tb)) * p.extent + std::abs(tc));
-        x.ea[j] = ta;
-        x.eb[j] = tb;
-        x.held_c[j] = tc - m;
+        x.ea[j] = float(ta);
+        x.eb[j] = float(tb);
+        x.held[j] = float_threshold(ta, tb, tc - m, p.extent);
     }
     depth_plane(tri, tri_depth, 3, p.first, p.last, p.extent, options_.per_pixel_depth, x.depth);
     x.state = 1;
     return true;
-}
-
-bool DepthRasterizer::partial_row_spans(const PartialEdges &p, int y, int spans[2][2]) const
-{
-    // Each edge function's largest and least value over a pixel's samples
-    // is linear in the pixel's column, so both sets (the pixels some
-    // sample of which the polygon may hold, and those it holds wholly)
-    // are spans, found here one pixel wider (the reach) and narrower (the
-    // whole pixels) than the double arithmetic says; the samples decide.
-    const auto clamp_column = [&](double x) { return std::max(double(p.x0 - 2), std::min(double(p.x1 + 1), x)); };
-    const double first = p.first, last = p.last;
-    double reach_lo = p.x0, reach_hi = p.x1 - 1, whole_lo = p.x0, whole_hi = p.x1 - 1;
-    bool reached = true, whole = true;
-    for (int e = 0; e < p.n && reached; ++e) {
-        const double ea = p.ea[e], eb = p.eb[e];
-        const double largest = ea * (ea > 0.0 ? last : first) + eb * (y + (eb > 0.0 ? last : first)) + p.reach_c[e];
-        const double least = ea * (ea > 0.0 ? first : last) + eb * (y + (eb > 0.0 ? first : last)) + p.held_c[e];
-        if (ea > 0.0) {
-            reach_lo = std::max(reach_lo, std::ceil(clamp_column(-largest / ea)) - 1.0);
-            whole_lo = std::max(whole_lo, std::ceil(clamp_column(-least / ea)) + 1.0);
-        } else if (ea < 0.0) {
-            reach_hi = std::min(reach_hi, std::floor(clamp_column(largest / -ea)) + 1.0);
-            whole_hi = std::min(whole_hi, std::floor(clamp_column(least / -ea)) - 1.0);
-        } else {
-            reached = largest >= 0.0;
-            whole = whole && least >= 0.0;
-        }
-        if (!(reach_lo <= reach_hi))
-            reached = false;   // NaN included
-    }
-    if (!reached)
-        return false;
-    if (!(whole && whole_lo <= whole_hi))
-        whole_lo = reach_hi + 1, whole_hi = reach_hi;   // no whole pixel: the reach is all partial
-    spans[0][0] = int(reach_lo);
-    spans[0][1] = int(std::min(whole_lo, reach_hi + 1));
-    spans[1][0] = int(std::max(whole_hi + 1, reach_lo));
-    spans[1][1] = int(reach_hi) + 1;
-    return true;
-}
-
-std::uint64_t DepthRasterizer::partial_sample_mask(PartialEdges &p, int x, int y, bool used[3]) const
-{
-    const int k = p.k, n = p.n;
-    std::uint64_t mask = 0, bit = 1;
-    for (int j = 0; j < k; ++j)
-        for (int i = 0; i < k; ++i, bit <<= 1) {
-            const double u = x + p.offset[i], v = y + p.offset[j];
-            double value[raster::max_edges];
-            int failed = -1, failures = 0;
-            for (int e = 0; e < n; ++e) {
-                value[e] = p.ea[e] * u + p.eb[e] * v;
-                if (value[e] + p.held_c[e] < 0.0) {
-                    failed = e;
-                    ++failures;
-                }
-            }
-            if (failures == 0) {
-                mask |= bit;
-                continue;
-            }
-            // Within the margin beyond one shared edge only, and inside
-            // the triangle across.
-            if (failures > 1 || failed > 2 || !p.candidate[failed] || value[failed] + p.reach_c[failed] < 0.0 ||
-                !set_up_across(p, failed))
-                continue;
-            const PartialEdges::Across &other = p.neighbour[failed];
-            if (other.ea[0] * u + other.eb[0] * v + other.held_c[0] >= 0.0 &&
-                other.ea[1] * u + other.eb[1] * v + other.held_c[1] >= 0.0) {
-                mask |= bit;
-                used[failed] = true;
-            }
-        }
-    return mask;
 }
 
 void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
@@ -671,51 +653,130 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     PartialEdges p = partial_edges(window, depth, n, across, error);
     if (p.x0 >= p.x1 || p.y0 >= p.y1)
         return;
-    // Row by row, only the pixels some sample of which the polygon may
-    // hold and not all of which it holds: those it holds wholly the fill
-    // took (partial_row_spans).
+    const raster::PartialEdges8 &f = p.f;
+    const float first_offset = f.offset[0], last_offset = f.offset[f.k - 1];
+    double inverse[raster::max_edges];
+    for (int e = 0; e < n; ++e)
+        inverse[e] = f.ea[e] != 0.0f ? 1.0 / double(f.ea[e]) : 0.0;
+    // Row by row, eight pixels of a tile row at a time: those some sample
+    // of which the polygon may reach, less those it holds wholly (the fill
+    // has taken them), and of these the pixels whose depth the polygon's
+    // bound there would lower (a pixel already nearer gains nothing,
+    // whatever the samples).
     bool wrote = false;
+    std::uint64_t held[8], maybe[3][8];
+    float nearest = depth[0];
+    for (int i = 1; i < n; ++i)
+        nearest = std::min(nearest, depth[i]);
+    const float behind = float(double(nearest) - depth_margin);
     for (int y = p.y0; y < p.y1; ++y) {
-        int spans[2][2];
-        if (!partial_row_spans(p, y, spans))
-            continue;
         const float depth_term = s.zb * float(y) + s.zc;
+        const float v_low = float(y) + first_offset, v_high = float(y) + last_offset;
         const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
-        for (int span = 0; span < 2; ++span)
-            for (int x = spans[span][0]; x < spans[span][1]; ++x) {
-                if (span == 1 && x < spans[0][1])
-                    continue;   // both spans reach this pixel: taken once
-                const std::size_t tile = row_tiles + std::size_t(x / tile_size);
-                const std::size_t index =
-                    tile * tile_pixels + std::size_t(y % tile_size) * tile_size + std::size_t(x % tile_size);
-                // The fill's depth: the farthest over all the pixel's
-                // samples, so over those the polygon holds. A pixel
-                // already nearer gains nothing, whatever the samples.
-                float z = std::nextafter(float(double(std::min(s.za * float(x) + depth_term, s.zcap)) + error.depth),
-                                         2.0f);
-                if (!(z < tiles_[index]))
-                    continue;
-                bool used[3] = {false, false, false};
-                const std::uint64_t mask = partial_sample_mask(p, x, y, used);
-                if (!mask)
-                    continue;
-                // And the depth of the triangle across an edge some
-                // sample needed.
-                for (int e = 0; e < 3; ++e)
-                    if (used[e]) {
-                        const raster::PolygonSetup &d = p.neighbour[e].depth;
-                        z = std::max(z, std::nextafter(float(double(std::min(d.za * float(x) + (d.zb * float(y) + d.zc),
-                                                                             d.zcap)) +
-                                                             p.neighbour[e].depth_error),
-                                                       2.0f));
+        // The row's span of pixels some sample of which reaches every edge
+        // (its largest value over the pixel's samples at least the reach
+        // threshold) and of pixels all of whose samples every edge holds,
+        // one pixel wider and narrower than the arithmetic says: the
+        // samples decide, the spans only skip pixels.
+        // A polygon two chunks wide or less is walked whole: its chunks
+        // cost less than the spans.
+        const auto column = [&](double x) { return std::max(double(p.x0 - 2), std::min(double(p.x1 + 1), x)); };
+        double reach_lo = p.x0, reach_hi = p.x1 - 1, whole_lo = p.x0, whole_hi = p.x1 - 1;
+        const bool spans = p.x1 - p.x0 > 2 * tile_size;
+        bool reached = true, whole = spans;
+        for (int e = 0; e < n && reached && spans; ++e) {
+            const double ea = f.ea[e], eb = f.eb[e];
+            const double v_largest = eb > 0.0 ? v_high : v_low, v_least = eb > 0.0 ? v_low : v_high;
+            const double reach_x = (double(f.reach[e]) - eb * v_largest) * inverse[e];
+            const double whole_x = (double(f.held[e]) - eb * v_least) * inverse[e];
+            if (ea > 0.0) {
+                reach_lo = std::max(reach_lo, std::ceil(column(reach_x - last_offset)) - 1.0);
+                whole_lo = std::max(whole_lo, std::ceil(column(whole_x - first_offset)) + 1.0);
+            } else if (ea < 0.0) {
+                reach_hi = std::min(reach_hi, std::floor(column(reach_x - first_offset)) + 1.0);
+                whole_hi = std::min(whole_hi, std::floor(column(whole_x - last_offset)) - 1.0);
+            } else {
+                reached = eb * v_largest >= double(f.reach[e]);
+                whole = whole && eb * v_least >= double(f.held[e]);
+            }
+            reached = reached && reach_lo <= reach_hi;   // NaN included
+        }
+        if (!reached)
+            continue;
+        if (!(whole && whole_lo <= whole_hi))
+            whole_lo = reach_hi + 1, whole_hi = reach_hi;
+        const int r0 = int(reach_lo), r1 = int(reach_hi) + 1, w0 = int(whole_lo), w1 = int(whole_hi) + 1;
+        // The two runs of partial pixels, each in chunks of a tile row.
+        const int runs[2][2] = {{r0, std::min(w0, r1)}, {std::max(w1, r0), r1}};
+        for (const auto &run : runs)
+        for (int x8 = run[0] / tile_size * tile_size; x8 < run[1]; x8 += tile_size) {
+            // A tile nearer everywhere than the polygon's nearest corner
+            // takes nothing from it (behind_everything, tile by tile), by
+            // its maximum where up to date: the partial layer writes tiles
+            // often, and taking a maximum costs more than the test saves.
+            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
+            if (!dirty_[tile] && tile_max_[tile] < behind)
+                continue;
+            int lanes = 0;
+            for (int l = 0; l < tile_size; ++l)
+                lanes |= int(x8 + l >= run[0] && x8 + l < run[1]) << l;
+            if (lanes == 0)
+                continue;
+            // No sample of the eight within reach of some edge: each
+            // float edge value is monotone in u and v, so its largest over
+            // the samples is at a corner, by the samples' own expression.
+            bool missed = false;
+            for (int e = 0; e < n && !missed; ++e) {
+                const float u = f.ea[e] > 0.0f ? float(x8 + tile_size - 1) + last_offset : float(x8) + first_offset;
+                const float v = f.eb[e] > 0.0f ? v_high : v_low;
+                missed = !(f.ea[e] * u + f.eb[e] * v >= f.reach[e]);
+            }
+            if (missed)
+                continue;
+            float *row = tiles_.data() + tile * tile_pixels + std::size_t(y % tile_size) * tile_size;
+            // The fill's depth: the farthest over all the pixel's samples,
+            // so over those the polygon holds, widened by the transform's error.
+            const raster::PartialDepth d{s.za, depth_term, s.zcap, error.depth};
+            float z[tile_size];
+            lanes = isa_ == Isa::avx2 ? raster::partial_masks_avx2(f, d, x8, y, lanes, row, z, held, maybe)
+                                      : raster::partial_masks_scalar(f, d, x8, y, lanes, row, z, held, maybe);
+            for (; lanes; lanes &= lanes - 1) {
+                const int l = __builtin_ctz(unsigned(lanes));
+                std::uint64_t mask = held[l];
+                float pixel_z = z[l];
+                const int x = x8 + l;
+                for (int e = 0; e < 3; ++e) {
+                    if (!maybe[e][l] || !set_up_across(p, e))
+                        continue;
+                    // Within the margin beyond a shared edge only, and
+                    // inside the triangle across: held, at the farther
+                    // of the two triangles' depths.
+                    const PartialEdges::Across &other = p.neighbour[e];
+                    std::uint64_t across_held = 0;
+                    for (std::uint64_t bits = maybe[e][l]; bits; bits &= bits - 1) {
+                        const int bit = __builtin_ctzll(bits);
+                        const float u = float(x) + f.offset[bit % f.k], v = float(y) + f.offset[bit / f.k];
+                        if (other.ea[0] * u + other.eb[0] * v >= other.held[0] &&
+                            other.ea[1] * u + other.eb[1] * v >= other.held[1])
+                            across_held |= std::uint64_t(1) << bit;
                     }
-                if (!(z < tiles_[index]))
+                    if (!across_held)
+                        continue;
+                    mask |= across_held;
+                    const raster::PolygonSetup &d = other.depth;
+                    pixel_z = std::max(pixel_z, raster::partial_next_up(float(double(std::min(d.za * float(x) + (d.zb * float(y) + d.zc),
+                                                                                d.zcap)) +
+                                                              other.depth_error)));
+                }
+                if (!mask || !(pixel_z < row[l]))
                     continue;
-                if (add_partial(index, mask, z)) {
+                if (add_partial(tile * tile_pixels + std::size_t(y % tile_size) * tile_size + std::size_t(l), mask,
+                                pixel_z)) {
                     dirty_[tile] = 1;
                     wrote = true;
                 }
             }
+        }
     }
     any_dirty_ = any_dirty_ || wrote;
 }

@@ -56,9 +56,13 @@
 // occludee across it shown. Far from the origin GL's float transform may
 // move a vertex by more than the edge margin (pixels at 1e6 m): merged
 // coverage and the triangle test widen their margins by a bound of that
-// error (TransformError), and give up where it reaches a pixel. Triangles
-// go through the one-at-a-time setup in this mode, and the partial layer is walked in scalar code only, so
-// the two paths' buffers stay equal.
+// error (TransformError), and give up where it reaches a pixel. The AVX2
+// path screens and sets up triangles eight at a time in this mode too,
+// keeping those that cover no depth pixel wholly, with the same float and
+// double expressions (the transform error's bound included) as the one
+// at a time way, and the samples of eight depth pixels are tested at once
+// in float (raster::PartialEdges8 derives the bound of the float error
+// its thresholds carry), so the two paths' buffers stay equal.
 //
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
 // the caller); both evaluate the same float expressions in the same order,
@@ -170,7 +174,8 @@ public:
     const Stats &stats() const { return stats_; }
 
 private:
-    void render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t triangle_count);
+    void render_triangles_avx2(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t triangle_count,
+                               const glm::vec3 *across);
     // How far GL's float transform of a point may put it from where we
     // compute it, in buffer pixels and window depth: far from the origin
     // (a scene at 1e6 m) a vertex rounds by pixels, far above the edge
@@ -186,20 +191,21 @@ private:
     void polygon(const glm::vec4 *clip, int count, const glm::vec3 *across = nullptr, TransformError error = {});
     void rasterize(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across = nullptr,
                    TransformError error = {});
+    // Merged coverage: whether every depth pixel the polygon (or a sample
+    // beyond its edges) may reach is nearer than its nearest corner.
+    bool behind_everything(const glm::vec2 *window, const float *depth, int n) const;
+    // A polygon set up: its whole depth pixels, and its partial coverage.
+    void draw(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &setup,
+              const glm::vec3 *across, TransformError error);
     void merge_partial(const glm::vec2 *window, const float *depth, int count, const raster::PolygonSetup &setup,
                        const glm::vec3 *across, TransformError error);
     // merge_partial's parts: the polygon's edges at sample precision and
     // the depth pixels they may reach; the triangle across edge e, set up
-    // on first need (false where it cannot count); a row's spans of pixels
-    // the polygon may reach but does not cover wholly (false: none); the
-    // samples of pixel (x, y) it holds, `used` the edges whose triangle
-    // across some sample needed.
+    // on first need (false where it cannot count).
     struct PartialEdges;
     PartialEdges partial_edges(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across,
                                TransformError error) const;
     bool set_up_across(PartialEdges &edges, int e) const;
-    bool partial_row_spans(const PartialEdges &edges, int y, int spans[2][2]) const;
-    std::uint64_t partial_sample_mask(PartialEdges &edges, int x, int y, bool used[3]) const;
     // Adds sample mask `mask` held no farther than z to the pixel at
     // `index` (tile layout); returns whether its depth changed.
     bool add_partial(std::size_t index, std::uint64_t mask, float z);

@@ -140,6 +140,99 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
         fill_polygon<0>(s, buffer);
 }
 
+int partial_masks_avx2(const PartialEdges8 &p, const PartialDepth &d, int x8, int y, int lanes, const float *row,
+                       float z[8], std::uint64_t held[8], std::uint64_t maybe[3][8])
+{
+    const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(x8)), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
+    // The bound: min(za x + row_term, zcap) (min_ps(zcap, z) is std::min's
+    // (zcap < z ? zcap : z)), plus the error in double, rounded to float
+    // (as the scalar conversion), then the next float up.
+    {
+        const __m256 plane =
+            _mm256_min_ps(_mm256_set1_ps(d.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(d.za), fx),
+                                                                _mm256_set1_ps(d.row_term)));
+        const __m256d error = _mm256_set1_pd(d.error);
+        const __m128 low = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(plane)), error));
+        const __m128 high = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(plane, 1)), error));
+        __m256 bound = _mm256_add_ps(_mm256_set_m128(high, low), _mm256_setzero_ps());   // -0 is 0
+        const __m256i bits = _mm256_castps_si256(bound);
+        const __m256i negative = _mm256_castps_si256(_mm256_cmp_ps(bound, _mm256_setzero_ps(), _CMP_LT_OQ));
+        // +1, or -1 where negative: bits + (1 + 2 negative), negative being -1.
+        const __m256i step = _mm256_add_epi32(_mm256_set1_epi32(1), _mm256_add_epi32(negative, negative));
+        const __m256 stepped = _mm256_castsi256_ps(_mm256_add_epi32(bits, step));
+        const __m256 keep = _mm256_or_ps(_mm256_cmp_ps(bound, bound, _CMP_UNORD_Q),
+                                         _mm256_cmp_ps(bound, _mm256_set1_ps(__builtin_inff()), _CMP_EQ_OQ));
+        bound = _mm256_blendv_ps(stepped, bound, keep);
+        _mm256_storeu_ps(z, bound);
+        lanes &= _mm256_movemask_ps(_mm256_cmp_ps(bound, _mm256_loadu_ps(row), _CMP_LT_OQ));
+        if (lanes == 0)
+            return 0;
+    }
+    // Eight pixels in lanes, one sample of each at a time; the masks built
+    // in two 32-bit halves of 64 bits.
+    const int edges = p.edges;
+    __m256i held_bits[2] = {_mm256_setzero_si256(), _mm256_setzero_si256()};
+    __m256i maybe_bits[3][2] = {};
+    const __m256i all_ones = _mm256_set1_epi32(-1);
+    int bit = 0;
+    for (int j = 0; j < p.k; ++j) {
+        const float v = float(y) + p.offset[j];
+        float row_term[max_edges];
+        for (int e = 0; e < edges; ++e)
+            row_term[e] = p.eb[e] * v;
+        for (int i = 0; i < p.k; ++i, ++bit) {
+            const __m256 u = _mm256_add_ps(fx, _mm256_set1_ps(p.offset[i]));
+            __m256i inside_all = all_ones;
+            __m256i inside[3], reached[3];
+            for (int e = 0; e < edges; ++e) {
+                const __m256 value = _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(p.ea[e]), u),
+                                                   _mm256_set1_ps(row_term[e]));
+                const __m256i in = _mm256_castps_si256(_mm256_cmp_ps(value, _mm256_set1_ps(p.held[e]), _CMP_GE_OQ));
+                inside_all = _mm256_and_si256(inside_all, in);
+                if (e < 3) {
+                    inside[e] = in;
+                    reached[e] =
+                        _mm256_castps_si256(_mm256_cmp_ps(value, _mm256_set1_ps(p.reach[e]), _CMP_GE_OQ));
+                }
+            }
+            const __m256i one_bit = _mm256_set1_epi32(int(1u << (bit & 31)));
+            held_bits[bit >> 5] = _mm256_or_si256(held_bits[bit >> 5], _mm256_and_si256(inside_all, one_bit));
+            if (p.candidates == 0)
+                continue;
+            // Outside edge e alone: inside every other edge.
+            for (int e = 0; e < 3; ++e) {
+                if (!(p.candidates >> e & 1))
+                    continue;
+                __m256i others = _mm256_andnot_si256(inside[e], reached[e]);
+                for (int f = 0; f < edges; ++f)
+                    if (f != e)
+                        others = _mm256_and_si256(others, f < 3 ? inside[f] : all_ones);
+                maybe_bits[e][bit >> 5] = _mm256_or_si256(maybe_bits[e][bit >> 5], _mm256_and_si256(others, one_bit));
+            }
+        }
+    }
+    alignas(32) std::uint32_t low[8], high[8];
+    __m256i any = _mm256_or_si256(held_bits[0], held_bits[1]);
+    const auto store = [&](const __m256i *bits, std::uint64_t *out) {
+        _mm256_store_si256(reinterpret_cast<__m256i *>(low), bits[0]);
+        _mm256_store_si256(reinterpret_cast<__m256i *>(high), bits[1]);
+        for (int l = 0; l < 8; ++l)
+            out[l] = (lanes >> l & 1) ? std::uint64_t(low[l]) | std::uint64_t(high[l]) << 32 : 0;
+    };
+    store(held_bits, held);
+    if (p.candidates != 0)
+        for (int e = 0; e < 3; ++e) {
+            store(maybe_bits[e], maybe[e]);
+            any = _mm256_or_si256(any, _mm256_or_si256(maybe_bits[e][0], maybe_bits[e][1]));
+        }
+    else
+        for (int e = 0; e < 3; ++e)
+            for (int l = 0; l < 8; ++l)
+                maybe[e][l] = 0;
+    const int empty = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(any, _mm256_setzero_si256())));
+    return lanes & ~empty;
+}
+
 bool tile_behind_avx2(const float *tile, int c0, int c1, int r0, int r1, float z)
 {
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
@@ -163,6 +256,7 @@ namespace {
 
 struct ClipVertex {
     __m256 x, y, z, w;
+    __m256 px, py, pz;   // the position transformed
 };
 
 // One corner of eight triangles: its positions loaded (x, y, z, and no
@@ -185,7 +279,50 @@ ClipVertex clip_vertex(const float *m, const float *const corner[8])
         c[i] = _mm256_add_ps(
             _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[i]), x), _mm256_mul_ps(_mm256_set1_ps(m[4 + i]), y)),
             _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(m[8 + i]), z), _mm256_set1_ps(m[12 + i])));
-    return {c[0], c[1], c[2], c[3]};
+    return {c[0], c[1], c[2], c[3], x, y, z};
+}
+
+// DepthRasterizer::add_transform_error for four corners in double lanes,
+// its expressions in its order (glm's m * v sums (m0 x + m1 y) + (m2 z +
+// m3)): widens *window and *depth by the bound of GL's float transform
+// error at the corners; infinity where w itself is uncertain.
+void add_transform_error_four(const TriangleScreen &screen, __m128 px, __m128 py, __m128 pz, __m256d *window,
+                              __m256d *depth)
+{
+    const float *m = screen.view_projection;
+    const __m256d x = _mm256_cvtps_pd(px), y = _mm256_cvtps_pd(py), z = _mm256_cvtps_pd(pz);
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    const auto absolute = [&](__m256d v) { return _mm256_andnot_pd(sign, v); };
+    __m256d c[4], bound[4];
+    for (int r = 0; r < 4; ++r) {
+        const __m256d m0 = _mm256_set1_pd(double(m[r])), m1 = _mm256_set1_pd(double(m[4 + r]));
+        const __m256d m2 = _mm256_set1_pd(double(m[8 + r])), m3 = _mm256_set1_pd(double(m[12 + r]));
+        const __m256d t0 = _mm256_mul_pd(m0, x), t1 = _mm256_mul_pd(m1, y), t2 = _mm256_mul_pd(m2, z);
+        c[r] = _mm256_add_pd(_mm256_add_pd(t0, t1), _mm256_add_pd(t2, m3));
+        bound[r] = _mm256_mul_pd(
+            _mm256_set1_pd(screen.product_error),
+            _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(absolute(t0), absolute(t1)), absolute(t2)), absolute(m3)));
+    }
+    const __m256d uncertain = _mm256_cmp_pd(c[3], bound[3], _CMP_NGT_UQ);
+    const __m256d w = _mm256_sub_pd(c[3], bound[3]);
+    const __m256d wx = _mm256_div_pd(
+        _mm256_mul_pd(_mm256_set1_pd(screen.error_scale_x),
+                      _mm256_add_pd(bound[0], _mm256_mul_pd(absolute(_mm256_div_pd(c[0], c[3])), bound[3]))),
+        w);
+    const __m256d wy = _mm256_div_pd(
+        _mm256_mul_pd(_mm256_set1_pd(screen.error_scale_y),
+                      _mm256_add_pd(bound[1], _mm256_mul_pd(absolute(_mm256_div_pd(c[1], c[3])), bound[3]))),
+        w);
+    const __m256d wz = _mm256_div_pd(
+        _mm256_mul_pd(_mm256_set1_pd(0.5),
+                      _mm256_add_pd(bound[2], _mm256_mul_pd(absolute(_mm256_div_pd(c[2], c[3])), bound[3]))),
+        w);
+    // std::max keeps the first of equals; max_pd(a, b) is (a > b ? a : b),
+    // the same value for numbers (lanes with a NaN go one at a time).
+    const __m256d infinity = _mm256_set1_pd(__builtin_inf());
+    *window = _mm256_blendv_pd(_mm256_max_pd(_mm256_max_pd(wx, *window), _mm256_max_pd(wy, *window)), infinity,
+                               uncertain);
+    *depth = _mm256_blendv_pd(_mm256_max_pd(wz, *depth), infinity, uncertain);
 }
 
 // Whether the depth pixels [ceil(lo - first), floor(hi - last)] clamped to
@@ -382,7 +519,7 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
         const int drawn = _mm256_movemask_ps(_mm256_andnot_ps(all_out, finite)) & ((1 << lanes) - 1);
         if (drawn == 0)
             continue;
-        const int one_at_a_time = _mm256_movemask_ps(needs_clip) & drawn;
+        int one_at_a_time = _mm256_movemask_ps(needs_clip) & drawn;
 
         // The winding: the sign of det(x, y, w), before any division.
         const ClipVertex &p = v[0], &q = v[1], &r = v[2];
@@ -404,9 +541,11 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
             const __m256 hi_x = _mm256_max_ps(_mm256_max_ps(wx[0], wx[1]), wx[2]);
             const __m256 lo_y = _mm256_min_ps(_mm256_min_ps(wy[0], wy[1]), wy[2]);
             const __m256 hi_y = _mm256_max_ps(_mm256_max_ps(wy[0], wy[1]), wy[2]);
-            const __m256 empty = _mm256_or_ps(span_empty(lo_x, hi_x, screen.first, screen.last, screen.width),
-                                              span_empty(lo_y, hi_y, screen.first, screen.last, screen.height));
-            projected &= ~_mm256_movemask_ps(empty);
+            if (!screen.keep_partial) {
+                const __m256 empty = _mm256_or_ps(span_empty(lo_x, hi_x, screen.first, screen.last, screen.width),
+                                                  span_empty(lo_y, hi_y, screen.first, screen.last, screen.height));
+                projected &= ~_mm256_movemask_ps(empty);
+            }
         }
         // Set up, four lanes at a time; a lane whose area is not positive drops out.
         FourSetups setups[2];
@@ -420,6 +559,28 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
                 }
                 const int front = set_up_four(screen, x, y, z, &setups[four]);
                 projected &= ~((15 & ~front) << (4 * four));
+            }
+        // Merged coverage: the transform error's bound, four lanes at a
+        // time; a lane where it is not a number goes one at a time.
+        alignas(32) double error_window[8], error_depth[8];
+        if (screen.keep_partial)
+            for (int four = 0; four < 2; ++four) {
+                if (!(projected >> (4 * four) & 15))
+                    continue;
+                __m256d window = _mm256_setzero_pd(), depth_error = _mm256_setzero_pd();
+                for (const ClipVertex &c : v) {
+                    const auto half_of = [&](__m256 lanes) {
+                        return four ? _mm256_extractf128_ps(lanes, 1) : _mm256_castps256_ps128(lanes);
+                    };
+                    add_transform_error_four(screen, half_of(c.px), half_of(c.py), half_of(c.pz), &window,
+                                             &depth_error);
+                }
+                const int not_a_number = _mm256_movemask_pd(_mm256_cmp_pd(
+                    _mm256_add_pd(window, depth_error), _mm256_add_pd(window, depth_error), _CMP_UNORD_Q));
+                projected &= ~(not_a_number << (4 * four));
+                one_at_a_time |= (not_a_number << (4 * four)) & drawn;
+                _mm256_store_pd(error_window + 4 * four, window);
+                _mm256_store_pd(error_depth + 4 * four, depth_error);
             }
         const int kept_lanes = projected | one_at_a_time;
         for (int lane = 0; lane < lanes; ++lane) {
@@ -447,6 +608,20 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
             setup.y0 = int(f.y0[l]);
             setup.x1 = int(f.x1[l]);
             setup.y1 = int(f.y1[l]);
+            if (screen.keep_partial) {
+                const auto lane_of = [&](__m256 lanes) {
+                    alignas(32) float all[8];
+                    _mm256_store_ps(all, lanes);
+                    return all[lane];
+                };
+                for (int i = 0; i < 3; ++i) {
+                    t.wx[i] = lane_of(wx[i]);
+                    t.wy[i] = lane_of(wy[i]);
+                    t.depth[i] = lane_of(depth[i]);
+                }
+                t.error_window = error_window[lane];
+                t.error_depth = error_depth[lane];
+            }
         }
     }
     return kept;

@@ -24,19 +24,19 @@ namespace {
 class HierarchicalZBufferCuller final : public Culler {
 public:
     HierarchicalZBufferCuller(const StrategyContext &context, const Settings &settings)
-        : renderer_(context.renderer), last_frame_(settings.text("source") == "last-frame"),
+        : renderer_(context.renderer), settings_(settings), last_frame_(settings.text("source") == "last-frame"),
           limit_(std::size_t(settings.integer("max-occluders")))
     {
-        options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
-        options_.merge_partial_coverage = merges_partial_coverage(settings, options_.divisor);
+        options_.merge_partial_coverage = merges_partial_coverage(settings, int(settings.integer("map-divisor")));
         if (!last_frame_)
-            occluders_.emplace(context.scene, settings);
+            occluders_.emplace(context.scene, settings, &context.hierarchy);
     }
 
     void begin_frame(const Frame &frame) override
     {
         frame_.emplace(frame);
+        options_.divisor = map_divisor(settings_, frame.width, frame.height);
         if (last_frame_) {
             last_frame_depth(frame);
         } else {
@@ -113,6 +113,7 @@ private:
     }
 
     const SceneRenderer &renderer_;
+    Settings settings_;
     bool last_frame_;
     std::size_t limit_;
     DepthRasterizer::Options options_;
@@ -140,7 +141,8 @@ StrategyFamily hierarchical_z_buffer_family()
         choice_setting("source", {"skins", "last-frame"},
                        "the occluder skins' CPU depth buffer, or the depth of the leaves the last frame drew"),
         choice_setting("depth", {"pixel", "polygon"}, "skins: depth per pixel, or one farthest depth per polygon"),
-        integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per pyramid pixel at level 0, each way"),
+        map_size_setting(256, "pyramid pixels at level 0"),
+        map_divisor_setting("pyramid pixel at level 0"),
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),
     };
@@ -156,6 +158,8 @@ StrategyFamily hierarchical_z_buffer_family()
     f.test_variants = {
         StrategyTestVariant("hzb:occluder-triangles=512"),
         StrategyTestVariant("hzb:occluder-triangles=512:coverage=merged").drawing_at_most("hzb:occluder-triangles=512"),
+        StrategyTestVariant("hzb:map-size=50"),
+        StrategyTestVariant("hzb:map-divisor=1"),
     };
     f.make = [](const StrategyContext &context, const Settings &settings) -> std::unique_ptr<Culler> {
         return std::make_unique<HierarchicalZBufferCuller>(context, settings);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "strategies/leone_occluder_skins/family.h"
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -16,20 +18,23 @@ namespace {
 class OccluderSkinCuller final : public Culler {
 public:
     OccluderSkinCuller(const StrategyContext &context, const Settings &settings)
-        : scene_(context.scene), hierarchy_(context.hierarchy), drawn_(settings.text("occluders") != "skins"),
+        : scene_(context.scene), hierarchy_(context.hierarchy), settings_(settings),
+          drawn_(settings.text("occluders") != "skins"),
           limit_(std::size_t(settings.integer("max-occluders"))), box_test_(settings.text("occludee") != "rect"),
           triangle_test_(settings.text("occludee") == "triangles")
     {
-        options_.divisor = int(settings.integer("map-divisor"));
         options_.per_pixel_depth = settings.text("depth") == "pixel";
-        options_.merge_partial_coverage = merges_partial_coverage(settings, options_.divisor);
+        options_.merge_partial_coverage = merges_partial_coverage(settings, int(settings.integer("map-divisor")));
         if (settings.text("occluders") != "drawn")
-            occluders_.emplace(context.scene, settings);
+            occluders_.emplace(context.scene, settings, &context.hierarchy);
+        if (triangle_test_)
+            order_largest_first();
     }
 
     void begin_frame(const Frame &frame) override
     {
         frame_.emplace(frame);
+        options_.divisor = map_divisor(settings_, frame.width, frame.height);
         raster_.begin(frame.view_projection, frame.width, frame.height, options_);
         if (occluders_)
             occluders_->render(frame, raster_, limit_);
@@ -53,17 +58,41 @@ public:
     }
 
     // Every triangle of the leaf, see-through ones included (GL draws
-    // them), hidden pixel by pixel: what the leaf draws, tighter than its box.
+    // them), hidden pixel by pixel: what the leaf draws, tighter than its
+    // box. The largest first: a leaf that shows mostly shows a large
+    // triangle, and the test stops at the first that shows.
     bool triangles_occluded(std::uint32_t node) const
     {
         const HierarchyNode &n = hierarchy_.nodes()[node];
         const auto &triangles = hierarchy_.triangles();
-        for (std::uint32_t i = n.first_triangle; i < n.first_triangle + n.triangle_count; ++i) {
-            const Mesh &mesh = scene_.meshes[triangles[i].mesh];
-            if (!raster_.triangles_occluded(mesh.positions.data(), mesh.indices.data() + triangles[i].first_index, 1))
+        for (std::uint32_t j = n.first_triangle; j < n.first_triangle + n.triangle_count; ++j) {
+            const TriangleRef &t = triangles[largest_first_[j]];
+            const Mesh &mesh = scene_.meshes[t.mesh];
+            if (!raster_.triangles_occluded(mesh.positions.data(), mesh.indices.data() + t.first_index, 1))
                 return false;
         }
         return true;
+    }
+
+    // Each leaf's triangles by world area, the largest first.
+    void order_largest_first()
+    {
+        const auto &triangles = hierarchy_.triangles();
+        largest_first_.resize(triangles.size());
+        std::vector<float> area(triangles.size());
+        for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+            const Mesh &mesh = scene_.meshes[triangles[i].mesh];
+            const std::uint32_t *idx = mesh.indices.data() + triangles[i].first_index;
+            const glm::vec3 &a = mesh.positions[idx[0]], &b = mesh.positions[idx[1]], &c = mesh.positions[idx[2]];
+            const float twice = glm::length(glm::cross(b - a, c - a));
+            area[i] = std::isfinite(twice) ? twice : 0.0f;
+            largest_first_[i] = i;
+        }
+        for (const HierarchyNode &n : hierarchy_.nodes())
+            if (n.leaf())
+                std::stable_sort(largest_first_.begin() + n.first_triangle,
+                                 largest_first_.begin() + n.first_triangle + n.triangle_count,
+                                 [&](std::uint32_t x, std::uint32_t y) { return area[x] > area[y]; });
     }
 
     void rendered(std::uint32_t node) override
@@ -84,6 +113,7 @@ public:
 private:
     const Scene &scene_;
     const Hierarchy &hierarchy_;
+    Settings settings_;
     bool drawn_;
     std::size_t limit_;
     bool box_test_;
@@ -91,6 +121,7 @@ private:
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
     std::optional<DepthOccluders> occluders_;
+    std::vector<std::uint32_t> largest_first_;   // occludee=triangles: hierarchy triangles, each leaf's by area
     std::optional<Frame> frame_;
     CullerStats stats_;
 };
@@ -113,7 +144,8 @@ StrategyFamily occluder_skins_family()
                        "a leaf is its screen rectangle at its nearest depth and, where that fails, its box's faces "
                        "pixel by pixel; or the rectangle alone (section 6); or, where the box fails too, its own "
                        "triangles pixel by pixel (what it draws, tighter than its box)"),
-        integer_setting("map-divisor", 2, 1, 64, Role::cost, "frame pixels per depth pixel, each way"),
+        map_size_setting(256, "depth pixels"),
+        map_divisor_setting("depth pixel"),
         integer_setting("max-occluders", 256, 0, 1 << 24, Role::cost,
                         "skins rasterized per frame, largest on screen first", "0"),
     };
@@ -144,6 +176,10 @@ StrategyFamily occluder_skins_family()
         StrategyTestVariant("skins:occludee=triangles"),
         StrategyTestVariant("skins:occludee=rect"),
         StrategyTestVariant("skins:depth=polygon"),
+        // A buffer of its own resolution, the divisor from the frame's size
+        // (3 at the tests' frames of 128 pixels), and the exact end.
+        StrategyTestVariant("skins:map-size=50"),
+        StrategyTestVariant("skins:map-divisor=1"),
         StrategyTestVariant("skins-drawn:occludee=triangles"),
         StrategyTestVariant("skins-drawn").with_probing_switch_off(),
     };

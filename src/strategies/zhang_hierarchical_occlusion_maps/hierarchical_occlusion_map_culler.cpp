@@ -20,7 +20,7 @@ namespace {
 class HierarchicalOcclusionMapCuller final : public Culler {
 public:
     HierarchicalOcclusionMapCuller(const StrategyContext &context, const Settings &settings)
-        : occluders_(context.scene, settings),
+        : occluders_(context.scene, settings, &context.hierarchy),
           threshold_(float(1.0 - settings.number("tolerance"))), budget_(double(settings.integer("occluders"))),
           max_budget_(double(settings.integer("occluders"))), adapt_(settings.on("adapt-budget")),
           deb_(int(settings.integer("depth-regions")), int(settings.integer("depth-regions")))

@@ -290,6 +290,44 @@ TEST(TriangleOccluders, ATessellatedWallHidesWithMergedCoverageWhatItsSeamsHideN
     EXPECT_GT(merged.occluded, 2 * whole.occluded + 20) << "whole pixels hide " << whole.occluded;
 }
 
+// At the families' defaults (scene-triangles on, occluder-triangles 0) a
+// scene none of whose meshes has a skin takes its own triangles, and one
+// with a closed mesh its skins alone; scene-triangles=off leaves the
+// first without occluders.
+TEST(TriangleOccluders, AtTheDefaultsASceneWithoutSkinsTakesItsOwnTriangles)
+{
+    std::vector<SettingSpec> s = specs();
+    s.push_back(scene_triangles_setting());
+    const Camera camera = looking_down_minus_z();
+    const Frame frame(camera, 96, 96);
+    const auto drawn = [&](const Scene &scene, bool scene_triangles) {
+        Settings settings("test", &s);
+        settings.set("scene-triangles", scene_triangles ? "on" : "off");
+        DepthOccluders occluders(scene, settings);
+        DepthRasterizer raster;
+        raster.begin(frame.view_projection, 96, 96, {2, true, false});
+        return occluders.render(frame, raster, 0);
+    };
+    Mesh wall;   // open: no skin
+    add_quad(wall, {-5, 0, -10}, {5, 0, -10}, {5, 5, -10}, {-5, 5, -10});
+    const Scene open_scene = one_mesh(wall);
+    EXPECT_EQ(drawn(open_scene, true), 2u) << "the wall's two triangles";
+    EXPECT_EQ(drawn(open_scene, false), 0u);
+
+    Mesh cube;   // closed, 4 m a side, its faces outward
+    const glm::vec3 lo(-2, 0, -14), hi(2, 4, -10);
+    for (const auto &face : aabb_faces) {
+        glm::vec3 c[4];
+        for (int i = 0; i < 4; ++i)
+            c[i] = Aabb::of(lo, hi).corner(face[i]);
+        add_quad(cube, c[0], c[1], c[2], c[3]);
+    }
+    const Scene closed_scene = one_mesh(cube);
+    const SkinOccluders skins(closed_scene, "", 8);
+    ASSERT_GT(skins.size(), 0u) << "the cube has a skin";
+    EXPECT_EQ(drawn(closed_scene, true), drawn(closed_scene, false)) << "with skins, no triangle joins them";
+}
+
 TEST(TriangleOccluders, MergedCoverageRefusesADivisorAboveEight)
 {
     const std::vector<SettingSpec> s = specs();
