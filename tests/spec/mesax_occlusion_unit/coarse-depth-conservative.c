@@ -48,19 +48,6 @@ static PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv;
 static int g_argc;
 static char **g_argv;
 
-/* A check the child could not pass: printed to stderr, counted in the
- * transcript's last word. */
-static GLuint failures;
-
-static void
-check(bool ok, const char *what, unsigned got, unsigned expected)
-{
-    if (!ok) {
-        fprintf(stderr, "%s: %u, expected %u\n", what, got, expected);
-        ++failures;
-    }
-}
-
 struct shape {
     bool rect;
     float x0, y0, x1, y1, z;   /* a rectangle at depth z, or a triangle's box and depths z .. z + 0.2 */
@@ -126,24 +113,24 @@ pass(const char *what, const struct shape *s, bool verbose, GLuint covered, bool
     char name[256];
     snprintf(name, sizeof(name), "%s: GL error", what);
     const GLenum error = glGetError();
-    check(error == GL_NO_ERROR, name, error, GL_NO_ERROR);
+    coarse_check(error == GL_NO_ERROR, name, error, GL_NO_ERROR);
     if (multisampled) {
         /* Fragments, not samples: the shape lies behind the occluder. */
         snprintf(name, sizeof(name), "%s: NOHC", what);
-        check(buffer[OU_NOHC] == 0, name, buffer[OU_NOHC], 0);
+        coarse_check(buffer[OU_NOHC] == 0, name, buffer[OU_NOHC], 0);
     } else {
         const GLuint expected = samples_passed(s);
         snprintf(name, sizeof(name), "%s: NOHC against GL_RENDER's samples passed", what);
-        check(buffer[OU_NOHC] == expected, name, buffer[OU_NOHC], expected);
+        coarse_check(buffer[OU_NOHC] == expected, name, buffer[OU_NOHC], expected);
     }
     snprintf(name, sizeof(name), "%s: PHC", what);
     if (covered)
-        check(buffer[OU_PHC] == covered, name, buffer[OU_PHC], covered);
+        coarse_check(buffer[OU_PHC] == covered, name, buffer[OU_PHC], covered);
     else
-        check(buffer[OU_PHC] > 0, name, buffer[OU_PHC], 1);
+        coarse_check(buffer[OU_PHC] > 0, name, buffer[OU_PHC], 1);
     if (verbose) {
         snprintf(name, sizeof(name), "%s: verbose list length", what);
-        check(buffer[0] == buffer[OU_NOHC], name, buffer[0], buffer[OU_NOHC]);
+        coarse_check(buffer[0] == buffer[OU_NOHC], name, buffer[0], buffer[OU_NOHC]);
     }
 }
 
@@ -232,7 +219,7 @@ occluded(struct transcript *t)
         snprintf(what, sizeof(what), "depth %s, offset in front of the occluder", coarse_formats[f].name);
         pass(what, &pulled, false, 130 * 130, false);
         const GLuint visible = samples_passed(&pulled);
-        check(visible == 130 * 130, "the rectangle pulled in front is visible", visible, 130 * 130);
+        coarse_check(visible == 130 * 130, "the rectangle pulled in front is visible", visible, 130 * 130);
         glDisable(GL_POLYGON_OFFSET_FILL);
 
         /* A stencil test (where the occluder wrote 1), and early tests
@@ -249,7 +236,7 @@ occluded(struct transcript *t)
         pass(what, &behind, true, W * H, false);
         UseProgram(0);
     }
-    transcript_add(t, failures);
+    transcript_add(t, coarse_failures);
 }
 
 /* Blocks that one test per 16x16 block decides whole: the blocks cut by
@@ -302,10 +289,10 @@ edges(struct transcript *t)
             const GLuint visible = samples_passed(&falling);
             snprintf(what, sizeof(what), "depth %s, the triangle at (%g, %g) is partly visible",
                      coarse_formats[f].name, x, y);
-            check(visible > 0 && visible < 120, what, visible, 1);
+            coarse_check(visible > 0 && visible < 120, what, visible, 1);
         }
     }
-    transcript_add(t, failures);
+    transcript_add(t, coarse_failures);
 }
 
 /* Scenes where the coarse test must not be used, or never rejects. */
@@ -363,7 +350,7 @@ disabled(struct transcript *t)
         setup(&fbo, &coarse_formats[2], 4);
         pass("4x multisampled", &behind, false, 0, true);   /* PHC: edge fragments by sample */
     }
-    transcript_add(t, failures);
+    transcript_add(t, coarse_failures);
 }
 
 int

@@ -231,6 +231,19 @@ coarse_build_program(const char *body, bool early)
     return p;
 }
 
+/* The checks a child could not pass, each printed to stderr by
+ * coarse_check; the child reports the count in its transcript. */
+static GLuint coarse_failures;
+
+static inline void
+coarse_check(bool ok, const char *what, unsigned got, unsigned expected)
+{
+    if (!ok) {
+        fprintf(stderr, "%s: %u, expected %u\n", what, got, expected);
+        ++coarse_failures;
+    }
+}
+
 static inline long long
 coarse_rejected(const char *err, long long *blocks)
 {
