@@ -19,7 +19,8 @@
 #       header beside ou_util.h, which includes it; piglit's gl.xml has no tokens
 #       of these extensions)
 #   the upstream behaviour tests of tests/spec/arb_occlusion_query/,
-#       arb_depth_clamp/ and glsl-1.10/ into piglit's folders of those features
+#       arb_depth_clamp/, arb_shader_image_load_store/ and glsl-1.10/ into
+#       piglit's folders of those features
 #       (glsl-1.10/execution/), each added to that folder's CMakeLists.gl.txt
 # adds the three folders to tests/spec/CMakeLists.txt and their tests to the
 # profile tests/opengl.py (one group per extension, as piglit lists every
@@ -67,6 +68,7 @@ exts=(mesax_occlusion_unit mesax_occlusion_unit_async mesax_occlusion_unit_conse
 # occu's folder, and the folder of piglit's tree that tests that feature.
 declare -A upstream=([arb_occlusion_query]=tests/spec/arb_occlusion_query
                      [arb_depth_clamp]=tests/spec/arb_depth_clamp
+                     [arb_shader_image_load_store]=tests/spec/arb_shader_image_load_store
                      [glsl-1.10]=tests/spec/glsl-1.10/execution)
 # The tree's files the script patches, kept as they were in $work/orig.
 patched=(tests/opengl.py tests/spec/CMakeLists.txt registry/gl.xml)
@@ -223,6 +225,7 @@ for ext in exts:
             block.append("    g(['%s', %s], '%s%s')\n" % (exe, ', '.join("'%s'" % a for a in args), name, suffix))
 filters = ['^spec@%s@' % ext for ext in exts]
 groups = {'arb_occlusion_query': "'spec', 'ARB_occlusion_query'", 'arb_depth_clamp': "'spec', 'ARB_depth_clamp'",
+          'arb_shader_image_load_store': "'spec', 'arb_shader_image_load_store'",
           'glsl-1.10': "'spec', 'glsl-1.10', 'execution'"}
 for ext, folder in sorted(upstream.items()):
     names = sorted(f[:-2] for f in os.listdir(os.path.join(root, 'tests/spec', ext)) if f.endswith('.c'))
