@@ -8,6 +8,10 @@
 # `git format-patch` of every commit after the pristine one, under the
 # file names patches/mesa/series gives them in order; commits beyond the
 # series keep format-patch's names and are appended to it.
+# A patch that adds one specification under docs/_extra/specs/ (each part's
+# first) is written from spec/ instead of from its commit: spec/ is the one
+# source of the extensions' text, and Mesa's copy is made from it here
+# (tools/mesa-spec-patch.py), whatever the tree's commit holds.
 # Usage: tools/export-mesa-patches.sh [MESA_TREE]
 #   MESA_TREE   a git worktree of that repository holding the series to export
 #               (default: the cache's source/), e.g. one made with
@@ -46,6 +50,12 @@ for f in "$out"/*.patch; do
         say "new patch $name appended to the series"
     fi
     mv "$f" "$OCCU_ROOT/patches/mesa/$name"
-    say "wrote $name"
+    if /usr/bin/python3 "$OCCU_ROOT/tools/mesa-spec-patch.py" --rewrite "$OCCU_ROOT/patches/mesa/$name"; then
+        say "wrote $name (its specification from spec/)"
+    else
+        say "wrote $name"
+    fi
     k=$((k + 1))
 done
+/usr/bin/python3 "$OCCU_ROOT/tools/mesa-patch-table.py"
+say "wrote the patch table of docs/mesa.md"
