@@ -225,15 +225,31 @@ bool decode_picture(const unsigned char *bytes, std::size_t size, Image &image, 
     return true;
 }
 
-// The picture a material names: the file's embedded texture ("*N", or one
-// whose name matches), else a file beside the model (a path relative to
-// its directory, with Windows separators read as '/', else the bare file
-// name in that directory). Empty `where` when there is none.
-bool read_picture(const aiScene &in, const std::string &model, const std::string &name, Image &image,
-                  std::string &where, std::string &why)
+// Where the picture a material names is: the file's embedded texture
+// ("*N", or one whose name matches; `embedded` set), else a file beside the
+// model (a path relative to its directory, with Windows separators read as
+// '/', else the bare file name in that directory). Returns the place's name.
+std::string locate_picture(const aiScene &in, const std::string &model, const std::string &name,
+                           const aiTexture *&embedded)
 {
-    if (const aiTexture *embedded = in.GetEmbeddedTexture(name.c_str())) {
-        where = "embedded " + name;
+    embedded = in.GetEmbeddedTexture(name.c_str());
+    if (embedded || (!name.empty() && name[0] == '*'))
+        return "embedded texture " + name;
+    std::string relative = name;
+    std::replace(relative.begin(), relative.end(), '\\', '/');
+    const std::filesystem::path directory = std::filesystem::path(model).parent_path();
+    std::error_code error;
+    std::filesystem::path file = std::filesystem::path(relative).is_absolute() ? std::filesystem::path(relative)
+                                                                               : directory / relative;
+    if (!std::filesystem::is_regular_file(file, error))
+        file = directory / std::filesystem::path(relative).filename();
+    return file.lexically_normal().string();
+}
+
+// Decodes the picture at `where` (locate_picture); false with why in `why`.
+bool read_picture(const aiTexture *embedded, const std::string &where, Image &image, std::string &why)
+{
+    if (embedded) {
         if (embedded->mHeight == 0)   // compressed: mWidth bytes of a PNG, JPEG, ...
             return decode_picture(reinterpret_cast<const unsigned char *>(embedded->pcData), embedded->mWidth, image, why);
         // Raw texels, BGRA, top row first.
@@ -246,20 +262,11 @@ bool read_picture(const aiScene &in, const std::string &model, const std::string
         }
         return true;
     }
-    if (!name.empty() && name[0] == '*') {
+    if (where.rfind("embedded texture ", 0) == 0) {
         why = "the file embeds no such texture";
         return false;
     }
-    std::string relative = name;
-    std::replace(relative.begin(), relative.end(), '\\', '/');
-    const std::filesystem::path directory = std::filesystem::path(model).parent_path();
-    std::error_code error;
-    std::filesystem::path file = std::filesystem::path(relative).is_absolute() ? std::filesystem::path(relative)
-                                                                               : directory / relative;
-    if (!std::filesystem::is_regular_file(file, error))
-        file = directory / std::filesystem::path(relative).filename();
-    where = file.string();
-    std::ifstream f(file, std::ios::binary);
+    std::ifstream f(where, std::ios::binary);
     if (!f) {
         why = "no such file";
         return false;
@@ -269,24 +276,27 @@ bool read_picture(const aiScene &in, const std::string &model, const std::string
 }
 
 // Sets Mesh::image of the meshes whose material has a diffuse picture
-// (look.material), decoding each picture once and only those a kept mesh
-// shows. A picture that cannot be read leaves its meshes in their
-// materials' colours (texture coordinates dropped) and is named in a warning.
+// (look.material), decoding each picture once (by where it is, whatever
+// the materials call it) and only those a kept mesh shows. A picture that
+// cannot be read leaves its meshes in their materials' colours (texture
+// coordinates dropped) and is named in a warning.
 void read_model_pictures(const aiScene &in, const std::string &path, Scene &out, const ModelLook &look,
                          const Warnings &warn)
 {
-    std::map<std::string, std::int32_t> decoded;   // the material's picture name -> Scene::images (-1: failed)
+    std::map<std::string, std::int32_t> decoded;   // where the picture is -> Scene::images (-1: failed)
     std::vector<std::string> failed;
     for (std::size_t i = 0; i < out.meshes.size() && i < look.material.size(); ++i) {
         Mesh &mesh = out.meshes[i];
         if (look.material[i] < 0)
             continue;
         const std::string name = diffuse_picture(*in.mMaterials[look.material[i]]);
-        auto [it, fresh] = decoded.emplace(name, -1);
+        const aiTexture *embedded = nullptr;
+        const std::string where = locate_picture(in, path, name, embedded);
+        auto [it, fresh] = decoded.emplace(where, -1);
         if (fresh) {
             Image image;
-            std::string where, why;
-            if (read_picture(in, path, name, image, where, why)) {
+            std::string why;
+            if (read_picture(embedded, where, image, why)) {
                 image.name = where;
                 it->second = std::int32_t(out.images.size());
                 out.images.push_back(std::move(image));
