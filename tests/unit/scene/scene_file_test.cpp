@@ -560,3 +560,31 @@ TEST(LoadScene, ModelPictureThatCannotBeReadIsNamedAndItsMeshKeepsItsColour)
         EXPECT_EQ(m.color, m.name == "gone" ? glm::vec3(0.2f, 0.4f, 0.6f) : glm::vec3(0.6f, 0.4f, 0.2f)) << m.name;
     }
 }
+
+// A .glb's picture is embedded in the file; the same model as .gltf names
+// it as a file beside it. Both read with the look give the picture libpng
+// decodes from that file (image/png.h), by another decoder than stb_image.
+TEST(LoadScene, ModelPictureEmbeddedInAGlbIsTheFileBesideItsGltf)
+{
+    const std::string models = "/usr/share/assimp/models/glTF2/";
+    const std::string glb = models + "BoxTextured-glTF-Binary/BoxTextured.glb",
+                      gltf = models + "BoxTextured-glTF/BoxTextured.gltf",
+                      png = models + "BoxTextured-glTF/CesiumLogoFlat.png";
+    if (!std::filesystem::exists(glb) || !std::filesystem::exists(gltf) || !std::filesystem::exists(png))
+        GTEST_SKIP() << "assimp-testmodels' BoxTextured is not installed (tools/deps.sh test installs it)";
+    std::vector<std::string> warnings;
+    const Scene embedded = load_scene(glb, &warnings, with_look()), beside = load_scene(gltf, &warnings, with_look());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    int width = 0, height = 0;
+    const std::vector<std::uint8_t> expected = read_png(png, width, height);
+    for (const Scene *s : {&embedded, &beside}) {
+        ASSERT_EQ(s->images.size(), 1u);
+        EXPECT_EQ(s->images[0].width, width);
+        EXPECT_EQ(s->images[0].height, height);
+        EXPECT_EQ(s->images[0].rgba, expected);
+        for (const Mesh &m : s->meshes) {
+            EXPECT_EQ(m.image, 0);
+            EXPECT_EQ(m.texcoords.size(), m.positions.size());
+        }
+    }
+}
