@@ -225,10 +225,33 @@ bool decode_picture(const unsigned char *bytes, std::size_t size, Image &image, 
     return true;
 }
 
+// The file `name` in `directory`, matched without regard to case where no
+// file has exactly that name (models made on Windows name their pictures
+// in whatever case); empty when there is none.
+std::filesystem::path file_in(const std::filesystem::path &directory, const std::string &name)
+{
+    std::error_code error;
+    if (std::filesystem::is_regular_file(directory / name, error))
+        return directory / name;
+    auto lower = [](std::string t) {
+        for (char &c : t)
+            c = char(std::tolower(static_cast<unsigned char>(c)));
+        return t;
+    };
+    const std::string wanted = lower(name);
+    for (std::filesystem::directory_iterator it(directory, error), end; !error && it != end; it.increment(error))
+        if (lower(it->path().filename().string()) == wanted && it->is_regular_file(error))
+            return it->path();
+    return {};
+}
+
 // Where the picture a material names is: the file's embedded texture
 // ("*N", or one whose name matches; `embedded` set), else a file beside the
-// model (a path relative to its directory, with Windows separators read as
-// '/', else the bare file name in that directory). Returns the place's name.
+// model: the path relative to the model's directory (Windows separators
+// read as '/', and a path from a Windows drive's root read as relative),
+// else its bare file name in the model's directory, each file name matched
+// without regard to case where no file has it exactly. Returns the place's
+// name (the first place tried, when none holds a file).
 std::string locate_picture(const aiScene &in, const std::string &model, const std::string &name,
                            const aiTexture *&embedded)
 {
@@ -236,14 +259,19 @@ std::string locate_picture(const aiScene &in, const std::string &model, const st
     if (embedded || (!name.empty() && name[0] == '*'))
         return "embedded texture " + name;
     std::string relative = name;
+    const bool windows = relative.find('\\') != std::string::npos;
     std::replace(relative.begin(), relative.end(), '\\', '/');
+    if (windows)
+        relative.erase(0, relative.find_first_not_of('/'));
     const std::filesystem::path directory = std::filesystem::path(model).parent_path();
-    std::error_code error;
-    std::filesystem::path file = std::filesystem::path(relative).is_absolute() ? std::filesystem::path(relative)
-                                                                               : directory / relative;
-    if (!std::filesystem::is_regular_file(file, error))
-        file = directory / std::filesystem::path(relative).filename();
-    return file.lexically_normal().string();
+    const std::filesystem::path given = std::filesystem::path(relative).is_absolute() ? std::filesystem::path(relative)
+                                                                                    : directory / relative;
+    for (const std::filesystem::path &place : {given, directory / given.filename()}) {
+        const std::filesystem::path found = file_in(place.parent_path(), place.filename().string());
+        if (!found.empty())
+            return found.lexically_normal().string();
+    }
+    return given.lexically_normal().string();
 }
 
 // Decodes the picture at `where` (locate_picture); false with why in `why`.

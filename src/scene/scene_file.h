@@ -31,7 +31,9 @@ namespace occu {
 // base colour's) gets that picture (Mesh::image, Scene::images) and its
 // texture coordinates (Mesh::texcoords), drawn times its material's diffuse
 // colour (white where the material gives the picture alone). A picture is
-// the file's embedded texture or a file beside the model; it is decoded
+// the file's embedded texture or a file beside the model (its path as a
+// model made on Windows writes it, matched regardless of case where need
+// be); it is decoded
 // with stb_image once, and only when a mesh that is kept shows it. One that
 // cannot be read leaves its meshes in their materials' colours, named in a
 // warning. A model whose materials have no pictures (the IFC house) is the

@@ -480,11 +480,12 @@ TEST(LoadScene, ModelLookDecodesEachShownPictureOnceWithItsCoordinates)
     std::filesystem::create_directories(dir + "/pictures");
     const std::vector<std::uint8_t> picture = quadrant_picture();
     write_png(dir + "/pictures/quads.png", 4, 4, picture.data(), false);
-    // "painted" and "windows" name the same file (the second with a Windows
-    // separator); "unused" names a missing one that no face uses; "bare"
-    // has no picture.
+    // "painted" and "windows" name the same file (the second as a model
+    // made on Windows may: from the drive's root, with its separators, the
+    // file name in another case); "unused" names a missing one that no face
+    // uses; "bare" has no picture.
     write(dir + "/m.mtl", "newmtl painted\nKd 0.5 0.25 1.0\nmap_Kd pictures/quads.png\n"
-                          "newmtl windows\nKd 1 1 1\nmap_Kd .\\pictures\\quads.png\n"
+                          "newmtl windows\nKd 1 1 1\nmap_Kd \\pictures\\QUADS.png\n"
                           "newmtl unused\nKd 1 1 1\nmap_Kd nowhere-at-all.png\n"
                           "newmtl bare\nKd 0.3 0.6 0.9\n");
     // Texture coordinates (x, y) at position (x, y, z), so what each vertex
