@@ -27,7 +27,13 @@
 // views, no temporal coherence and no switch-off). What a level holds is printed first (bench/level_statistics.h:
 // the figures its kind was chosen by). Prints per scene and route a table
 // of every strategy, then the targets table and one table per route kind
-// of every strategy on every scene; --out DIR gets the CSVs. Timing only:
+// of every strategy on every scene; --out DIR gets the CSVs. All that once
+// per table of frames (--tables): by default the frame a player sees,
+// 1280x720 with the scene's look (a level's textures, lightmaps and sky, a
+// model's materials), then 512x512 flat, each scene's routes measured in
+// both before the next scene, and per scene and route the ratio of vfc's
+// frame in the first table to its frame in the second (what the look and
+// the pixels cost, against which culling's savings are weighed). Timing only:
 // the tests that hold the strategies to 0 lost pixels on such scenes are
 // tests/integration/demos/{building,level}-views.sh and level-pvs.sh.
 #include <algorithm>
@@ -63,6 +69,15 @@ constexpr double floor_target = 1.5, efficiency_target = 80.0, hidden_share = 0.
 const std::string openarena = "/usr/share/games/openarena/baseoa/";
 const std::string models = "/usr/share/assimp/models/";
 
+// One table of frames: their size and look (render/scene_renderer.h).
+struct Table {
+    int width = 1280, height = 720;
+    Look look = Look::scene;
+
+    std::string size_name() const { return std::to_string(width) + "x" + std::to_string(height); }
+    std::string name() const { return size_name() + (look == Look::scene ? " with the look" : " flat"); }
+};
+
 struct Options {
     std::vector<std::string> scenes = {
         // Six kinds of level, chosen by their statistics (docs/real-scenes.md).
@@ -96,6 +111,9 @@ struct Options {
     int repeat = 3;
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
     std::string out;
+    // --tables: the frame a player sees first, then the flat 512x512
+    // frame, where drawing a pixel costs least against culling's tests.
+    std::vector<Table> tables = {{1280, 720, Look::scene}, {512, 512, Look::flat}};
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -109,14 +127,18 @@ struct Options {
                  "                              [--size PIXELS|WxH] [--driver llvmpipe|softpipe] [--leaf-triangles N|auto]\n"
                  "                              [--batch N] [--switch-off F] [--coherence on|off] [--allocator keep|system]\n"
                  "                              [--load-levels LEVEL,...] [--repeat N] [--databases DIR]\n"
-                 "                              [--make-databases required|all] [--look flat|scene] [--out DIR]\n"
+                 "                              [--make-databases required|all] [--tables WxH:LOOK,...]\n"
+                 "                              [--look flat|scene] [--out DIR]\n"
                  "Every strategy (default: every name of the registry once, and bsp-pvs+ou-shared, bsp-pvs+om-ps)\n"
                  "on each scene (default: seven OpenArena levels and three assimp-testmodels buildings) along its\n"
                  "own route (a level: spawn:K, K views a spawn point, default 2; a model: orbit, default 60 frames)\n"
                  "and random:N:SEED (default 200 eyes in the scene's open space, seed %lu, one more a scene),\n"
-                 "512x512 llvmpipe in the flat look by default (--size 1280x720 --look scene: the levels' textures\n"
-                 "and lightmaps, the frame a player sees), every frame compared with the unculled one (--coherence and\n"
-                 "--switch-off, default on and 0.5, apply to the own routes; random eyes run without either).\n"
+                 "in each table of frames (--tables, default 1280x720:scene,512x512:flat: the frame a player sees,\n"
+                 "the scene's textures, lightmaps and sky or a model's materials, then the flat frames of 512x512;\n"
+                 "--size and --look instead: that one table, 1280x720 and scene where not given), llvmpipe, every\n"
+                 "frame compared with the unculled one (--coherence and --switch-off, default on and 0.5, apply to\n"
+                 "the own routes; random eyes run without either). With two tables or more, per scene and route\n"
+                 "vfc's frame in the first against its frame in each other (what the look and the size cost).\n"
                  "Prints each run, the targets (best conservative strategy within %.1fx of the floor; >= %.0f%%\n"
                  "efficiency where the floor hides >= half the frustum's triangles; best >= %.1fx over bsp-pvs\n"
                  "where it can be; no lost pixel) met or not, the tables of every strategy, and each --load-levels level's time\n"
@@ -126,11 +148,38 @@ struct Options {
     std::exit(error.empty() ? 0 : 2);
 }
 
+// --tables: WxH:LOOK (or PIXELS:LOOK) items, each checked as --size and
+// --look check theirs; a bad item throws std::invalid_argument naming it.
+std::vector<Table> tables_option(const std::string &name, const std::string &value)
+{
+    std::vector<Table> tables;
+    for (const std::string &item : list_items(value, ',')) {
+        const std::size_t colon = item.find(':');
+        if (colon == std::string::npos)
+            throw std::invalid_argument(name + " wants SIZE:LOOK items (e.g. 1280x720:scene,512:flat), got '" + item + "'");
+        SessionCommandLine scratch;
+        try {
+            scratch.take("--size", item.substr(0, colon));
+            scratch.take("--look", item.substr(colon + 1));
+        } catch (const std::invalid_argument &e) {
+            throw std::invalid_argument(name + ": item '" + item + "': " + e.what());
+        }
+        tables.push_back({scratch.width, scratch.height, *scratch.look});
+    }
+    if (tables.empty())
+        throw std::invalid_argument(name + " is empty");
+    return tables;
+}
+
 Options parse(int argc, char **argv)
 {
     Options o;
+    bool size_given = false, look_given = false, tables_given = false;
     for_each_option(argc, argv, usage, [&](const std::string &a, const std::string &v) {
+        size_given = size_given || a == "--size";
+        look_given = look_given || a == "--look";
         if (o.session.take(a, v)) return true;
+        else if (a == "--tables") { o.tables = tables_option(a, v); tables_given = true; }
         else if (a == "--scenes") o.scenes = list_items(v, ',');
         else if (a == "--spawn-views") o.spawn_views = int(integer_option(a, v, 1, 360));
         else if (a == "--orbit-frames") o.orbit_frames = int(integer_option(a, v, 1, 100000));
@@ -147,6 +196,13 @@ Options parse(int argc, char **argv)
     try {
         if (o.scenes.empty())
             usage("--scenes is empty");
+        if (tables_given && (size_given || look_given))
+            usage("--tables names every table's size and look: give it or --size/--look, not both");
+        // --size and --look: that one table, the first default's size or
+        // look where one of them is not given.
+        if (size_given || look_given)
+            o.tables = {{size_given ? o.session.width : 1280, size_given ? o.session.height : 720,
+                         o.session.look.value_or(Look::scene)}};
         std::vector<std::string> &strategies = o.session.strategies;
         if (strategies.empty()) {
             strategies = distinct_strategy_names();
@@ -190,6 +246,7 @@ struct Row {
 
 struct Run {
     std::string scene, name, route;
+    std::size_t table = 0;   // Options::tables
     bool level = false;
     std::size_t frames = 0, triangles = 0, leaves = 0;
     double vfc_ms = 0, ideal_ms = 0, vfc_triangles = 0, ideal_triangles = 0;
@@ -234,21 +291,25 @@ std::string ratio(double x)
     return t;
 }
 
-Run run_route(const Options &o, const SceneSetup &setup, const std::string &route_name, gl::OffscreenContext &ctx)
+// One scene and route in table `table` of frames (`session_line`: the
+// program's session options with that table's size and look).
+Run run_route(const Options &o, const SessionCommandLine &session_line, std::size_t table, const SceneSetup &setup,
+              const std::string &route_name, gl::OffscreenContext &ctx)
 {
     const auto start = std::chrono::steady_clock::now();
     Run run;
+    run.table = table;
     run.scene = setup.name();
     run.name = short_name(setup.name());
     run.route = route_name;
     run.level = is_level(setup.scene());
     run.triangles = setup.scene().triangle_count();
     run.leaves = setup.hierarchy().leaf_count();
-    const std::vector<Camera> route = setup.route(route_name, o.orbit_frames, o.session.aspect());
+    const std::vector<Camera> route = setup.route(route_name, o.orbit_frames, session_line.aspect());
     run.frames = route.size();
 
-    DatabaseProvider databases = o.session.database_provider();
-    SessionOptions so = o.session.session_options(databases);
+    DatabaseProvider databases = session_line.database_provider();
+    SessionOptions so = session_line.session_options(databases);
     // Random eyes are unrelated views (camera/route.h): neither temporal
     // coherence nor the switch-off applies (as occu-random-views runs them).
     const bool unrelated = unrelated_views(route_name);
@@ -256,16 +317,16 @@ Run run_route(const Options &o, const SceneSetup &setup, const std::string &rout
     so.switch_off = unrelated ? 0.0 : so.switch_off;
     so.lost_pixels = SessionOptions::PixelCheck::all;
     MeasurementSession session(setup, ctx, so);
-    for (const std::string &spec : o.session.strategies) {
-        if (const std::string why = session.add_unless_refused(spec, o.session.common); !why.empty())
+    for (const std::string &spec : session_line.strategies) {
+        if (const std::string why = session.add_unless_refused(spec, session_line.common); !why.empty())
             run.left_out.push_back(spec + ": " + why);
         // vfc a second time: the ratio of two identical strategies is the run's noise.
         if (spec == "vfc")
-            session.add("vfc", o.session.common, "vfc again");
+            session.add("vfc", session_line.common, "vfc again");
     }
-    std::printf("\n%s (%zu triangles, %zu leaves of at most %u), route %s: %zu frames, %zu strategies, %dx%d, %s\n",
+    std::printf("\n%s (%zu triangles, %zu leaves of at most %u), route %s: %zu frames, %zu strategies, %s, %s\n",
                 run.scene.c_str(), run.triangles, run.leaves, unsigned(setup.hierarchy().max_leaf_triangles()),
-                route_name.c_str(), route.size(), session.strategies().size(), o.session.width, o.session.height,
+                route_name.c_str(), route.size(), session.strategies().size(), o.tables[table].name().c_str(),
                 ctx.renderer().c_str());
     for (const std::string &l : run.left_out)
         std::printf("left out: %s\n", l.c_str());
@@ -441,13 +502,17 @@ int main(int argc, char **argv)
             loads_csv.open(o.out + "/loads.csv");
             if (!runs_csv || !levels_csv || !loads_csv)
                 throw std::runtime_error("cannot write the CSVs in '" + o.out + "'");
-            runs_csv << "scene,route,frames,strategy,conservative,mean_ms,median_ms,x_vfc,x_floor,x_bsp_pvs,triangles,"
+            runs_csv << "scene,route,size,look,frames,strategy,conservative,mean_ms,median_ms,x_vfc,x_floor,x_bsp_pvs,triangles,"
                         "efficiency_percent,visible_leaves_culled,lost_pixels,tied_pixels,test_ms,setup_ms\n";
             levels_csv << "level," << LevelStatistics::columns() << '\n';
             loads_csv << "level,load_ms,hierarchy_ms,total_ms,triangles\n";
         }
 
-        // Loading: pk3 to scene, then to hierarchy, the best of --repeat.
+        // Loading: pk3 to scene, then to hierarchy, the best of --repeat;
+        // with the textures where a table has the look (the load a player waits for).
+        const bool any_look = std::any_of(o.tables.begin(), o.tables.end(), [](const Table &t) {
+            return t.look == Look::scene;
+        });
         std::vector<std::string> load_lines;
         for (const std::string &level : o.load_levels) {
             double load = 1e30, build = 1e30;
@@ -455,7 +520,7 @@ int main(int argc, char **argv)
             for (int r = 0; r < o.repeat; ++r) {
                 auto t0 = std::chrono::steady_clock::now();
                 Quake3Options read;
-                read.look = o.session.look == Look::scene;
+                read.look = any_look;
                 const Scene scene = load_scene(level, nullptr, read);
                 load = std::min(load, ms_since(t0));
                 t0 = std::chrono::steady_clock::now();
@@ -466,9 +531,9 @@ int main(int argc, char **argv)
                 triangles = scene.triangle_count();
             }
             char line[600];
-            std::snprintf(line, sizeof(line), "`%s` (%zu triangles): %.1f ms from pk3 to scene, %.1f ms to hierarchy, "
-                          "%.1f ms: %s", short_name(level).c_str(), triangles, load, build, load + build,
-                          load + build <= load_target_ms ? "**met**" : "not met");
+            std::snprintf(line, sizeof(line), "`%s` (%zu triangles%s): %.1f ms from pk3 to scene, %.1f ms to hierarchy, "
+                          "%.1f ms: %s", short_name(level).c_str(), triangles, any_look ? ", with its textures" : "",
+                          load, build, load + build, load + build <= load_target_ms ? "**met**" : "not met");
             load_lines.push_back(line);
             std::printf("load %s\n", line);
             if (loads_csv.is_open())
@@ -476,99 +541,156 @@ int main(int argc, char **argv)
                           << triangles << '\n';
         }
 
-        gl::OffscreenContext ctx(o.session.width, o.session.height);
+        // A context per table (its frames' size), each made current for its runs.
+        std::vector<std::unique_ptr<gl::OffscreenContext>> contexts;
+        std::vector<SessionCommandLine> session_lines;
+        for (const Table &t : o.tables) {
+            contexts.push_back(std::make_unique<gl::OffscreenContext>(t.width, t.height));
+            SessionCommandLine line = o.session;
+            line.width = t.width;
+            line.height = t.height;
+            line.look = t.look;
+            session_lines.push_back(line);
+        }
         std::vector<Run> runs;
+        // Per scene and route, vfc's frame in the first table over its frame in table k (k >= 1).
+        std::vector<std::string> look_cost_rows;
         for (std::size_t i = 0; i < o.scenes.size(); ++i) {
-            // Its tables are flat unless --look scene: then levels are read
-            // with their textures and lightmaps and drawn so.
-            SceneChoice choice(o.scenes[i], 1, o.leaf_triangles);
-            choice.quake3.look = o.session.look == Look::scene;
-            const SceneSetup setup(choice);
-            if (is_level(setup.scene())) {
-                const LevelStatistics s = level_statistics(setup.scene());
+            // The scene read once per look its tables draw: with the look
+            // a level's pictures and lightmaps, a model's textures.
+            std::map<Look, std::unique_ptr<SceneSetup>> setups;
+            for (const Table &t : o.tables)
+                if (!setups.count(t.look)) {
+                    SceneChoice choice(o.scenes[i], 1, o.leaf_triangles);
+                    choice.quake3.look = t.look == Look::scene;
+                    setups[t.look] = std::make_unique<SceneSetup>(choice);
+                }
+            const SceneSetup &first = *setups.begin()->second;
+            if (is_level(first.scene())) {
+                const LevelStatistics s = level_statistics(first.scene());
                 std::printf("\nlevel %s: %s\n  (%s)\n", short_name(o.scenes[i]).c_str(), s.row().c_str(),
                             LevelStatistics::columns());
                 if (levels_csv.is_open())
                     levels_csv << csv_field(o.scenes[i]) << ',' << s.row() << '\n';
             }
-            std::vector<std::string> routes = {is_level(setup.scene()) ? "spawn:" + std::to_string(o.spawn_views)
+            std::vector<std::string> routes = {is_level(first.scene()) ? "spawn:" + std::to_string(o.spawn_views)
                                                                        : "orbit"};
             if (o.random_views > 0)
                 routes.push_back("random:" + std::to_string(o.random_views) + ":" + std::to_string(o.seed + i));
             for (const std::string &route : routes) {
-                runs.push_back(run_route(o, setup, route, ctx));
-                const Run &run = runs.back();
-                if (runs_csv.is_open()) {
-                    for (const Row &r : run.rows)
-                        runs_csv << csv_field(run.scene) << ',' << route << ',' << run.frames << ','
-                                 << csv_field(r.label) << ',' << (r.conservative ? "yes" : "no") << ',' << r.mean
-                                 << ',' << r.median << ',' << r.x_vfc << ',' << r.x_floor << ',' << r.x_pvs << ','
-                                 << r.triangles << ',' << (r.efficiency ? *r.efficiency : -1.0) << ','
-                                 << r.visible_culled << ',' << r.lost << ',' << r.tied << ',' << r.test_ms << ','
-                                 << r.setup_ms << '\n';
-                    runs_csv.flush();
+                // Every table of this route before the next route: the
+                // tables' vfc frames measured close together in time.
+                const std::size_t first_run = runs.size();
+                for (std::size_t t = 0; t < o.tables.size(); ++t) {
+                    contexts[t]->make_current();
+                    runs.push_back(run_route(o, session_lines[t], t, *setups.at(o.tables[t].look), route, *contexts[t]));
+                    const Run &run = runs.back();
+                    if (runs_csv.is_open()) {
+                        for (const Row &r : run.rows)
+                            runs_csv << csv_field(run.scene) << ',' << route << ',' << o.tables[t].size_name() << ','
+                                     << (o.tables[t].look == Look::scene ? "scene" : "flat") << ',' << run.frames
+                                     << ',' << csv_field(r.label) << ',' << (r.conservative ? "yes" : "no") << ','
+                                     << r.mean << ',' << r.median << ',' << r.x_vfc << ',' << r.x_floor << ','
+                                     << r.x_pvs << ',' << r.triangles << ','
+                                     << (r.efficiency ? *r.efficiency : -1.0) << ',' << r.visible_culled << ','
+                                     << r.lost << ',' << r.tied << ',' << r.test_ms << ',' << r.setup_ms << '\n';
+                        runs_csv.flush();
+                    }
+                }
+                const Run &a = runs[first_run];
+                for (std::size_t t = 1; t < o.tables.size(); ++t) {
+                    const Run &b = runs[first_run + t];
+                    char row[600];
+                    std::snprintf(row, sizeof(row), "| `%s` | %s | %.2f | %.2f | %.2fx | %.2fx | %.2fx |",
+                                  a.name.c_str(), route.c_str(), a.vfc_ms, b.vfc_ms,
+                                  b.vfc_ms > 0 ? a.vfc_ms / b.vfc_ms : 0.0, a.ideal_ms > 0 ? a.vfc_ms / a.ideal_ms : 0.0,
+                                  b.ideal_ms > 0 ? b.vfc_ms / b.ideal_ms : 0.0);
+                    std::printf("\nlook cost: `%s` %s: vfc at %s %.2f ms against %s %.2f ms: %.2fx\n",
+                                a.name.c_str(), route.c_str(), o.tables[0].name().c_str(), a.vfc_ms,
+                                o.tables[t].name().c_str(), b.vfc_ms, b.vfc_ms > 0 ? a.vfc_ms / b.vfc_ms : 0.0);
+                    std::fflush(stdout);
+                    look_cost_rows.push_back(o.tables.size() > 2 ? row + (" " + o.tables[t].name() + " |") : row);
                 }
             }
         }
 
-        // The targets, a row per scene and route.
-        std::printf("\n## The targets\n\n| scene | route (frames) | vfc ms (vfc again) | floor: x vfc, hides | best conservative "
-                    "within %.1fx floor | every strategy >= %.0f%% efficiency where the floor hides >= half | "
-                    "best >= %.1fx over bsp-pvs | conservative lost pixels |\n|---|---|---|---|---|---|---|---|\n",
-                    floor_target, efficiency_target, pvs_gain_target);
         int met = 0, missed = 0;
-        for (const Run &run : runs) {
-            const Verdicts v = verdicts(run);
-            met += v.met;
-            missed += v.missed;
-            const auto again = std::find_if(run.rows.begin(), run.rows.end(),
-                                            [](const Row &r) { return r.label == "vfc again"; });
-            std::printf("| `%s` | %s (%zu) | %.2f (%s) | %.2fx, %.0f%% | %s | %s | %s | %s |\n", run.name.c_str(),
-                        run.route.c_str(), run.frames, run.vfc_ms,
-                        again == run.rows.end() ? "-" : ratio(again->x_vfc).c_str(), run.vfc_ms / run.ideal_ms,
-                        100.0 * run.floor_hides(), v.floor.c_str(), v.efficiency.c_str(), v.pvs.c_str(),
-                        v.lost.c_str());
+        for (std::size_t t = 0; t < o.tables.size(); ++t) {
+            const std::string table = o.tables[t].name();
+            // The targets, a row per scene and route.
+            std::printf("\n## The targets, %s\n\n| scene | route (frames) | vfc ms (vfc again) | floor: x vfc, hides | best conservative "
+                        "within %.1fx floor | every strategy >= %.0f%% efficiency where the floor hides >= half | "
+                        "best >= %.1fx over bsp-pvs | conservative lost pixels |\n|---|---|---|---|---|---|---|---|\n",
+                        table.c_str(), floor_target, efficiency_target, pvs_gain_target);
+            for (const Run &run : runs) {
+                if (run.table != t)
+                    continue;
+                const Verdicts v = verdicts(run);
+                met += v.met;
+                missed += v.missed;
+                const auto again = std::find_if(run.rows.begin(), run.rows.end(),
+                                                [](const Row &r) { return r.label == "vfc again"; });
+                std::printf("| `%s` | %s (%zu) | %.2f (%s) | %.2fx, %.0f%% | %s | %s | %s | %s |\n", run.name.c_str(),
+                            run.route.c_str(), run.frames, run.vfc_ms,
+                            again == run.rows.end() ? "-" : ratio(again->x_vfc).c_str(), run.vfc_ms / run.ideal_ms,
+                            100.0 * run.floor_hides(), v.floor.c_str(), v.efficiency.c_str(), v.pvs.c_str(),
+                            v.lost.c_str());
+            }
+
+            // Every strategy on every scene, a table per route kind.
+            for (const bool random : {false, true}) {
+                std::vector<const Run *> kind;
+                for (const Run &run : runs)
+                    if (run.table == t && (run.route.rfind("random:", 0) == 0) == random)
+                        kind.push_back(&run);
+                if (kind.empty())
+                    continue;
+                std::printf("\n## %s, %s: x vfc / x floor / efficiency (lost px per frame where any)\n\n| strategy |",
+                            random ? "Random eyes" : "Spawn points and orbits", table.c_str());
+                for (const Run *run : kind)
+                    std::printf(" `%s` %s |", run->name.c_str(), run->route.c_str());
+                std::printf("\n|---|");
+                for (std::size_t i = 0; i < kind.size(); ++i)
+                    std::printf("---|");
+                std::printf("\n");
+                std::vector<std::string> labels = o.session.strategies;
+                labels.insert(std::find(labels.begin(), labels.end(), "vfc") + 1, "vfc again");
+                for (const std::string &label : labels) {
+                    std::printf("| `%s` |", label.c_str());
+                    for (const Run *run : kind) {
+                        const auto r = std::find_if(run->rows.begin(), run->rows.end(),
+                                                    [&](const Row &x) { return x.label == label; });
+                        if (r == run->rows.end()) {
+                            std::printf(" (refused) |");
+                            continue;
+                        }
+                        std::string lost;
+                        if (r->lost)
+                            lost = " (" + std::to_string(std::llround(r->lost_per_frame)) + " px)";
+                        std::printf(" %.2f / %.2f / %s%s%s |", r->x_vfc, r->x_floor, percent(r->efficiency).c_str(),
+                                    r->low_efficiency ? "*" : "", lost.c_str());
+                    }
+                    std::printf("\n");
+                }
+            }
+        }
+        if (!look_cost_rows.empty()) {
+            // Separate sessions (a context per size), run one after the
+            // other: this ratio carries the load's drift between them,
+            // which the interleaved ratios within a table do not.
+            std::printf("\n## What the look costs: vfc's frame %s against %s\n\n"
+                        "| scene | route | vfc ms %s | vfc ms %s | look / flat | floor x vfc %s | floor x vfc %s |%s\n"
+                        "|---|---|---|---|---|---|---|%s\n",
+                        o.tables[0].name().c_str(), o.tables.size() > 2 ? "each other table" : o.tables[1].name().c_str(),
+                        o.tables[0].name().c_str(), o.tables.size() > 2 ? "other" : o.tables[1].name().c_str(),
+                        o.tables[0].name().c_str(), o.tables.size() > 2 ? "other" : o.tables[1].name().c_str(),
+                        o.tables.size() > 2 ? " other table |" : "", o.tables.size() > 2 ? "---|" : "");
+            for (const std::string &row : look_cost_rows)
+                std::printf("%s\n", row.c_str());
         }
         for (const std::string &l : load_lines)
             std::printf("\nload: %s", l.c_str());
-        std::printf("\n\n%d targets met, %d not met (over scenes and routes)\n", met, missed);
-
-        // Every strategy on every scene, a table per route kind.
-        for (const bool random : {false, true}) {
-            std::vector<const Run *> kind;
-            for (const Run &run : runs)
-                if ((run.route.rfind("random:", 0) == 0) == random)
-                    kind.push_back(&run);
-            if (kind.empty())
-                continue;
-            std::printf("\n## %s: x vfc / x floor / efficiency (lost px per frame where any)\n\n| strategy |",
-                        random ? "Random eyes" : "Spawn points and orbits");
-            for (const Run *run : kind)
-                std::printf(" `%s` %s |", run->name.c_str(), run->route.c_str());
-            std::printf("\n|---|");
-            for (std::size_t i = 0; i < kind.size(); ++i)
-                std::printf("---|");
-            std::printf("\n");
-            std::vector<std::string> labels = o.session.strategies;
-            labels.insert(std::find(labels.begin(), labels.end(), "vfc") + 1, "vfc again");
-            for (const std::string &label : labels) {
-                std::printf("| `%s` |", label.c_str());
-                for (const Run *run : kind) {
-                    const auto r = std::find_if(run->rows.begin(), run->rows.end(),
-                                                [&](const Row &x) { return x.label == label; });
-                    if (r == run->rows.end()) {
-                        std::printf(" (refused) |");
-                        continue;
-                    }
-                    std::string lost;
-                    if (r->lost)
-                        lost = " (" + std::to_string(std::llround(r->lost_per_frame)) + " px)";
-                    std::printf(" %.2f / %.2f / %s%s%s |", r->x_vfc, r->x_floor, percent(r->efficiency).c_str(),
-                                r->low_efficiency ? "*" : "", lost.c_str());
-                }
-                std::printf("\n");
-            }
-        }
+        std::printf("\n\n%d targets met, %d not met (over scenes, routes and tables)\n", met, missed);
         std::printf("\nx vfc: vfc's mean frame ms / the strategy's (vfc again: vfc run a second time, its ratio\n"
                     "the run's noise); x floor: the strategy's / ideal's (the oracle's visible leaves alone);\n"
                     "efficiency: occluded leaves culled / occluded leaves (the oracle's), * below %.0f%% where the\n"

@@ -59,7 +59,9 @@ if len(frames) > 6:   # six spread along the route, first and last among them
     frames = [frames[round(i * (len(frames) - 1) / 5)] for i in range(6)]
 
 route, size = cell(body[0], 'route'), cell(body[0], 'size')
-title = 'occu walkthrough' + (f': the {route} route' if route else '') + (f', {size}x{size} pixels' if size else '')
+# The walkthrough's size: "512" for square frames, "1280x720" otherwise.
+pixels = size if 'x' in size else f'{size}x{size}'
+title = 'occu walkthrough' + (f': the {route} route' if route else '') + (f', {pixels} pixels' if size else '')
 numeric = re.compile(r'^-?[0-9.]+(e[-+]?[0-9]+)?$|^-$')
 
 p = []

@@ -92,6 +92,8 @@ struct Quake3Options {
     // largest channel where one would clip) or, for a face without one,
     // its vertex colours. Meshes are then one a texture and lightmapping.
     // The textures' pictures come from the pk3 files (scene/quake3_look.h).
+    // load_scene reads a model's pictures under the same flag
+    // (scene/scene_file.h).
     bool look = false;
 };
 

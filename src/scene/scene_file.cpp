@@ -4,14 +4,18 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <stb/stb_image.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <stdexcept>
 
 #include "scene/field.h"
@@ -69,8 +73,39 @@ std::string mesh_name(const aiMesh &m, unsigned number)
     return m.mName.length ? "'" + std::string(m.mName.C_Str()) + "'" : std::to_string(number) + " (unnamed)";
 }
 
+// The diffuse picture of `material`, as the file names it (a path, or
+// "*N" for the file's N-th embedded texture); empty where it has none.
+// glTF's base colour is the diffuse picture where a file gives no diffuse one.
+std::string diffuse_picture(const aiMaterial &material)
+{
+    for (aiTextureType type : {aiTextureType_DIFFUSE, aiTextureType_BASE_COLOR}) {
+        aiString path;
+        if (material.GetTextureCount(type) > 0 && material.GetTexture(type, 0, &path) == aiReturn_SUCCESS &&
+            path.length > 0)
+            return path.C_Str();
+    }
+    return "";
+}
+
+// The texture coordinates channel `material`'s diffuse picture reads (0 unless the file says).
+unsigned diffuse_channel(const aiMaterial &material)
+{
+    int channel = 0;
+    if (material.Get(AI_MATKEY_UVWSRC(aiTextureType_DIFFUSE, 0), channel) != aiReturn_SUCCESS || channel < 0 ||
+        channel >= AI_MAX_NUMBER_OF_TEXTURECOORDS)
+        channel = 0;
+    return unsigned(channel);
+}
+
+// What the look of a model needs beyond its meshes: per mesh of the scene
+// (Scene::meshes), the material whose picture it shows, or -1.
+struct ModelLook {
+    bool wanted = false;
+    std::vector<long> material;
+};
+
 void add_node(const aiScene &in, const aiNode &node, const aiMatrix4x4 &parent, Scene &out, const std::string &source,
-              const Warnings &warn)
+              const Warnings &warn, ModelLook &look)
 {
     const aiMatrix4x4 transform = parent * node.mTransformation;
     aiMatrix3x3 normal_matrix(transform);
@@ -125,14 +160,189 @@ void add_node(const aiScene &in, const aiNode &node, const aiMatrix4x4 &parent, 
         if (m.HasVertexColors(0))
             for (unsigned v = 0; v < m.mNumVertices; ++v)
                 mesh.colors.push_back(usable_colour(m.mColors[0][v], mesh.color));
-        if (mesh.indices.empty())
+        // The look: the coordinates of the material's diffuse picture
+        // (decoded later, once per picture, for the meshes kept).
+        long material = -1;
+        if (look.wanted && m.mMaterialIndex < in.mNumMaterials) {
+            const aiMaterial &mat = *in.mMaterials[m.mMaterialIndex];
+            const unsigned channel = diffuse_channel(mat);
+            if (!diffuse_picture(mat).empty() && m.HasTextureCoords(channel)) {
+                material = long(m.mMaterialIndex);
+                std::size_t bad = 0;
+                for (unsigned v = 0; v < m.mNumVertices; ++v) {
+                    const aiVector3D &t = m.mTextureCoords[channel][v];
+                    if (!std::isfinite(t.x) || !std::isfinite(t.y)) {
+                        mesh.texcoords.emplace_back(0.0f, 0.0f);
+                        ++bad;
+                        continue;
+                    }
+                    // assimp's coordinates have v up from the picture's
+                    // bottom row (OpenGL's convention); the look's pictures
+                    // are uploaded top row first (scene/scene.h: Image), so t = 1 - v.
+                    mesh.texcoords.emplace_back(t.x, 1.0f - t.y);
+                }
+                if (bad)
+                    warn(what + ": " + std::to_string(bad) + " of its " + std::to_string(m.mNumVertices) +
+                         " texture coordinates are not finite; read as 0");
+                // A picture without a diffuse colour is shown as it is,
+                // not tinted by the palette's stand-in hue.
+                aiColor4D diffuse;
+                if (mat.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) != aiReturn_SUCCESS)
+                    mesh.color = glm::vec3(1.0f);
+            }
+        }
+        if (mesh.indices.empty()) {
             warn(what + " holds no triangles (" + std::to_string(m.mNumVertices) + " vertices, " +
                  std::to_string(m.mNumFaces) + " faces); dropped");
-        else
+        } else {
             out.meshes.push_back(std::move(mesh));
+            if (look.wanted)
+                look.material.push_back(material);
+        }
     }
     for (unsigned c = 0; c < node.mNumChildren; ++c)
-        add_node(in, *node.mChildren[c], transform, out, source, warn);
+        add_node(in, *node.mChildren[c], transform, out, source, warn, look);
+}
+
+// Decodes `bytes` (any format stb_image reads) as RGBA8, top row first;
+// false with stb's reason in `why` when it cannot.
+bool decode_picture(const unsigned char *bytes, std::size_t size, Image &image, std::string &why)
+{
+    if (size == 0 || size > std::size_t(1) << 30) {
+        why = size ? "too large" : "empty";
+        return false;
+    }
+    int w = 0, h = 0, channels = 0;
+    stbi_uc *pixels = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
+    if (!pixels) {
+        why = stbi_failure_reason() ? stbi_failure_reason() : "not a picture stb_image reads";
+        return false;
+    }
+    image.width = w;
+    image.height = h;
+    image.rgba.assign(pixels, pixels + std::size_t(w) * std::size_t(h) * 4);
+    stbi_image_free(pixels);
+    return true;
+}
+
+// The file `name` in `directory`, matched without regard to case where no
+// file has exactly that name (models made on Windows name their pictures
+// in whatever case); empty when there is none.
+std::filesystem::path file_in(const std::filesystem::path &directory, const std::string &name)
+{
+    std::error_code error;
+    if (std::filesystem::is_regular_file(directory / name, error))
+        return directory / name;
+    auto lower = [](std::string t) {
+        for (char &c : t)
+            c = char(std::tolower(static_cast<unsigned char>(c)));
+        return t;
+    };
+    const std::string wanted = lower(name);
+    for (std::filesystem::directory_iterator it(directory, error), end; !error && it != end; it.increment(error))
+        if (lower(it->path().filename().string()) == wanted && it->is_regular_file(error))
+            return it->path();
+    return {};
+}
+
+// Where the picture a material names is: the file's embedded texture
+// ("*N", or one whose name matches; `embedded` set), else a file beside the
+// model: the path relative to the model's directory (Windows separators
+// read as '/', and a path from a Windows drive's root read as relative),
+// else its bare file name in the model's directory, each file name matched
+// without regard to case where no file has it exactly. Returns the place's
+// name (the first place tried, when none holds a file).
+std::string locate_picture(const aiScene &in, const std::string &model, const std::string &name,
+                           const aiTexture *&embedded)
+{
+    embedded = in.GetEmbeddedTexture(name.c_str());
+    if (embedded || (!name.empty() && name[0] == '*'))
+        return "embedded texture " + name;
+    std::string relative = name;
+    const bool windows = relative.find('\\') != std::string::npos;
+    std::replace(relative.begin(), relative.end(), '\\', '/');
+    if (windows)
+        relative.erase(0, relative.find_first_not_of('/'));
+    const std::filesystem::path directory = std::filesystem::path(model).parent_path();
+    const std::filesystem::path given = std::filesystem::path(relative).is_absolute() ? std::filesystem::path(relative)
+                                                                                    : directory / relative;
+    for (const std::filesystem::path &place : {given, directory / given.filename()}) {
+        const std::filesystem::path found = file_in(place.parent_path(), place.filename().string());
+        if (!found.empty())
+            return found.lexically_normal().string();
+    }
+    return given.lexically_normal().string();
+}
+
+// Decodes the picture at `where` (locate_picture); false with why in `why`.
+bool read_picture(const aiTexture *embedded, const std::string &where, Image &image, std::string &why)
+{
+    if (embedded) {
+        if (embedded->mHeight == 0)   // compressed: mWidth bytes of a PNG, JPEG, ...
+            return decode_picture(reinterpret_cast<const unsigned char *>(embedded->pcData), embedded->mWidth, image, why);
+        // Raw texels, BGRA, top row first.
+        image.width = int(embedded->mWidth);
+        image.height = int(embedded->mHeight);
+        image.rgba.clear();
+        for (std::size_t i = 0; i < std::size_t(embedded->mWidth) * embedded->mHeight; ++i) {
+            const aiTexel &t = embedded->pcData[i];
+            image.rgba.insert(image.rgba.end(), {t.r, t.g, t.b, t.a});
+        }
+        return true;
+    }
+    if (where.rfind("embedded texture ", 0) == 0) {
+        why = "the file embeds no such texture";
+        return false;
+    }
+    std::ifstream f(where, std::ios::binary);
+    if (!f) {
+        why = "no such file";
+        return false;
+    }
+    const std::vector<char> bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+    return decode_picture(reinterpret_cast<const unsigned char *>(bytes.data()), bytes.size(), image, why);
+}
+
+// Sets Mesh::image of the meshes whose material has a diffuse picture
+// (look.material), decoding each picture once (by where it is, whatever
+// the materials call it) and only those a kept mesh shows. A picture that
+// cannot be read leaves its meshes in their materials' colours (texture
+// coordinates dropped) and is named in a warning.
+void read_model_pictures(const aiScene &in, const std::string &path, Scene &out, const ModelLook &look,
+                         const Warnings &warn)
+{
+    std::map<std::string, std::int32_t> decoded;   // where the picture is -> Scene::images (-1: failed)
+    std::vector<std::string> failed;
+    for (std::size_t i = 0; i < out.meshes.size() && i < look.material.size(); ++i) {
+        Mesh &mesh = out.meshes[i];
+        if (look.material[i] < 0)
+            continue;
+        const std::string name = diffuse_picture(*in.mMaterials[look.material[i]]);
+        const aiTexture *embedded = nullptr;
+        const std::string where = locate_picture(in, path, name, embedded);
+        auto [it, fresh] = decoded.emplace(where, -1);
+        if (fresh) {
+            Image image;
+            std::string why;
+            if (read_picture(embedded, where, image, why)) {
+                image.name = where;
+                it->second = std::int32_t(out.images.size());
+                out.images.push_back(std::move(image));
+            } else {
+                failed.push_back("'" + name + "' (" + where + ": " + why + ")");
+            }
+        }
+        mesh.image = it->second;
+        if (mesh.image < 0)
+            mesh.texcoords.clear();
+    }
+    if (!failed.empty()) {
+        std::string names;
+        for (std::size_t i = 0; i < failed.size() && i < 5; ++i)
+            names += (i ? ", " : "") + failed[i];
+        warn("scene '" + path + "': " + std::to_string(failed.size()) + " of its materials' pictures cannot be read (" +
+             names + (failed.size() > 5 ? ", ..." : "") + "); their meshes drawn in their materials' colours");
+    }
 }
 
 // The file's own vertices, before post-processing: joining identical
@@ -257,9 +467,13 @@ Scene load_scene(const std::string &path, std::vector<std::string> *warnings, co
     if (!in || (in->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !in->mRootNode)
         throw std::runtime_error("cannot read scene '" + path + "': " + importer.GetErrorString());
     Scene out;
-    add_node(*in, *in->mRootNode, aiMatrix4x4(), out, "scene '" + path + "'", Warnings{warnings});
+    ModelLook look;
+    look.wanted = quake3.look;
+    add_node(*in, *in->mRootNode, aiMatrix4x4(), out, "scene '" + path + "'", Warnings{warnings}, look);
     if (out.triangle_count() == 0)
         throw std::runtime_error("scene '" + path + "' holds no triangles");
+    if (look.wanted)
+        read_model_pictures(*in, path, out, look, Warnings{warnings});
     // Node transforms can take finite vertices beyond float range.
     require_finite_vertices(out, "scene '" + path + "' (its node transforms applied)");
     out.update_bounds();

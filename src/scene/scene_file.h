@@ -25,6 +25,20 @@ namespace occu {
 // (0, 1, 0). Warnings go to `warnings` when given, standard error
 // ("occu: warning: ...") otherwise.
 //
+// With `quake3.look` (the look a scene calls for, render/scene_renderer.h:
+// Look::scene; the flag every program sets from its --look, for models as
+// for levels), a mesh whose material names a diffuse picture (glTF: its
+// base colour's) gets that picture (Mesh::image, Scene::images) and its
+// texture coordinates (Mesh::texcoords), drawn times its material's diffuse
+// colour (white where the material gives the picture alone). A picture is
+// the file's embedded texture or a file beside the model (its path as a
+// model made on Windows writes it, matched regardless of case where need
+// be); it is decoded
+// with stb_image once, and only when a mesh that is kept shows it. One that
+// cannot be read leaves its meshes in their materials' colours, named in a
+// warning. A model whose materials have no pictures (the IFC house) is the
+// same in both looks: its materials' colours.
+//
 // Quake III levels (scene/quake3_bsp.h) occu reads itself: a path
 // "ARCHIVE.pk3:maps/NAME.bsp" names a level inside a pk3 archive
 // (scene/pk3_archive.h), and a file ending .bsp, or beginning "IBSP", is

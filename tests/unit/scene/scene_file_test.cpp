@@ -6,10 +6,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "image/png.h"
 
 using namespace occu;
 
@@ -444,4 +447,145 @@ TEST(LoadScene, BinaryPlyListPastTheEndIsRefused)
     EXPECT_NE(message.find(path), std::string::npos) << message;
     EXPECT_NE(message.find("a list of 200 items in instance 0 of element 1 runs past the end"), std::string::npos)
         << message;
+}
+
+// A model's look (quake3.look): its materials' diffuse pictures.
+
+namespace {
+// A 4x4 picture whose quadrants (2x2 texels each) are one colour: top left,
+// top right, bottom left, bottom right; top row first.
+const std::uint8_t quadrant_colours[4][4] = {{220, 30, 30, 255}, {30, 200, 40, 255}, {40, 50, 210, 255}, {230, 220, 60, 255}};
+std::vector<std::uint8_t> quadrant_picture()
+{
+    std::vector<std::uint8_t> rgba;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            const std::uint8_t *c = quadrant_colours[(y >= 2 ? 2 : 0) + (x >= 2 ? 1 : 0)];
+            rgba.insert(rgba.end(), c, c + 4);
+        }
+    return rgba;
+}
+
+Quake3Options with_look()
+{
+    Quake3Options o;
+    o.look = true;
+    return o;
+}
+}  // namespace
+
+TEST(LoadScene, ModelLookDecodesEachShownPictureOnceWithItsCoordinates)
+{
+    const std::string dir = temp("look_dir");
+    std::filesystem::create_directories(dir + "/pictures");
+    const std::vector<std::uint8_t> picture = quadrant_picture();
+    write_png(dir + "/pictures/quads.png", 4, 4, picture.data(), false);
+    // "painted" and "windows" name the same file (the second as a model
+    // made on Windows may: from the drive's root, with its separators, the
+    // file name in another case); "unused" names a missing one that no face
+    // uses; "bare" has no picture.
+    write(dir + "/m.mtl", "newmtl painted\nKd 0.5 0.25 1.0\nmap_Kd pictures/quads.png\n"
+                          "newmtl windows\nKd 1 1 1\nmap_Kd \\pictures\\QUADS.png\n"
+                          "newmtl unused\nKd 1 1 1\nmap_Kd nowhere-at-all.png\n"
+                          "newmtl bare\nKd 0.3 0.6 0.9\n");
+    // Texture coordinates (x, y) at position (x, y, z), so what each vertex
+    // must carry is known from its position alone.
+    write(dir + "/m.obj", "mtllib m.mtl\n"
+                          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.25 0.75 1\n"
+                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.25 0.75\n"
+                          "o a\nusemtl painted\nf 1/1 2/2 3/3\n"
+                          "o b\nusemtl windows\nf 1/1 3/3 4/4\n"
+                          "o c\nusemtl bare\nf 1/1 2/2 5/5\n");
+    std::vector<std::string> warnings;
+    const Scene s = load_scene(dir + "/m.obj", &warnings, with_look());
+    std::vector<std::string> flat_warnings;
+    const Scene flat = load_scene(dir + "/m.obj", &flat_warnings);
+    std::filesystem::remove_all(dir);
+
+    EXPECT_TRUE(warnings.empty()) << "the unused material's picture is never looked for: " << warnings.front();
+    ASSERT_EQ(s.images.size(), 1u) << "one file, decoded once";
+    EXPECT_EQ(s.images[0].width, 4);
+    EXPECT_EQ(s.images[0].height, 4);
+    EXPECT_EQ(s.images[0].rgba, picture) << "top row first, as written";
+    ASSERT_EQ(s.meshes.size(), 3u);
+    for (const Mesh &m : s.meshes) {
+        if (m.name == "c") {
+            EXPECT_EQ(m.image, -1);
+            EXPECT_TRUE(m.texcoords.empty());
+            EXPECT_EQ(m.color, glm::vec3(0.3f, 0.6f, 0.9f));
+            continue;
+        }
+        EXPECT_EQ(m.image, 0) << m.name;
+        ASSERT_EQ(m.texcoords.size(), m.positions.size()) << m.name;
+        for (std::size_t i = 0; i < m.positions.size(); ++i) {
+            // assimp's v runs up from the picture's bottom; the picture is
+            // uploaded top row first, so the look's t is 1 - v.
+            EXPECT_FLOAT_EQ(m.texcoords[i].x, m.positions[i].x) << m.name << " vertex " << i;
+            EXPECT_FLOAT_EQ(m.texcoords[i].y, 1.0f - m.positions[i].y) << m.name << " vertex " << i;
+        }
+        EXPECT_EQ(m.color, m.name == "a" ? glm::vec3(0.5f, 0.25f, 1.0f) : glm::vec3(1.0f)) << m.name;
+    }
+    // Without the look nothing is decoded and no coordinates kept.
+    EXPECT_TRUE(flat_warnings.empty());
+    EXPECT_TRUE(flat.images.empty());
+    for (const Mesh &m : flat.meshes) {
+        EXPECT_TRUE(m.texcoords.empty());
+        EXPECT_EQ(m.image, -1);
+    }
+}
+
+TEST(LoadScene, ModelPictureThatCannotBeReadIsNamedAndItsMeshKeepsItsColour)
+{
+    const std::string dir = temp("look_bad");
+    std::filesystem::create_directories(dir);
+    write(dir + "/garbage.png", "not a picture at all");
+    write(dir + "/m.mtl", "newmtl gone\nKd 0.2 0.4 0.6\nmap_Kd missing-picture.jpg\n"
+                          "newmtl broken\nKd 0.6 0.4 0.2\nmap_Kd garbage.png\n");
+    write(dir + "/m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                          "o gone\nusemtl gone\nf 1/1 2/2 3/3\no broken\nusemtl broken\nf 1/1 3/3 4/4\n");
+    std::vector<std::string> warnings;
+    Scene s;
+    ASSERT_NO_THROW(s = load_scene(dir + "/m.obj", &warnings, with_look()));
+    std::filesystem::remove_all(dir);
+
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("missing-picture.jpg"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("no such file"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("garbage.png"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("m.obj"), std::string::npos) << "names the model: " << warnings[0];
+    EXPECT_TRUE(s.images.empty());
+    ASSERT_EQ(s.meshes.size(), 2u);
+    for (const Mesh &m : s.meshes) {
+        EXPECT_EQ(m.image, -1) << m.name;
+        EXPECT_TRUE(m.texcoords.empty()) << m.name;
+        EXPECT_EQ(m.color, m.name == "gone" ? glm::vec3(0.2f, 0.4f, 0.6f) : glm::vec3(0.6f, 0.4f, 0.2f)) << m.name;
+    }
+}
+
+// A .glb's picture is embedded in the file; the same model as .gltf names
+// it as a file beside it. Both read with the look give the picture libpng
+// decodes from that file (image/png.h), by another decoder than stb_image.
+TEST(LoadScene, ModelPictureEmbeddedInAGlbIsTheFileBesideItsGltf)
+{
+    const std::string models = "/usr/share/assimp/models/glTF2/";
+    const std::string glb = models + "BoxTextured-glTF-Binary/BoxTextured.glb",
+                      gltf = models + "BoxTextured-glTF/BoxTextured.gltf",
+                      png = models + "BoxTextured-glTF/CesiumLogoFlat.png";
+    if (!std::filesystem::exists(glb) || !std::filesystem::exists(gltf) || !std::filesystem::exists(png))
+        GTEST_SKIP() << "assimp-testmodels' BoxTextured is not installed (tools/deps.sh test installs it)";
+    std::vector<std::string> warnings;
+    const Scene embedded = load_scene(glb, &warnings, with_look()), beside = load_scene(gltf, &warnings, with_look());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    int width = 0, height = 0;
+    const std::vector<std::uint8_t> expected = read_png(png, width, height);
+    for (const Scene *s : {&embedded, &beside}) {
+        ASSERT_EQ(s->images.size(), 1u);
+        EXPECT_EQ(s->images[0].width, width);
+        EXPECT_EQ(s->images[0].height, height);
+        EXPECT_EQ(s->images[0].rgba, expected);
+        for (const Mesh &m : s->meshes) {
+            EXPECT_EQ(m.image, 0);
+            EXPECT_EQ(m.texcoords.size(), m.positions.size());
+        }
+    }
 }
