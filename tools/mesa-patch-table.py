@@ -20,12 +20,13 @@ import os
 import re
 import sys
 
+import mesa_series
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SERIES_DIR = os.path.join(ROOT, "patches", "mesa")
 DOC = os.path.join(ROOT, "docs", "mesa.md")
 BEGIN = "<!-- patch table: tools/mesa-patch-table.py writes it -->"
 END = "<!-- end of the patch table -->"
-PART = re.compile(r"^#\s*part\s+([A-Za-z0-9_-]+):")
 
 
 def subject(text):
@@ -60,28 +61,17 @@ def diff_counts(text):
 
 def table():
     rows = ["| # | part | patch | files | lines |", "|---|---|---|---|---|"]
-    part = "base"
-    number = 0
-    with open(os.path.join(SERIES_DIR, "series"), encoding="utf-8") as f:
-        for line in f:
-            m = PART.match(line)
-            if m:
-                part = m.group(1)
-                continue
-            name = line.split("#")[0].strip()
-            if not name:
-                continue
-            number += 1
-            with open(os.path.join(SERIES_DIR, name), encoding="utf-8") as p:
-                text = p.read()
-            summary = subject(text)
-            if summary is None:
-                sys.exit(f"patches/mesa/{name}: no Subject line")
-            files, new, added, deleted = diff_counts(text)
-            added_files = ", ".join(f"`{os.path.basename(n)}`" for n in new)
-            what = f"{files}" + (f"; adds {added_files}" if added_files else "")
-            rows.append(f"| {number:04d} | {part} | {summary.replace('|', '/')} | {what} | "
-                        f"+{added} -{deleted} |")
+    for number, (name, part) in enumerate(mesa_series.patches(SERIES_DIR), 1):
+        with open(os.path.join(SERIES_DIR, name), encoding="utf-8") as p:
+            text = p.read()
+        summary = subject(text)
+        if summary is None:
+            sys.exit(f"patches/mesa/{name}: no Subject line")
+        files, new, added, deleted = diff_counts(text)
+        added_files = ", ".join(f"`{os.path.basename(n)}`" for n in new)
+        what = f"{files}" + (f"; adds {added_files}" if added_files else "")
+        rows.append(f"| {number:04d} | {part} | {summary.replace('|', '/')} | {what} | "
+                    f"+{added} -{deleted} |")
     return "\n".join(rows) + "\n"
 
 

@@ -24,6 +24,8 @@ import os
 import re
 import sys
 
+import mesa_series
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SPEC_DIR = os.path.join(ROOT, "spec")
 TARGET = re.compile(r"^diff --git a/docs/_extra/specs/(\S+\.txt) b/docs/_extra/specs/\1$", re.M)
@@ -85,9 +87,7 @@ def main():
     if len(sys.argv) in (2, 3) and sys.argv[1] == "--check":
         series_dir = sys.argv[2] if len(sys.argv) == 3 else os.path.join(ROOT, "patches", "mesa")
         found, failures = set(), []
-        with open(os.path.join(series_dir, "series"), encoding="utf-8") as f:
-            names = [line.split("#")[0].strip() for line in f]
-        for patch in filter(None, names):
+        for patch, _ in mesa_series.patches(series_dir):
             with open(os.path.join(series_dir, patch), encoding="utf-8") as f:
                 _, diffs, _ = split_patch(f.read())
             name = spec_name(diffs)

@@ -29,6 +29,8 @@ import sys
 import tempfile
 from collections import defaultdict
 
+import mesa_series
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -38,13 +40,7 @@ def git(repo, *args, env=None, input=None):
 
 
 def series_patches():
-    patches = []
-    with open(os.path.join(ROOT, "patches/mesa/series")) as f:
-        for line in f:
-            line = line.split("#", 1)[0].strip()
-            if line:
-                patches.append(line)
-    return patches
+    return [name for name, _ in mesa_series.patches(os.path.join(ROOT, "patches", "mesa"))]
 
 
 def commit_series(repo, patches):
