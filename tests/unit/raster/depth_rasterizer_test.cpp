@@ -215,6 +215,48 @@ TEST_P(DepthRasterizerAgainstGl, CoversOnlyWhatGlCoversAndNeverNearer)
     EXPECT_GT(double(covered) * divisor * divisor, 0.5 * double(gl_covered));
 }
 
+// Boxes (render_box: their faces and their silhouette) cover only depth
+// pixels GL covers at full resolution drawing their faces, never nearer:
+// random boxes, some reaching past the guard band or across the near
+// plane, alone and in crowds; and corner-on boxes, whose faces leave the
+// pixels along their nearest edge to the silhouette.
+TEST_P(DepthRasterizerAgainstGl, BoxesCoverOnlyWhatGlCoversAndNeverNearer)
+{
+    const int divisor = GetParam();
+    gl::OffscreenContext ctx(frame_size, frame_size);
+    const Camera camera = test_camera();
+    const glm::mat4 vp = camera.view_projection();
+    std::mt19937 rng(4321u + unsigned(divisor));
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    DepthRasterizer r;
+    long covered = 0, gl_covered = 0;
+    for (int per_pixel = 0; per_pixel < 2; ++per_pixel)
+        for (int trial = 0; trial < 80; ++trial) {
+            Polygons p;
+            std::vector<Aabb> boxes;
+            for (int b = 0; b < (trial % 4 == 0 ? 12 : 1); ++b) {
+                const glm::vec3 centre{unit(rng) * 12 - 6, unit(rng) * 12 - 6, 1.0f - unit(rng) * 14};
+                const glm::vec3 half{0.05f + unit(rng) * 3, 0.05f + unit(rng) * 3, 0.05f + unit(rng) * 3};
+                boxes.push_back(Aabb::of(centre - half, centre + half));
+            }
+            r.begin(vp, frame_size, frame_size, {divisor, per_pixel == 1});
+            for (const Aabb &box : boxes) {
+                r.render_box(box);
+                for (const auto &face : aabb_faces)
+                    for (int corner : face) {
+                        p.quads.push_back(std::uint32_t(p.positions.size()));
+                        p.positions.push_back(box.corner(corner));
+                    }
+            }
+            const Comparison c = compare(r, gl_depth(p, camera));
+            ASSERT_EQ(c.violations, 0) << "divisor " << divisor << (per_pixel ? " per-pixel" : " per-polygon")
+                                       << " trial " << trial << ": " << c.first;
+            covered += c.covered;
+            gl_covered += c.gl_covered;
+        }
+    EXPECT_GT(double(covered) * divisor * divisor, 0.5 * double(gl_covered));
+}
+
 // A box the box test calls occluded shows no fragment of its faces in GL
 // at full resolution behind the same occluders, so nothing inside it can
 // show either; and the box test settles more boxes than the rectangle.
