@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/glm.hpp>
@@ -563,6 +565,101 @@ std::size_t SceneSkins::box_count() const
     return n;
 }
 
+namespace {
+
+// A mesh that is another moved without turning (the copies of a scene,
+// such as the city's --city-copies) has that mesh's skins moved with it:
+// a skin box lies clear of the first mesh's surface by the voxel test's
+// tolerance, and inside it; moved by t, it lies as far from the first
+// mesh moved by t, and the second mesh's vertices lie within `off` of
+// those (each coordinate), so its surface, every point a convex
+// combination of its vertices, lies within `off` too: the box stays clear
+// of it and inside it (its winding number cannot change while no surface
+// crosses the box) as long as `off` is below the tolerance. Half of it is
+// allowed, the other half left for the corners' rounding to float, which
+// rounds inwards here.
+struct Translation {
+    std::uint32_t of = 0;   // the first mesh of the shape
+    Vec by{0.0};
+};
+
+std::optional<Vec> translation(const Mesh &from, const Mesh &to, double voxel)
+{
+    if (from.occluder != to.occluder || from.indices != to.indices || from.positions.size() != to.positions.size() ||
+        from.positions.empty())
+        return std::nullopt;
+    for (std::uint32_t i : from.indices)
+        if (i >= from.positions.size())
+            return std::nullopt;
+    const Vec by = Vec(to.positions[0]) - Vec(from.positions[0]);
+    // The vertices the triangles use, as voxelize measures them.
+    double magnitude = 0.0;
+    for (std::uint32_t i : from.indices) {
+        const Vec p = glm::abs(Vec(from.positions[i]));
+        magnitude = std::max({magnitude, p.x, p.y, p.z});
+    }
+    // voxelize's tolerance for `from`, halved.
+    const double allowed = 0.5 * (1e-3 * voxel + 1e-6 * magnitude);
+    for (std::uint32_t i : from.indices) {
+        const Vec off = glm::abs(Vec(to.positions[i]) - Vec(from.positions[i]) - by);
+        if (!(std::max({off.x, off.y, off.z}) <= allowed))
+            return std::nullopt;
+    }
+    return by;
+}
+
+// Each mesh that some earlier mesh of the scene moves onto, the earliest
+// such: found over the whole scene, so that every shard gives a mesh the
+// same skins.
+std::vector<std::optional<Translation>> translated_copies(const Scene &scene, double voxel)
+{
+    // Candidates share indices and the shape about their first vertex to a
+    // centimetre: a key that rounds two copies apart only loses the sharing.
+    std::map<std::uint64_t, std::vector<std::uint32_t>> shapes;
+    std::vector<std::optional<Translation>> out(scene.meshes.size());
+    for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh &mesh = scene.meshes[m];
+        if (mesh.positions.empty())
+            continue;
+        std::uint64_t h = 1469598103934665603ull;
+        auto add = [&](std::uint64_t v) { h = (h ^ v) * 1099511628211ull; };
+        add(mesh.positions.size());
+        for (std::uint32_t i : mesh.indices)
+            add(i);
+        const Vec first(mesh.positions[0]);
+        for (const glm::vec3 &p : mesh.positions) {
+            const glm::dvec3 r = glm::round((Vec(p) - first) * 100.0);
+            add(std::uint64_t(std::int64_t(r.x))), add(std::uint64_t(std::int64_t(r.y))), add(std::uint64_t(std::int64_t(r.z)));
+        }
+        auto &same = shapes[h];
+        for (std::uint32_t earlier : same)
+            if (const auto by = translation(scene.meshes[earlier], mesh, voxel)) {
+                out[m] = Translation{earlier, *by};
+                break;
+            }
+        if (!out[m])
+            same.push_back(m);
+    }
+    return out;
+}
+
+Aabb translated_inwards(const Aabb &box, const Vec &by)
+{
+    const Vec lo = Vec(box.min) + by, hi = Vec(box.max) + by;
+    glm::vec3 min, max;
+    for (int a = 0; a < 3; ++a) {
+        min[a] = float(lo[a]);
+        if (double(min[a]) < lo[a])
+            min[a] = std::nextafter(min[a], std::numeric_limits<float>::infinity());
+        max[a] = float(hi[a]);
+        if (double(max[a]) > hi[a])
+            max[a] = std::nextafter(max[a], -std::numeric_limits<float>::infinity());
+    }
+    return Aabb::of(min, max);
+}
+
+}  // namespace
+
 SceneSkins scene_skins(const Scene &scene, const SkinOptions &options, int shard, int shards,
                        const std::function<void(std::size_t, std::size_t)> &progress)
 {
@@ -575,14 +672,38 @@ SceneSkins scene_skins(const Scene &scene, const SkinOptions &options, int shard
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         if (int(m % std::size_t(shards)) == shard - 1)
             meshes.push_back(std::uint32_t(m));
+    const auto copies = translated_copies(scene, double(options.voxel_size));
+    // The skins of the first mesh of each shape this shard needs: made once.
+    std::map<std::uint32_t, std::optional<std::vector<Aabb>>> made;
+    std::map<std::uint32_t, std::string> made_why;
+    auto skins_of = [&](std::uint32_t m) -> const std::optional<std::vector<Aabb>> & {
+        auto it = made.find(m);
+        if (it == made.end())
+            it = made.emplace(m, occluder_skins(scene.meshes[m], options, &made_why[m])).first;
+        return it->second;
+    };
     SceneSkins out;
     for (std::size_t k = 0; k < meshes.size(); ++k) {
-        const Mesh &mesh = scene.meshes[meshes[k]];
+        const std::uint32_t m = meshes[k];
+        const Mesh &mesh = scene.meshes[m];
+        std::optional<std::vector<Aabb>> boxes;
         std::string why;
-        if (auto boxes = occluder_skins(mesh, options, &why))
-            out.skins.push_back({meshes[k], std::move(*boxes)});
+        // A copy of a mesh without skins is made on its own: the reason
+        // names places of the mesh it is about.
+        if (copies[m] && skins_of(copies[m]->of)) {
+            boxes.emplace();
+            for (const Aabb &b : *skins_of(copies[m]->of)) {
+                const Aabb moved = translated_inwards(b, copies[m]->by);
+                if (moved.min.x < moved.max.x && moved.min.y < moved.max.y && moved.min.z < moved.max.z)
+                    boxes->push_back(moved);
+            }
+        } else {
+            boxes = occluder_skins(mesh, options, &why);
+        }
+        if (boxes)
+            out.skins.push_back({m, std::move(*boxes)});
         else
-            out.skipped.push_back({meshes[k], mesh.name, why});
+            out.skipped.push_back({m, mesh.name, why});
         if (progress)
             progress(k + 1, meshes.size());
     }

@@ -284,6 +284,86 @@ void DepthRasterizer::render_box(const Aabb &box)
             quad[i] = corners[face[i]];
         polygon(quad, 4, nullptr, error);
     }
+    // Covering whole depth pixels, the faces leave the depth pixels along
+    // the edges where they meet uncovered (none holds all its samples in
+    // one face), and a box seen corner-on, as a street's corner building
+    // is, lets everything behind its nearest edge through. Merged coverage
+    // joins the faces' samples there (Masked Occlusion Culling's rule);
+    // here the box's silhouette, the hull of its corners on screen (a
+    // convex box seen from outside covers exactly that), is drawn too, at
+    // its farthest corner's depth, which no point of its faces is beyond.
+    if (!options_.merge_partial_coverage)
+        silhouette(corners);
+}
+
+void DepthRasterizer::silhouette(const glm::vec4 *corners)
+{
+    // In double: corners beyond the guard band may lie far out.
+    const double sx = 0.5 * double(frame_width_) / options_.divisor;
+    const double sy = 0.5 * double(frame_height_) / options_.divisor;
+    glm::dvec2 window[8];
+    float farthest = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec4 &v = corners[i];
+        // Every corner in front of the near plane, or the faces alone: a
+        // corner behind it has no place on screen (and a box around the
+        // eye has corners behind it; none of its faces faces the eye).
+        if (!std::isfinite(v.x + v.y + v.z + v.w) || !(v.w > 0.0f) || v.z < -v.w)
+            return;
+        window[i] = {(double(v.x) / v.w + 1.0) * sx, (double(v.y) / v.w + 1.0) * sy};
+        // As polygon() puts each face's corners.
+        const float inv = 1.0f / v.w;
+        farthest = std::max(farthest, v.z * inv * 0.5f + 0.5f);
+    }
+    // The hull, counter-clockwise (y up), by Andrew's monotone chain;
+    // collinear corners dropped. A box's hull has at most six corners.
+    std::sort(window, window + 8, [](const glm::dvec2 &a, const glm::dvec2 &b) {
+        return a.x < b.x || (a.x == b.x && a.y < b.y);
+    });
+    auto turn = [](const glm::dvec2 &o, const glm::dvec2 &a, const glm::dvec2 &b) {
+        return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
+    glm::dvec2 hull[2 * max_edges], clipped[2 * max_edges];
+    int n = 0;
+    for (int i = 0; i < 8; ++i) {
+        while (n >= 2 && turn(hull[n - 2], hull[n - 1], window[i]) <= 0.0)
+            --n;
+        hull[n++] = window[i];
+    }
+    for (int i = 6, lower = n + 1; i >= 0; --i) {
+        while (n >= lower && turn(hull[n - 2], hull[n - 1], window[i]) <= 0.0)
+            --n;
+        hull[n++] = window[i];
+    }
+    --n;   // the first corner, again at the end
+    // Sutherland-Hodgman against the guard band, as polygon() clips: a
+    // clipped vertex lies on the hull's edge up to rounding far below the
+    // edge margin.
+    const double lo[2] = {(1.0 - guard) * sx, (1.0 - guard) * sy}, hi[2] = {(1.0 + guard) * sx, (1.0 + guard) * sy};
+    for (int side = 0; side < 4 && n >= 3; ++side) {
+        const int axis = side / 2;
+        auto inside = [&](const glm::dvec2 &p) { return side % 2 ? hi[axis] - p[axis] : p[axis] - lo[axis]; };
+        int m = 0;
+        for (int i = 0; i < n; ++i) {
+            const glm::dvec2 &p = hull[i], &q = hull[(i + 1) % n];
+            const double dp = inside(p), dq = inside(q);
+            if (dp >= 0.0)
+                clipped[m++] = p;
+            if ((dp >= 0.0) != (dq >= 0.0))
+                clipped[m++] = p + dp / (dp - dq) * (q - p);
+        }
+        n = m;
+        std::copy(clipped, clipped + n, hull);
+    }
+    if (n < 3 || n > max_edges)
+        return;
+    glm::vec2 points[max_edges];
+    float depth[max_edges];
+    for (int i = 0; i < n; ++i) {
+        points[i] = glm::vec2(hull[i]);
+        depth[i] = farthest;
+    }
+    rasterize(points, depth, n);
 }
 
 void DepthRasterizer::polygon(const glm::vec4 *clip, int count, const glm::vec3 *across, TransformError error)

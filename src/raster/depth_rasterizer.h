@@ -189,6 +189,9 @@ private:
     void add_transform_error(const glm::dmat4 &m, const glm::dvec3 &p, const glm::dvec4 &c, TransformError &e) const;
 
     void polygon(const glm::vec4 *clip, int count, const glm::vec3 *across = nullptr, TransformError error = {});
+    // A box's silhouette from its eight corners' clip positions, at its
+    // farthest corner's depth, where no corner needs clipping (render_box).
+    void silhouette(const glm::vec4 *corners);
     void rasterize(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across = nullptr,
                    TransformError error = {});
     // Merged coverage: whether every depth pixel the polygon (or a sample

@@ -12,8 +12,9 @@
 namespace occu::raster {
 
 // A triangle or quad clipped by the near plane and the four guard-band
-// planes has at most 4 + 5 edges.
-constexpr int max_edges = 9;
+// planes has at most 4 + 5 edges; a box's silhouette (six corners) clipped
+// by the guard band, 6 + 4.
+constexpr int max_edges = 10;
 constexpr int tile_size = 8;   // tiles of 8 x 8 depth pixels, 8 lanes per row
 constexpr int tile_pixels = tile_size * tile_size;
 

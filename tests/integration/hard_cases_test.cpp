@@ -389,6 +389,33 @@ HardCase sub_pixel_leaves_case()
     return c;
 }
 
+// A building seen corner-on a few hundred metres away, as the copied
+// city's corner buildings are from a crossing: its two faces meet along
+// the edge nearest the eye, along which depth pixels of several frame
+// pixels are covered by neither face wholly, and at that distance the
+// window depths of the building and of what stands 30 m behind it differ
+// by about 1e-6, the size of the depth margins. A row of pillars behind
+// the edge (hidden), one just in front of it and one beside the building
+// (seen).
+HardCase corner_on_far_from_the_eye_case()
+{
+    SceneBuilder b;
+    b.box({-50, -1, -450}, {450, 0, 50});   // ground
+    const double edge = 300.0 / std::sqrt(2.0);
+    b.box({edge, 0, -edge - 40}, {edge + 40, 60, -edge});   // the building
+    for (int i = 1; i <= 6; ++i) {
+        const double at = edge + 8.0 * i + 45.0;   // along the diagonal, behind the building
+        b.box({at - 1, 0, -at - 1}, {at + 1, 8, -at + 1});
+    }
+    const double front = edge - 4.0;
+    b.box({front - 1, 0, -front - 1}, {front + 1, 3, -front + 1});
+    b.box({edge - 30, 0, -edge + 10}, {edge - 28, 20, -edge + 12});
+    HardCase c{b.build(), camera({0, 1.7f, 0}, {1, 1.7f, -1}, 0.5f, 4000.0f)};
+    c.width = c.height = 256;
+    c.hierarchy = leaves_of(12);
+    return c;
+}
+
 HardCase zero_area_triangles_case()
 {
     // Triangles with collinear corners and with a repeated corner, in
@@ -595,6 +622,7 @@ const std::vector<NamedCase> hard_cases = {
     {"SceneTranslated1e7OnItsMetreGrid", [] { return translated_metre_grid_case(1e7); }},
     {"NearFarRatio1eMinus4", [] { return near_far_ratio_case(1e-2f); }},
     {"NearFarRatio1eMinus6", [] { return near_far_ratio_case(1e-4f); }},
+    {"CornerOnBuildingFarFromTheEye", corner_on_far_from_the_eye_case},
     {"CoplanarOccluderAndOccludeeFacesHeadOn", coplanar_faces_head_on_case},
     {"CoplanarOccluderAndOccludeeFacesObliquely", coplanar_faces_obliquely_case},
     {"SubPixelLeaves", sub_pixel_leaves_case},

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -249,6 +250,85 @@ TEST(OccluderSkins, SmallCityBuildingsAreWatertightAndSkinsLieInsideTheirBodies)
             EXPECT_GT(skin_volume, 0.75f * volume(body)) << "mesh " << m.mesh;
         }
     }
+}
+
+bool same_boxes(const std::vector<Aabb> &a, const std::vector<Aabb> &b)
+{
+    if (a.size() != b.size())
+        return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].min != b[i].min || a[i].max != b[i].max)
+            return false;
+    return true;
+}
+
+// The copies of the city's grid are its buildings moved without turning:
+// each copy gets its first copy's skins moved with it, never reaching out
+// of its own body (each corner rounded inwards), and a mesh that is a copy
+// but for one vertex moved by more than the voxel test's tolerance gets
+// skins of its own, as occluder_skins makes them.
+TEST(OccluderSkins, CopiesOfAMeshGetItsSkinsMovedInsideTheirOwnBodies)
+{
+    CityOptions city;
+    city.blocks_x = city.blocks_z = 1;
+    city.copies = 2;
+    Scene scene = generate_city(city);
+    const std::size_t per_copy = (scene.meshes.size() - 1) / 4;   // the ground is one mesh for all copies
+    ASSERT_EQ(scene.meshes.size(), 4 * per_copy + 1);
+    // The last building of the last copy, one vertex moved 1 mm.
+    std::uint32_t bent_index = std::uint32_t(scene.meshes.size() - 1);
+    while (scene.meshes[bent_index].name == "ground")
+        --bent_index;
+    scene.meshes[bent_index].positions[0].y += 1e-3f;
+    const SkinOptions options;
+    const SceneSkins all = scene_skins(scene, options);
+    for (const SkinReport &r : all.skipped)
+        ADD_FAILURE() << r.message();
+    std::map<std::uint32_t, const MeshSkins *> by_mesh;
+    for (const MeshSkins &m : all.skins)
+        by_mesh[m.mesh] = &m;
+    std::mt19937 rng(11);
+    std::size_t moved = 0;
+    for (const MeshSkins &m : all.skins) {
+        const Mesh &mesh = scene.meshes[m.mesh];
+        if (mesh.name == "ground")
+            continue;
+        Aabb body;
+        for (std::size_t i = 0; i < 24; ++i)
+            body.expand(mesh.positions[i]);
+        for (const Aabb &b : m.boxes) {
+            EXPECT_TRUE(within(b, body)) << "mesh " << m.mesh << ": a skin pokes out of the body";
+            EXPECT_EQ(points_outside(mesh, b, 200, rng), 0) << "mesh " << m.mesh;
+        }
+        if (m.mesh == bent_index) {
+            EXPECT_TRUE(same_boxes(m.boxes, skins_of(mesh, options))) << "the bent copy's skins are not its own";
+            continue;
+        }
+        // The first copy's mesh of the same shape: its skins moved by the
+        // difference of their first vertices, to within a float step.
+        for (const auto &[index, first] : by_mesh) {
+            const Mesh &f = scene.meshes[index];
+            if (index >= m.mesh || f.indices != mesh.indices || f.positions.size() != mesh.positions.size())
+                continue;
+            const glm::dvec3 by = glm::dvec3(mesh.positions[0]) - glm::dvec3(f.positions[0]);
+            if (glm::length(glm::dvec3(mesh.positions[5]) - glm::dvec3(f.positions[5]) - by) > 1e-3)
+                continue;
+            ASSERT_EQ(first->boxes.size(), m.boxes.size()) << "mesh " << m.mesh << " of mesh " << index;
+            for (std::size_t b = 0; b < m.boxes.size(); ++b)
+                for (int a = 0; a < 3; ++a) {
+                    const double step = 4.0 * std::abs(by[a] + double(first->boxes[b].max[a])) * 6e-8;
+                    EXPECT_NEAR(double(m.boxes[b].min[a]), double(first->boxes[b].min[a]) + by[a], step);
+                    EXPECT_NEAR(double(m.boxes[b].max[a]), double(first->boxes[b].max[a]) + by[a], step);
+                }
+            ++moved;
+            break;
+        }
+    }
+    EXPECT_EQ(moved, 3 * per_copy - 1) << "every later copy's building but the bent one";
+    // Shards give every mesh the same skins.
+    const SceneSkins odd = scene_skins(scene, options, 2, 2);
+    for (const MeshSkins &m : odd.skins)
+        EXPECT_TRUE(same_boxes(m.boxes, by_mesh.at(m.mesh)->boxes)) << "mesh " << m.mesh;
 }
 
 TEST(OccluderSkins, RotatedCubeSkinsLieInsideEveryFacePlane)
