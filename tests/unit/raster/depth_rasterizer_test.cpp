@@ -698,7 +698,7 @@ TEST(DepthRasterizer, MergedCoverageJoinsAcrossBuffers)
 // A triangle nearly edge-on to the eye: which way it faces is decided by
 // rounding, GL's (its own float transform, vertices snapped to 1/256
 // pixel) and the test's (double, from the float matrix), which need not
-// agree. The IFC house's sliver (AC14-FZK-Haus.ifc, a sill 0.6 mm wide)
+// agree. The IFC house's sliver (AC14-FZK-Haus.ifc, 0.6 mm wide, of a strip 1.2 m long)
 // seen from random eye 48 of random:100:2026 at 1280 x 720, and that eye
 // moved up and down, by 0.1 mm steps up to 2 cm (past where the triangle
 // turns to face it, 9 mm up) and by 5 mm steps up to 50 cm: wherever GL
