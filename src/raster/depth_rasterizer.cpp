@@ -1064,22 +1064,42 @@ bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::
     return true;
 }
 
-bool DepthRasterizer::polygon_behind(const glm::dvec2 *p, const double *z, int n, double floor_z,
+bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *corner_z, int n, double floor_z,
                                      double grow_more) const
 {
-    double area = 0.0;
-    glm::dvec2 lo(1e300), hi(-1e300);
-    for (int i = 0; i < n; ++i) {
-        area += p[i].x * p[(i + 1) % n].y - p[(i + 1) % n].x * p[i].y;
-        lo = glm::min(lo, p[i]);
-        hi = glm::max(hi, p[i]);
-    }
-    if (!(area > 0.0))
-        return true;   // faces away: GL culls it
-    // Every depth pixel whose square the polygon reaches, grown by the
-    // edge margin.
+    // How far GL may put each corner from ours, in buffer pixels.
     const double k = options_.divisor;
     const double grow = edge_margin / k + grow_more;
+    // Twice the signed area, and how much moving each corner by `grow`
+    // each way can change it: its derivative by corner i is the
+    // perpendicular of the diagonal between i's neighbours, and the
+    // products of two moves add at most 2 n grow^2.
+    double area = 0.0, area_error = 2.0 * n * grow * grow;
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec2 &a = corners[i], &b = corners[(i + 1) % n], &before = corners[(i + n - 1) % n];
+        area += a.x * b.y - b.x * a.y;
+        area_error += grow * (std::abs(b.x - before.x) + std::abs(b.y - before.y));
+        lo = glm::min(lo, a);
+        hi = glm::max(hi, a);
+    }
+    // Faces away where GL's corners must face away too: GL culls it. A
+    // polygon nearly edge-on to the eye faces whichever way GL's rounded
+    // and snapped corners say, so it is tested as facing the eye (its
+    // corners taken counter-clockwise) and at its nearest corner's depth
+    // throughout, its plane being as uncertain as its facing.
+    if (area < -area_error)
+        return true;
+    const bool edge_on = area <= area_error;
+    glm::dvec2 p[max_edges];
+    double z[max_edges];
+    for (int i = 0; i < n; ++i) {
+        const int from = area < 0.0 ? n - 1 - i : i;
+        p[i] = corners[from];
+        z[i] = corner_z[from];
+    }
+    // Every depth pixel whose square the polygon reaches, grown by the
+    // edge margin.
     const double x_lo = std::max(-1.0, std::floor(lo.x - grow)), y_lo = std::max(-1.0, std::floor(lo.y - grow));
     const double x_hi = std::min(double(width_), std::floor(hi.x + grow)), y_hi = std::min(double(height_), std::floor(hi.y + grow));
     const int x0 = std::max(0, int(x_lo)), y0 = std::max(0, int(y_lo));
@@ -1101,7 +1121,7 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *p, const double *z, int n
     const glm::dvec2 u = p[1] - p[0], v = p[2] - p[0];
     const double twice = u.x * v.y - u.y * v.x;
     double za = 0.0, zb = 0.0, zc = floor_z;
-    if (twice > 0.0) {
+    if (twice > 0.0 && !edge_on) {
         const double du = z[1] - z[0], dv = z[2] - z[0];
         za = (du * v.y - dv * u.y) / twice;
         zb = (dv * u.x - du * v.x) / twice;

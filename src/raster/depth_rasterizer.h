@@ -151,9 +151,12 @@ public:
     // already (or an equivalent, such as a Z-pyramid of this buffer).
     bool faces_occluded(const Aabb &box, float z_near) const;
     // Whether every triangle (three indices into `positions` each) that
-    // faces the eye is hidden as faces_occluded hides a box's faces: every
-    // depth pixel whose square it reaches nearer than its nearest depth
-    // there (and than its nearest corner). Tighter than the box of the
+    // may face the eye is hidden as faces_occluded hides a box's faces:
+    // every depth pixel whose square it reaches nearer than its nearest
+    // depth there (and than its nearest corner). Only a triangle that
+    // faces away by more than GL's rounding of its corners can change is
+    // left out (GL culls it); one nearly edge-on faces whichever way GL's
+    // rounded corners say, and is tested. Tighter than the box of the
     // triangles: a leaf tested by what it draws. False when a triangle
     // reaches in front of the near plane.
     bool triangles_occluded(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t count) const;
@@ -218,11 +221,14 @@ private:
     // inside the buffer, not empty) is nearer than z, by the tiles'
     // maxima; brings those tiles' maxima up to date.
     bool all_nearer(int x0, int y0, int x1, int y1, float z) const;
-    // Whether every depth pixel whose square the convex polygon p (window
-    // coordinates of the buffer, n <= 4 corners counter-clockwise, window
-    // depths z) reaches is nearer than the polygon there, and than floor_z;
-    // true for a polygon facing away.
-    bool polygon_behind(const glm::dvec2 *p, const double *z, int n, double floor_z, double grow_more = 0.0) const;
+    // Whether every depth pixel whose square the convex polygon (window
+    // coordinates of the buffer, n <= 4 corners, counter-clockwise where
+    // it faces the eye; window depths corner_z) reaches is nearer than the
+    // polygon there, and than floor_z; true for a polygon facing away by
+    // more than GL's corners may differ from these (the edge margin and
+    // grow_more): GL culls it. One that may face either way is tested.
+    bool polygon_behind(const glm::dvec2 *corners, const double *corner_z, int n, double floor_z,
+                        double grow_more = 0.0) const;
 
     Isa isa_;
     Options options_;

@@ -725,6 +725,20 @@ std::size_t read_faces(const Reader &r, const Quake3Options &options, const std:
             ++level.billboard_count;
         }
 
+        // A triangle with collinear corners has no surface (scene/scene.h):
+        // a polygon's fan from an end of an edge with a vertex on it (the
+        // compiler's fix of a T-junction) makes one.
+        const auto position = [&](std::uint32_t v) {
+            return face.type == face_patch ? made[v].position : vertices[v].position;
+        };
+        std::size_t kept = 0;
+        for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+            if (collinear_corners(position(triangles[t]), position(triangles[t + 1]), position(triangles[t + 2])))
+                continue;
+            std::copy_n(triangles.begin() + std::ptrdiff_t(t), 3, triangles.begin() + std::ptrdiff_t(kept));
+            kept += 3;
+        }
+        triangles.resize(kept);
         if (!texture.drawn && face.type != face_billboard)
             ++level.hidden_face_count;
         if (face.type == face_billboard || !texture.drawn || triangles.empty()) {

@@ -30,7 +30,10 @@
 // often curved one way only); faces of type 4
 // (billboards: flares, sprites) are not drawn, nor faces whose texture's
 // surface flags say SURF_NODRAW (0x80; clip, caulk, trigger and hint
-// brushes). Faces whose texture says SURF_SKY (0x4) are drawn where they
+// brushes), nor triangles whose corners are collinear to float precision
+// (scene/scene.h: collinear_corners; a polygon fanned from an end of an
+// edge holding a T-junction's vertex makes them). Faces whose texture says
+// SURF_SKY (0x4) are drawn where they
 // are, opaque and unlit (Mesh::shaded false), in a sky colour: Quake III
 // draws the sky's images at infinity through exactly those faces, so a
 // player sees sky there and nothing behind them (a level may hold several

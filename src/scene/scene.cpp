@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace occu {
@@ -53,6 +54,31 @@ void require_finite_vertices(const Scene &scene, const std::string &source)
 {
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         require_finite_vertices(scene.meshes[m], m, source);
+}
+
+bool collinear_corners(const glm::vec3 &a, const glm::vec3 &b, const glm::vec3 &c)
+{
+    const glm::dvec3 p(a), q(b), r(c);
+    const double longest = std::max({glm::length(q - p), glm::length(r - q), glm::length(p - r)});
+    const glm::dvec3 m = glm::max(glm::max(glm::abs(p), glm::abs(q)), glm::abs(r));
+    const double step = std::max({m.x, m.y, m.z}) * double(std::numeric_limits<float>::epsilon());
+    // Twice the area is the longest edge times the height over it.
+    return glm::length(glm::cross(q - p, r - p)) <= longest * step;
+}
+
+std::size_t remove_collinear_triangles(Mesh &mesh)
+{
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const std::uint32_t *i = &mesh.indices[t];
+        if (collinear_corners(mesh.positions[i[0]], mesh.positions[i[1]], mesh.positions[i[2]]))
+            continue;
+        std::copy(i, i + 3, mesh.indices.begin() + std::ptrdiff_t(kept));
+        kept += 3;
+    }
+    const std::size_t removed = (mesh.indices.size() - kept) / 3;
+    mesh.indices.resize(kept);
+    return removed;
 }
 
 void append_box(Mesh &mesh, const Aabb &box)

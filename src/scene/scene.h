@@ -98,6 +98,18 @@ struct Scene {
 void require_finite_vertices(const Mesh &mesh, std::size_t mesh_number, const std::string &source);
 void require_finite_vertices(const Scene &scene, const std::string &source);
 
+// Whether a triangle's corners are collinear to float precision: the third
+// lies within a float step at their largest coordinate (the rounding the
+// stored corners carry) of the line through the other two. Such a triangle
+// has no surface, yet GL may rasterize its edge through a pixel centre
+// with depth and colour interpolated over an area that is rounding noise
+// (llvmpipe drew one of a level's floor at depth 0, in black, in front of
+// everything): the scene readers leave them out.
+bool collinear_corners(const glm::vec3 &a, const glm::vec3 &b, const glm::vec3 &c);
+// Removes the triangles of `mesh` whose corners are collinear (above), the
+// others kept in order; returns how many it removed.
+std::size_t remove_collinear_triangles(Mesh &mesh);
+
 // Appends an axis-aligned box (12 triangles, outward normals) to `mesh`.
 void append_box(Mesh &mesh, const Aabb &box);
 

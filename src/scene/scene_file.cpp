@@ -191,6 +191,8 @@ void add_node(const aiScene &in, const aiNode &node, const aiMatrix4x4 &parent, 
                     mesh.color = glm::vec3(1.0f);
             }
         }
+        // Triangles with no surface (scene/scene.h), as the node placed them.
+        remove_collinear_triangles(mesh);
         if (mesh.indices.empty()) {
             warn(what + " holds no triangles (" + std::to_string(m.mNumVertices) + " vertices, " +
                  std::to_string(m.mNumFaces) + " faces); dropped");
@@ -445,6 +447,7 @@ Scene load_scene(const std::string &path, std::vector<std::string> *warnings, co
             out.meshes.push_back(read_ply(path, bytes, ply_warnings));
             for (const std::string &w : ply_warnings)
                 Warnings{warnings}(w);
+            remove_collinear_triangles(out.meshes.front());
             if (out.triangle_count() == 0)
                 throw std::runtime_error("scene '" + path + "' holds no triangles");
             out.update_bounds();

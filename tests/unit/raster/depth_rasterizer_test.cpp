@@ -789,6 +789,85 @@ TEST(DepthRasterizer, MergedCoverageJoinsAcrossBuffers)
     EXPECT_THROW(first.merge_nearest(whole), std::invalid_argument) << "another coverage rule";
 }
 
+// A triangle nearly edge-on to the eye: which way it faces is decided by
+// rounding, GL's (its own float transform, vertices snapped to 1/256
+// pixel) and the test's (double, from the float matrix), which need not
+// agree. The IFC house's sliver (AC14-FZK-Haus.ifc, 0.6 mm wide, of a strip 1.2 m long)
+// seen from random eye 48 of random:100:2026 at 1280 x 720, and that eye
+// moved up and down, by 0.1 mm steps up to 2 cm (past where the triangle
+// turns to face it, 9 mm up) and by 5 mm steps up to 50 cm: wherever GL
+// draws a pixel of it, an empty buffer (nothing in front) must not call it
+// hidden, at the divisor map-size 256 gives that frame. The same triangle
+// 5 cm wide faces away from the lower eyes by more than rounding: there GL
+// draws nothing and the test calls it hidden.
+TEST(DepthRasterizer, TriangleTestHidesNoTriangleGlDrawsNearlyEdgeOn)
+{
+    constexpr int width = 1280, height = 720;
+    gl::OffscreenContext ctx(width, height);
+    const glm::vec3 sliver[3] = {{7.36762619f, 2.84799981f, -1.89150774f},
+                                 {7.36704493f, 2.84798288f, -0.666489601f},
+                                 {7.36762619f, 2.84800005f, -0.666489601f}};
+    // In the sliver's plane, its short edge 86 times as long.
+    const glm::vec3 wide[3] = {sliver[0], sliver[2] + (sliver[1] - sliver[2]) * 86.0f, sliver[2]};
+    const std::uint32_t indices[3] = {0, 1, 2};
+    Camera eye48;
+    eye48.position = {11.7529497f, 2.9672823f, -6.65772533f};
+    eye48.target = {11.0419703f, 3.1715579f, -5.9848361f};
+    eye48.fovy_degrees = 60.0f;
+    eye48.aspect = float(width) / float(height);
+    eye48.near_plane = 0.0251703914f;
+    eye48.far_plane = 50.3407822f;
+    glViewport(0, 0, width, height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_CULL_FACE);
+    glClearColor(0, 0, 0, 0);
+    glColor3f(1, 1, 1);
+    DepthRasterizer r;
+    for (const glm::vec3 *v : {sliver, wide}) {
+        const char *name = v == sliver ? "the sliver" : "the wide triangle";
+        int drawn = 0, hidden = 0, wrongly_hidden = 0;
+        std::string first;
+        std::vector<float> heights;
+        for (int step = -200; step <= 200; ++step)
+            heights.push_back(1e-4f * float(step));
+        for (int step = -100; step <= 100; ++step)
+            heights.push_back(5e-3f * float(step));
+        for (float rise : heights) {
+            Camera c = eye48;
+            const glm::vec3 up{0.0f, rise, 0.0f};
+            c.position += up;
+            c.target += up;
+            glMatrixMode(GL_PROJECTION);
+            glLoadMatrixf(&c.projection()[0][0]);
+            glMatrixMode(GL_MODELVIEW);
+            glLoadMatrixf(&c.view()[0][0]);
+            glClear(GL_DEPTH_BUFFER_BIT | GL_COLOR_BUFFER_BIT);
+            glBegin(GL_TRIANGLES);
+            for (int i = 0; i < 3; ++i)
+                glVertex3f(v[i].x, v[i].y, v[i].z);
+            glEnd();
+            std::vector<std::uint8_t> pixels(std::size_t(width) * height * 4);
+            glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+            long shown = 0;
+            for (std::size_t i = 0; i < pixels.size(); i += 4)
+                shown += pixels[i] != 0;
+            r.begin(c.view_projection(), width, height, {5, true, true});
+            const bool called_hidden = r.triangles_occluded(v, indices, 1);
+            drawn += shown > 0;
+            hidden += called_hidden;
+            if (shown > 0 && called_hidden && !wrongly_hidden++)
+                first = "eye moved up " + std::to_string(rise) + " m: GL draws " + std::to_string(shown) +
+                        " pixels";
+        }
+        EXPECT_EQ(wrongly_hidden, 0) << "an empty buffer hides " << name << " where GL draws it; first: " << first;
+        EXPECT_GT(drawn, 0) << "GL draws " << name << " from some of the eyes";
+        if (v == wide) {
+            EXPECT_GT(hidden, 0) << "from the lower eyes it faces away, and the test says so";
+        }
+    }
+}
+
 TEST(DepthRasterizer, RefusesSizesBelowOne)
 {
     DepthRasterizer r;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 #include <zip.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -252,6 +253,24 @@ void expect_near(const glm::vec3 &a, const glm::vec3 &b, float tolerance = 1e-5f
     EXPECT_NEAR(a.z, b.z, tolerance);
 }
 
+// Triangles of `mesh` whose corners are collinear to float precision: the
+// third within float rounding of its coordinates (a float step at their
+// largest magnitude) of the line through the other two.
+std::size_t collinear_triangles(const Mesh &mesh, std::uint32_t first_index = 0, std::uint32_t index_count = ~0u)
+{
+    std::size_t n = 0;
+    const std::size_t end = std::min<std::size_t>(mesh.indices.size(), std::size_t(first_index) + index_count);
+    for (std::size_t t = first_index; t + 2 < end; t += 3) {
+        const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
+            c(mesh.positions[mesh.indices[t + 2]]);
+        const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+        const double magnitude = std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y),
+                                           std::abs(b.z), std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+        n += glm::length(glm::cross(b - a, c - a)) <= longest * magnitude * std::numeric_limits<float>::epsilon();
+    }
+    return n;
+}
+
 }  // namespace
 
 TEST(Quake3Bsp, CoordinatesAreYUpMetres)
@@ -314,6 +333,48 @@ TEST(Quake3Bsp, TrianglesAreCounterClockwiseSeenFromTheirFront)
             EXPECT_GT(glm::dot(glm::cross(b - a, c - a), front), 0.0f) << "face " << f << " triangle " << t / 3;
         }
     }
+}
+
+// A polygon face with a vertex on one of its edges (a compiler's fix of a
+// T-junction), fanned from an end of that edge: one triangle of the fan has
+// collinear corners, no surface. GL draws nothing of it that a player
+// should see, but llvmpipe can rasterize such a triangle's edge through a
+// pixel centre with its depth and colour interpolated over an area that is
+// rounding noise: oa_thor's floor (textures/cosmo_floor/bfloor3) drew one
+// black pixel at depth 0, in front of everything, from spawn:2's frame 320
+// at 1280 x 720, which no box test can keep. The reader leaves such
+// triangles out, the face's range holding the others; oa_thor keeps none.
+TEST(Quake3Bsp, TrianglesWithCollinearCornersAreLeftOut)
+{
+    BspFile f = minimal_level();
+    const glm::vec3 up(0, 0, 1);
+    const std::int32_t first = std::int32_t(f.vertices.size()), meshvert = std::int32_t(f.meshverts.size());
+    // A, T on A-B, B, C, D; the fan from A, clockwise from the front.
+    f.vertices.insert(f.vertices.end(), {{{0, 0, 8}, up}, {{21, 7, 8}, up}, {{60, 20, 8}, up}, {{64, 64, 8}, up},
+                                         {{0, 64, 8}, up}});
+    f.meshverts.insert(f.meshverts.end(), {0, 2, 1, 0, 3, 2, 0, 4, 3});
+    f.faces.push_back({0, 1, first, 5, meshvert, 9, up});
+    f.models[0].face_count = std::int32_t(f.faces.size());
+    const Scene s = read(f);
+    const Level::Face &face = s.level->faces.back();
+    ASSERT_GE(face.mesh, 0);
+    const Mesh &wall = s.meshes[std::size_t(face.mesh)];
+    EXPECT_EQ(face.index_count, 6u) << "A-B-C and A-C-D, not A-T-B";
+    EXPECT_EQ(collinear_triangles(wall, face.first_index, face.index_count), 0u);
+    EXPECT_LE(face.first_index + face.index_count, wall.indices.size());
+
+    const std::string pk3 = "/usr/share/games/openarena/baseoa/pak6-patch088.pk3";
+    ASSERT_TRUE(std::ifstream(pk3).good()) << pk3 << " is missing: tools/deps.sh test installs openarena-088-data";
+    const Scene thor = load_scene(pk3 + ":maps/oa_thor.bsp");
+    std::size_t collinear = 0;
+    for (const Mesh &m : thor.meshes)
+        collinear += collinear_triangles(m);
+    EXPECT_EQ(collinear, 0u) << "of oa_thor's " << thor.triangle_count() << " triangles";
+    for (const Level::Face &level_face : thor.level->faces)
+        if (level_face.mesh >= 0) {
+            EXPECT_LE(level_face.first_index + level_face.index_count,
+                      thor.meshes[std::size_t(level_face.mesh)].indices.size());
+        }
 }
 
 TEST(Quake3Bsp, PatchVerticesLieOnTheBiquadraticBezierSurface)

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -36,6 +37,32 @@ TEST(LoadScene, ObjQuadBecomesTwoTriangles)
     EXPECT_FLOAT_EQ(s.bounds.max.x, 2.0f);
     EXPECT_FLOAT_EQ(s.bounds.max.y, 3.0f);
     EXPECT_EQ(s.meshes[0].normals.size(), s.meshes[0].positions.size());
+}
+
+// A triangle whose corners are collinear to float precision has no
+// surface; a model's are left out as a level's are
+// (Quake3Bsp.TrianglesWithCollinearCornersAreLeftOut says why).
+TEST(LoadScene, ObjTrianglesWithCollinearCornersAreLeftOut)
+{
+    const std::string path = temp("collinear.obj");
+    {
+        std::ofstream f(path);
+        f << "v 0 0 0\nv 2 0 0\nv 2 3 0\nv 0 3 0\n"
+             "v 0.1 0.2 0.3\nv 10.1 20.2 30.3\nv 5.1 10.2 15.3\n"
+             "f 1 2 3 4\nf 5 6 7\n";
+    }
+    const Scene s = load_scene(path);
+    std::remove(path.c_str());
+    EXPECT_EQ(s.triangle_count(), 2u) << "the quad's two, not the collinear one";
+    std::size_t collinear = 0;
+    for (const Mesh &m : s.meshes)
+        for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
+                c(m.positions[m.indices[t + 2]]);
+            const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+            collinear += glm::length(glm::cross(b - a, c - a)) <= longest * 31.0 * 1.2e-7;
+        }
+    EXPECT_EQ(collinear, 0u);
 }
 
 TEST(LoadScene, ErrorsNameTheFile)
@@ -279,8 +306,10 @@ TEST(LoadScene, NormalsNotFiniteAreReplacedWithAWarning)
 {
     const std::string path = temp("flattened.gltf");
     std::string text = gltf(triangle_accessor, R"({"attributes":{"POSITION":0}})");
+    // Flattened along z: the triangle (in the xy plane) keeps its surface,
+    // its normals through the inverse transpose are not finite.
     const std::string node = R"("nodes":[{"mesh":0})";
-    text.replace(text.find(node), node.size(), R"("nodes":[{"mesh":0,"scale":[0,0,0]})");
+    text.replace(text.find(node), node.size(), R"("nodes":[{"mesh":0,"scale":[1,1,0]})");
     write(path, text);
     std::vector<std::string> warnings;
     const Scene s = load_scene(path, &warnings);
