@@ -340,36 +340,37 @@ std::vector<std::optional<bool>> CullMap::visible_by_unit(const gl::OcclusionUni
     // Passes of boxes whose pixels do not overlap, one tile each, filled
     // first fit in the boxes' order: a box goes to the first pass that no
     // box before it overlaps and that has a tile left. Each pixel keeps a
-    // mask of the passes holding it, 64 passes at a time, so that a box's
-    // pass costs one look at its pixels, not one for every pass tried.
+    // mask of the passes holding it, 32 passes at a time (4 bytes a pixel,
+    // as the read-back's copy of the map), so that a box's pass costs one
+    // look at its pixels, not one for every pass tried.
     const std::size_t width = std::size_t(region_.width);
     const std::size_t max_tiles = std::size_t(unit.max_tiles());
     std::vector<std::vector<std::size_t>> pass_boxes;
-    std::vector<std::uint64_t> holding(width * std::size_t(region_.height));
-    for (std::size_t first_pass = 0; !pending.empty(); first_pass += 64) {
+    std::vector<std::uint32_t> holding(width * std::size_t(region_.height));
+    for (std::size_t first_pass = 0; !pending.empty(); first_pass += 32) {
         std::fill(holding.begin(), holding.end(), 0);
-        std::uint64_t full = 0;
+        std::uint32_t full = 0;
         std::vector<std::size_t> later;
         for (std::size_t i : pending) {
             const PixelRect &r = rects[i];
-            std::uint64_t taken = full;
-            for (int y = r.y0; y < r.y1 && taken != ~std::uint64_t(0); ++y)
+            std::uint32_t taken = full;
+            for (int y = r.y0; y < r.y1 && taken != ~std::uint32_t(0); ++y)
                 for (int x = r.x0; x < r.x1; ++x)
                     taken |= holding[std::size_t(y) * width + std::size_t(x)];
-            if (taken == ~std::uint64_t(0)) {
+            if (taken == ~std::uint32_t(0)) {
                 later.push_back(i);
                 continue;
             }
-            const int bit = __builtin_ctzll(~taken);
+            const int bit = __builtin_ctz(~taken);
             for (int y = r.y0; y < r.y1; ++y)
                 for (int x = r.x0; x < r.x1; ++x)
-                    holding[std::size_t(y) * width + std::size_t(x)] |= std::uint64_t(1) << bit;
+                    holding[std::size_t(y) * width + std::size_t(x)] |= std::uint32_t(1) << bit;
             const std::size_t pass = first_pass + std::size_t(bit);
             if (pass == pass_boxes.size())
                 pass_boxes.emplace_back();
             pass_boxes[pass].push_back(i);
             if (pass_boxes[pass].size() == max_tiles)
-                full |= std::uint64_t(1) << bit;
+                full |= std::uint32_t(1) << bit;
         }
         pending.swap(later);
     }
