@@ -337,36 +337,50 @@ std::vector<std::optional<bool>> CullMap::visible_by_unit(const gl::OcclusionUni
     glDepthFunc(GL_LESS);
     glEnableClientState(GL_VERTEX_ARRAY);
 
-    // Passes of boxes whose pixels do not overlap, one tile each. Nothing
-    // writes the map between them, so every pass is begun and ended without
-    // waiting and all are read at the end: the rasterizer answers them
-    // together (on llvmpipe, in the scene of the map's own drawing) rather
-    // than one hand-over per pass.
-    std::vector<std::uint32_t> owner(std::size_t(region_.width) * std::size_t(region_.height), 0);
-    std::uint32_t pass_id = 0;
-    std::vector<std::unique_ptr<gl::AsyncOcclusionPass>> issued;
-    std::vector<std::vector<std::size_t>> issued_boxes;
-    while (!pending.empty()) {
-        ++pass_id;
-        std::vector<std::size_t> in_pass, later;
+    // Passes of boxes whose pixels do not overlap, one tile each, filled
+    // first fit in the boxes' order: a box goes to the first pass that no
+    // box before it overlaps and that has a tile left. Each pixel keeps a
+    // mask of the passes holding it, 32 passes at a time (4 bytes a pixel,
+    // as the read-back's copy of the map), so that a box's pass costs one
+    // look at its pixels, not one for every pass tried.
+    const std::size_t width = std::size_t(region_.width);
+    const std::size_t max_tiles = std::size_t(unit.max_tiles());
+    std::vector<std::vector<std::size_t>> pass_boxes;
+    std::vector<std::uint32_t> holding(width * std::size_t(region_.height));
+    for (std::size_t first_pass = 0; !pending.empty(); first_pass += 32) {
+        std::fill(holding.begin(), holding.end(), 0);
+        std::uint32_t full = 0;
+        std::vector<std::size_t> later;
         for (std::size_t i : pending) {
             const PixelRect &r = rects[i];
-            bool free = in_pass.size() < std::size_t(unit.max_tiles());
-            for (int y = r.y0; y < r.y1 && free; ++y)
+            std::uint32_t taken = full;
+            for (int y = r.y0; y < r.y1 && taken != ~std::uint32_t(0); ++y)
                 for (int x = r.x0; x < r.x1; ++x)
-                    if (owner[std::size_t(y) * std::size_t(region_.width) + std::size_t(x)] == pass_id) {
-                        free = false;
-                        break;
-                    }
-            if (!free) {
+                    taken |= holding[std::size_t(y) * width + std::size_t(x)];
+            if (taken == ~std::uint32_t(0)) {
                 later.push_back(i);
                 continue;
             }
+            const int bit = __builtin_ctz(~taken);
             for (int y = r.y0; y < r.y1; ++y)
                 for (int x = r.x0; x < r.x1; ++x)
-                    owner[std::size_t(y) * std::size_t(region_.width) + std::size_t(x)] = pass_id;
-            in_pass.push_back(i);
+                    holding[std::size_t(y) * width + std::size_t(x)] |= std::uint32_t(1) << bit;
+            const std::size_t pass = first_pass + std::size_t(bit);
+            if (pass == pass_boxes.size())
+                pass_boxes.emplace_back();
+            pass_boxes[pass].push_back(i);
+            if (pass_boxes[pass].size() == max_tiles)
+                full |= std::uint32_t(1) << bit;
         }
+        pending.swap(later);
+    }
+
+    // Nothing writes the map between the passes, so every pass is begun and
+    // ended without waiting and all are read at the end: the rasterizer
+    // answers them together (on llvmpipe, in the scene of the map's own
+    // drawing) rather than one hand-over per pass.
+    std::vector<std::unique_ptr<gl::AsyncOcclusionPass>> issued;
+    for (const std::vector<std::size_t> &in_pass : pass_boxes) {
         std::vector<PixelRect> tiles;
         std::vector<double> v;
         for (std::size_t i : in_pass) {
@@ -381,14 +395,12 @@ std::vector<std::optional<bool>> CullMap::visible_by_unit(const gl::OcclusionUni
         issued.back()->begin(gl::OcclusionMode::conservative, tiles);   // only nohc > 0 is read
         glDrawArrays(GL_QUADS, 0, GLsizei(v.size() / 3));   // the vertices are copied here
         issued.back()->end();
-        issued_boxes.push_back(std::move(in_pass));
-        pending.swap(later);
     }
     glPopClientAttrib();
     for (std::size_t p = 0; p < issued.size(); ++p) {
         const std::vector<gl::OcclusionRecord> &records = issued[p]->records();
-        for (std::size_t k = 0; k < issued_boxes[p].size(); ++k)
-            visible[issued_boxes[p][k]] = records[k].nohc > 0;
+        for (std::size_t k = 0; k < pass_boxes[p].size(); ++k)
+            visible[pass_boxes[p][k]] = records[k].nohc > 0;
     }
     if (passes)
         *passes = issued.size();

@@ -247,15 +247,18 @@ CellVisibility ViewCellVisibility::compute(std::size_t cell, CullMapTest test)
             }
         std::vector<std::optional<bool>> inside_visible(boxes.size());
         CullMap::Horizon horizon;
+        std::chrono::steady_clock::time_point horizon_start;
         if (test == CullMapTest::readback) {
             const std::vector<std::uint32_t> depths = map_.read_depths();
             for (std::size_t i = 0; i < boxes.size(); ++i)
                 inside_visible[i] = map_.visible_by_readback(boxes[i], depths);
+            horizon_start = std::chrono::steady_clock::now();
             horizon = CullMap::horizon_of(region, depths);
         } else {
             std::size_t passes = 0;
             inside_visible = map_.visible_by_unit(*unit_, boxes, &passes);
             out.unit_passes += passes;
+            horizon_start = std::chrono::steady_clock::now();
             horizon = map_.read_horizon();
         }
 
@@ -313,6 +316,7 @@ CellVisibility ViewCellVisibility::compute(std::size_t cell, CullMapTest test)
                     still_live.push_back(live_occluders[j]);
             live_occluders.swap(still_live);
         }
+        out.horizon_ms += ms_since(horizon_start);
         out.test_ms += ms_since(start);
         undecided.swap(next);
         if (whole) {

@@ -63,6 +63,7 @@ struct CellVisibility {
     std::size_t map_pixels = 0;      // of the last map
     double map_ms = 0.0;             // drawing the maps
     double test_ms = 0.0;            // testing the objects (read-back or passes, and the horizon)
+    double horizon_ms = 0.0;         // of test_ms, section 6's horizon: the same work both ways
 };
 
 class ViewCellVisibility {
