@@ -154,8 +154,20 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
     dirty_.assign(tiles, 0);
     any_dirty_ = false;
     if (options.merge_partial_coverage) {
-        partial_mask_.assign(tiles * tile_pixels, 0);
-        partial_depth_.assign(tiles * tile_pixels, 0.0f);
+        // Only the tiles the last frame's partial layer wrote need
+        // clearing; a pixel's partial depth means nothing while its mask
+        // is empty (add_partial), so it is never cleared.
+        if (partial_mask_.size() == tiles * tile_pixels && partial_written_.size() == tiles) {
+            for (std::size_t t = 0; t < tiles; ++t)
+                if (partial_written_[t]) {
+                    std::fill_n(partial_mask_.begin() + std::ptrdiff_t(t * tile_pixels), tile_pixels, 0);
+                    partial_written_[t] = 0;
+                }
+        } else {
+            partial_mask_.assign(tiles * tile_pixels, 0);
+            partial_written_.assign(tiles, 0);
+        }
+        partial_depth_.resize(tiles * tile_pixels);
         const int samples = options.divisor * options.divisor;
         full_mask_ = samples == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << samples) - 1;
     }
@@ -792,10 +804,11 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         for (int x8 = run[0] / tile_size * tile_size; x8 < run[1]; x8 += tile_size) {
             // A tile nearer everywhere than the polygon's nearest corner
             // takes nothing from it (behind_everything, tile by tile), by
-            // its maximum where up to date: the partial layer writes tiles
-            // often, and taking a maximum costs more than the test saves.
+            // its maximum where up to date (the partial layer writes tiles
+            // often, and taking a maximum costs more than the test saves),
+            // or else by the bound the fill keeps of it.
             const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
-            if (!dirty_[tile] && tile_max_[tile] < behind)
+            if ((!dirty_[tile] && tile_max_[tile] < behind) || farthest_bound_[tile] < behind)
                 continue;
             int lanes = 0;
             for (int l = 0; l < tile_size; ++l)
@@ -869,12 +882,12 @@ bool DepthRasterizer::add_partial(std::size_t index, std::uint64_t mask, float z
     if (joined != full_mask_) {
         partial_mask_[index] = joined;
         partial_depth_[index] = farthest;
+        partial_written_[index / tile_pixels] = 1;
         return false;
     }
     // Every sample is held no farther than `farthest`; the layer starts
     // again empty, whether or not it was nearer.
     partial_mask_[index] = 0;
-    partial_depth_[index] = 0.0f;
     if (!(farthest < tiles_[index]))
         return false;
     tiles_[index] = farthest;

@@ -246,6 +246,7 @@ private:
     // depth; empty otherwise.
     std::vector<std::uint64_t> partial_mask_;
     std::vector<float> partial_depth_;
+    std::vector<std::uint8_t> partial_written_;   // per tile: a mask set since begin
     std::uint64_t full_mask_ = 0;
     Stats stats_;
 };

@@ -172,7 +172,13 @@ int partial_masks_avx2(const PartialEdges8 &p, const PartialDepth &d, int x8, in
     // in two 32-bit halves of 64 bits.
     const int edges = p.edges;
     __m256i held_bits[2] = {_mm256_setzero_si256(), _mm256_setzero_si256()};
-    __m256i maybe_bits[3][2] = {};
+    // Cleared only where some edge has a triangle across: most polygons
+    // have none, and clearing six registers' worth of stack each call
+    // costs more than the edge tests.
+    __m256i maybe_bits[3][2];
+    if (p.candidates != 0)
+        for (auto &bits : maybe_bits)
+            bits[0] = bits[1] = _mm256_setzero_si256();
     const __m256i all_ones = _mm256_set1_epi32(-1);
     int bit = 0;
     for (int j = 0; j < p.k; ++j) {

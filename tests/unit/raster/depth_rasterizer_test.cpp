@@ -868,6 +868,41 @@ TEST(DepthRasterizer, TriangleTestHidesNoTriangleGlDrawsNearlyEdgeOn)
     }
 }
 
+// begin() clears the partial layer only where the frame before wrote it:
+// a rasterizer begun again, frame after frame (the divisor changing now
+// and then), holds what a new one would.
+TEST(DepthRasterizer, MergedCoverageForgetsTheFrameBefore)
+{
+    const glm::mat4 vp = test_camera().view_projection();
+    std::mt19937 rng(34);
+    DepthRasterizer reused;
+    std::vector<float> a, b;
+    long partial = 0;
+    for (int trial = 0; trial < 12; ++trial) {
+        const Polygons grid = rumpled_grid(rng, 6 + trial, trial % 2 ? 8.0f : 1.0f, true);
+        const std::vector<glm::vec3> opposites = shared_edge_opposites(triangle_corners(grid));
+        const DepthRasterizer::Options o{trial < 8 ? 2 : 1 + trial % 4, true, true};
+        DepthRasterizer fresh;
+        for (DepthRasterizer *r : {&reused, &fresh}) {
+            r->begin(vp, frame_size, frame_size, o);
+            r->render_triangles(grid.positions.data(), grid.triangles.data(), grid.triangles.size() / 3,
+                                opposites.data());
+        }
+        reused.read(a);
+        fresh.read(b);
+        ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << "trial " << trial;
+        // The partial layer fills pixels here (nearer than whole pixels
+        // alone), so masks left from the frame before would show.
+        DepthRasterizer whole_only;
+        whole_only.begin(vp, frame_size, frame_size, {o.divisor, o.per_pixel_depth, false});
+        whole_only.render_triangles(grid.positions.data(), grid.triangles.data(), grid.triangles.size() / 3);
+        whole_only.read(a);
+        for (std::size_t i = 0; i < a.size(); ++i)
+            partial += b[i] < a[i];
+    }
+    EXPECT_GT(partial, 0) << "the grids fuse samples in the partial layer, which the next frame must not see";
+}
+
 TEST(DepthRasterizer, RefusesSizesBelowOne)
 {
     DepthRasterizer r;
