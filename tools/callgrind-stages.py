@@ -63,11 +63,9 @@ def main():
     totals["other"] = 0.0
     for key in set(short) | set(long_):
         diff = (long_.get(key, 0) - short.get(key, 0)) / frames
-        file_, name, obj = key
-        fname = name if file_ == "???" else name
-        obj = obj if not name.startswith("0x") else "???"
+        _, name, obj = key
         for stage, rule in STAGES:
-            if rule(fname, obj):
+            if rule(name, obj):
                 totals[stage] += diff
                 break
         else:
