@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Every commit README.md and docs/*.md cite exists in the repository.
 
 A commit reference is a word of 7 to 40 lowercase hex digits with at least

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Checks a piglit run against tests/piglit/baseline.txt.
 
 A test of Debian's piglit fails the check when its result is worse than the

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Writes a piglit test profile (gzipped XML, the format of Debian's piglit
 profiles) that runs each test once per gallium driver.
 

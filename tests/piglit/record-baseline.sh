@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Records tests/piglit/baseline.txt: the results of the regression list on
 # Debian's own, unpatched Mesa of the same version (packages libegl-mesa0 and
 # libgl1-mesa-dri), under softpipe and llvmpipe, run exactly as the regression

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * With DEPTH_CLAMP disabled, a fragment shader's depth is not clamped to the
  * depth range (OpenGL 4.6, section 13.7: clamping to [min(n, f), max(n, f)]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_SAMPLES_PASSED counts the fragments a point sprite produces inside the
  * framebuffer, no more, when the sprite lies across one of its edges: the

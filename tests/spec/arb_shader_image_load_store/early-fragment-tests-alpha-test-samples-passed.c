@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * With layout(early_fragment_tests) the alpha test still follows the
  * fragment shader and reads the alpha the shader wrote, while

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * With layout(early_fragment_tests) GL_SAMPLES_PASSED counts the samples
  * that pass the early tests, before the fragment shader, so a discard in

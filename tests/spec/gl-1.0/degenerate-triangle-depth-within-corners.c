@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * A fragment of a triangle takes the depth interpolated from its corners'
  * window depths with barycentric weights that are not negative and sum to

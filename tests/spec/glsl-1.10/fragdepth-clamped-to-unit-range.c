@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * A fragment shader's depth outside [0, 1] is clamped to [0, 1] before the
  * depth test and the depth write (OpenGL 4.6, section 15.2.3: gl_FragDepth

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: every error of the spec's Errors section, and
  * that a command that generates one has no other effect.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit and GL_MESAX_occlusion_unit_async under random
  * use: OU_RANDOM_CALLS calls (default 30,000) from a fixed seed, each checked

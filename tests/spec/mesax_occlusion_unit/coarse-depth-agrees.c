@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit on llvmpipe: rejecting a pass's 4x4 blocks
  * against the bin's coarse depth changes no record. Every word of every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit on llvmpipe: the coarse depth test rejects only
  * blocks none of whose fragments pass, it rejects where it can, and it is

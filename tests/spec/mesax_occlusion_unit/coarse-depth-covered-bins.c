@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit on llvmpipe: an exact pass's primitive that
  * covers whole 64x64 bins, where its depth cannot pass the depth test

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Helpers of the coarse-depth tests (coarse-depth-agrees.c,
  * coarse-depth-conservative.c): llvmpipe may reject an occlusion pass's

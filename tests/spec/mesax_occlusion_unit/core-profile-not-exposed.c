@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit is exposed in compatibility contexts only
  * (section "Dependencies on the compatibility profile"): in a core context

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: counters past 2^31 and 2^32 (spec issue 5).
  * A 2048 x 2048 window (2^22 pixels) covered by 1040 full-window

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: exact NOHC, PHC, bounding box and depth range
  * for coverage known analytically: axis-aligned rectangles on pixel

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the default tile of a viewport whose bounds are
  * not integers (ViewportIndexedf, ARB_viewport_array) is the set of pixels

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit and EXT_depth_bounds_test (spec section 4.1,
  * issue 20, "Dependencies on EXT_depth_bounds_test"): the depth bounds

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the recorded depth is the depth the depth test
  * uses, after polygon offset and before conversion to the depth buffer's

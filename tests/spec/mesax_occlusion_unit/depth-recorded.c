@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the depth a record holds is the depth the depth
  * test uses or would use (section 5.X): the fragment shader's gl_FragDepth

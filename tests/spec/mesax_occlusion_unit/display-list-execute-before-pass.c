@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit and display lists compiled with
  * COMPILE_AND_EXECUTE (spec section 5.4 edit): a pass counts the commands

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit and the drawing commands of display lists (spec
  * section 5.4 edit): during a pass, commands compiled with COMPILE are not

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit and display lists, glPushAttrib (spec issue 8):
  * ScissorsMESAX and OcclusionBuffersMESAX execute immediately even while a

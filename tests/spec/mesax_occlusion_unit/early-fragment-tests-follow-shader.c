@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit with layout(early_fragment_tests): the stencil
  * and depth buffer tests and both counts precede the shader, so what

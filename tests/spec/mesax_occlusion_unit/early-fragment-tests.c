@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit with layout(early_fragment_tests): the tests come
  * before the shader, as in RENDER mode, so a discard in the shader removes

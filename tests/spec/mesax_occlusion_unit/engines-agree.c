@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: results do not depend on how the work is split.
  * The same scenes are measured in child processes on softpipe and on

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the bounding box and depth range of a tile equal
  * those of the pixels whose depth a GL_RENDER draw of the same geometry

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: a pass entered right after a framebuffer object
  * is bound, or after its renderbuffers are reallocated, takes its tiles

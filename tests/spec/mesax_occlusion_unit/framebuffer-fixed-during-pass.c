@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the draw framebuffer of an occlusion pass is
  * fixed for the pass (Errors): binding another framebuffer for drawing,

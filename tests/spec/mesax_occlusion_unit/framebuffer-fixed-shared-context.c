@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the framebuffer of an occlusion pass is fixed for
  * the pass against other contexts too (Dependencies on framebuffer objects

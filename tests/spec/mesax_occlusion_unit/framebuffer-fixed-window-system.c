@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the framebuffer of an occlusion pass is fixed for
  * the pass, a window-system-provided one too (Dependencies on framebuffer

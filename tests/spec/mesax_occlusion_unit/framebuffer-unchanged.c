@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: in an occlusion mode the framebuffer is never
  * modified (spec issue 11). Colour, depth and stencil are read back before

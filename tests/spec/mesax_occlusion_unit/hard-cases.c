@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit, numerically hard cases. Where the spec defines
  * the result by what GL_RENDER would do, the test compares with a

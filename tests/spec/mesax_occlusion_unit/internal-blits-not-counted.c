@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: commands that produce no fragments for the
  * framebuffer (GenerateMipmap, CopyTexSubImage2D) execute in an occlusion

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the extension string, the entry points, the
  * limits and the initial state of New State / New Implementation Dependent

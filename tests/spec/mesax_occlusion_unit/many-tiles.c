@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit with 1 to 64 tiles (the spec's minimum of
  * MAX_OCCLUSION_TILES_MESAX; many-tiles-4096.c goes to occu's drivers'

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: in a multisampled framebuffer too, the alpha
  * test follows PHC (spec issue 1 and section 4.1): a fragment that fails it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit in a multisampled framebuffer counts fragments,
  * not samples (section 5.X): a fragment with at least one covered sample

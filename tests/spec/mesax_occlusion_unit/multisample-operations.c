@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the multisample fragment operations come before
  * PHC (spec section 4.1, issue 20). Sample coverage, SAMPLE_MASK,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: a fragment whose depth is not a number (a shader
  * writing NaN to gl_FragDepth) is recorded with depth 0 (section 5.X: NaN

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: commands that are not drawing commands execute
  * in an occlusion pass as in RENDER mode and add nothing to the tiles,

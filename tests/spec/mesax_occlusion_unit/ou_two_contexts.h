@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Two contexts of one share group for the tests of what a context shares
  * and what it keeps (MESAX_occlusion_unit section 5.X, issue 23;

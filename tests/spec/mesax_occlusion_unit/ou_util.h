@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Helpers shared by the GL_MESAX_occlusion_unit tests.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: OUT_OF_MEMORY (section 5.X and Errors) when the
  * driver's own allocations fail, not only the state tracker's. The patched

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit's state is per context (spec section 5.X and
  * issue 23). Context A is the test's; context B shares A's objects

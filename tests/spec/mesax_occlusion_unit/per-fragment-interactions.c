@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit and the other per-fragment operations (spec
  * issues 1, 7 and 10): PHC counts fragments entering the per-fragment tests

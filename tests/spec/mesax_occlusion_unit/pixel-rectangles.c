@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the fragments of pixel rectangles and bitmaps
  * are counted in an occlusion mode (spec issue 11, the section 4.3.3 edit

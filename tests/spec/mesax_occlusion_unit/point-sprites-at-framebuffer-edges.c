@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: a point sprite across an edge of the framebuffer
  * counts the same whatever the tile layout or the mode, and a record with

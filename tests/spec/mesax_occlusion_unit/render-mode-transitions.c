@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: transitions between the occlusion modes and
  * RENDER, SELECT and FEEDBACK (spec issue 9). Leaving an occlusion mode

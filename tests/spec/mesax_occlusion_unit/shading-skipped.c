@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit and fragment shading in an occlusion pass (spec
  * issue 14). One full-window rectangle, depth test off.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: the state queries of the tiles and buffers set
  * (spec, New State and "Additions to Chapter 6"): OCCLUSION_TILE_MESAX and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: when client memory holds the records (section
  * 5.X). The GL writes buffers[i] only when RenderMode leaves the occlusion

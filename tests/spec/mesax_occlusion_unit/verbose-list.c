@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit, VERBOSE_OCCLUSION_MESAX: the list of a tile is
  * exactly the set of pixels whose depth a GL_RENDER draw of the same

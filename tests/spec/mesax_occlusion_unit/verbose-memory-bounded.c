@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit, VERBOSE_OCCLUSION_MESAX: the memory a verbose
  * pass takes grows with the fragments it lists, not with the sizes the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: an overflowed verbose list keeps the first pairs
  * in raster order (window y ascending, then x) of all the tile's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: every error of the spec's Errors section,
  * each with the state read back afterwards to see that the failing command

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: Finish and the order of availability
  * (spec MESAX_occlusion_unit_async, section 5.X.1 and issue 15). After

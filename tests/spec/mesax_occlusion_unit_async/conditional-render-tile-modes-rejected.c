@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: conditional rendering on a tile accepts
  * QUERY_WAIT and QUERY_NO_WAIT only; the by-region modes and the inverted

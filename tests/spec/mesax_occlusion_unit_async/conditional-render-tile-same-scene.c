@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: conditional rendering on a tile begun
  * right after the pass ends, in QUERY_WAIT mode, decides on the pass's

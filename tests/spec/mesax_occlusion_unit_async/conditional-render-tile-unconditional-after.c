@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: the commands after a draw that a tile
  * condition discarded, once EndConditionalRenderOcclusionTileMESAX has

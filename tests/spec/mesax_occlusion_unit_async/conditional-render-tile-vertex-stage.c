@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: a draw that conditional rendering on a
  * tile discards has no effect at all (spec MESAX_occlusion_unit_async,

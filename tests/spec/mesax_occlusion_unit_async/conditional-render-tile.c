@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: conditional rendering on a tile (spec
  * MESAX_occlusion_unit_async, section 5.X.2): commands execute only when

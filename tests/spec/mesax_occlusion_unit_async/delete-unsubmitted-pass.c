@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: a pass deleted, or begun again, right
  * after it ended (nothing read, no Flush) is discarded without waiting

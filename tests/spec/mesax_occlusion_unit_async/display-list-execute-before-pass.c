@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async and display lists compiled with
  * COMPILE_AND_EXECUTE (MESAX_occlusion_unit spec section 5.4 edit): a pass

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: a pass object follows the occlusion mode's
  * rules between BeginOcclusionPassMESAX and EndOcclusionPassMESAX (issue 1 of

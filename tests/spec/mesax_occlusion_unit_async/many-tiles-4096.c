@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit with 4096 tiles, which softpipe and llvmpipe
  * report (an implementation's limit; the spec's minimum is 64): a 64 x 64

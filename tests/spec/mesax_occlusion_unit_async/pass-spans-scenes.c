@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit: a pass counts every primitive drawn between its
  * begin and end, however much work that is (spec MESAX_occlusion_unit,

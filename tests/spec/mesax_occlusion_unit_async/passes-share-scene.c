@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: passes and draws issued with no Flush and
  * no read in between count in the order issued (spec MESAX_occlusion_unit,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: pass objects give the records RenderMode
  * gives, read later (spec MESAX_occlusion_unit_async, section 5.X.1 and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async's pass objects are per context, not shared
  * (spec section 5.X.1 and issue 14), and a pass begun by

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_async: the records of a pass written into a
  * query buffer (ARB_query_buffer_object; spec MESAX_occlusion_unit_async,

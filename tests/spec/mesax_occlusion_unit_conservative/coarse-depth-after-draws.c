@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit(_conservative) on llvmpipe: a draw that writes
  * depth between two passes of one scene makes the coarse depth the first

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_conservative: where the conservative mode is
  * accepted and what its records and tile conditions do (spec, sections

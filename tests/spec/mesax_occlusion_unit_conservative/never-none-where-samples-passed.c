@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * GL_MESAX_occlusion_unit_conservative: a conservative pass never answers
  * 0 for a tile where GL_RENDER's SAMPLES_PASSED counts a sample

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * OSMesaDestroyContext of the current context while immediate-mode
  * vertices are still queued (vbo keeps them until the next flush) destroys

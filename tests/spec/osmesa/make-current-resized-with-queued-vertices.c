@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * OSMesaMakeCurrent of the current context on a buffer of another size,
  * while an immediate-mode primitive is still queued (vbo keeps glBegin/glEnd

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * The harness itself: a context made under GALLIUM_DRIVER=<d> renders with
  * driver <d>, and window coordinates have OpenGL's bottom-left origin in the
