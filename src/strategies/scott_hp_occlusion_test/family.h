@@ -11,10 +11,12 @@
 // so every box is its own query and the renderer waits for each, front to
 // back; the Occlusion Unit (strategies/bartz_occlusion_unit) answers many
 // boxes per pass instead.
-//   hp  (hp_occlusion_test_culler.cpp) each box is one GL_SAMPLES_PASSED
-//       query (ARB_occlusion_query, the HP test's successor in core GL:
-//       "any samples passed" is the flag), its proxy drawn with colour and
-//       depth writes off; a batch issues its queries and then reads them,
+//   hp  (hp_occlusion_test_culler.cpp) each box is one occlusion query
+//       (ARB_occlusion_query, the HP test's successor in core GL), asked
+//       for the flag alone where the context offers it
+//       (GL_ANY_SAMPLES_PASSED_CONSERVATIVE, else GL_ANY_SAMPLES_PASSED,
+//       else the count GL_SAMPLES_PASSED: gl/occlusion_query.h), its proxy
+//       drawn with colour and depth writes off; a batch issues its queries and then reads them,
 //       so the rasterizer works through the batch before the first answer
 //       is needed. Boxes without a footprint (they hold the eye or cross
 //       the near plane) are visible untested. proxy=triangles queries a

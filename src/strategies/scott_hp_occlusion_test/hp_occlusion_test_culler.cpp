@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "gl/occlusion_query.h"
 #include "render/occlusion_proxy.h"
 #include "render/scene_renderer.h"
 
@@ -14,7 +15,8 @@ namespace {
 class HpOcclusionTestCuller final : public Culler {
 public:
     HpOcclusionTestCuller(const StrategyContext &context, const Settings &settings)
-        : renderer_(context.renderer), leaf_triangles_(settings.text("proxy") == "triangles")
+        : renderer_(context.renderer), leaf_triangles_(settings.text("proxy") == "triangles"),
+          target_(gl::boolean_occlusion_query_target())
     {
         GenQueries_ = reinterpret_cast<PFNGLGENQUERIESPROC>(gl::get_proc_address("glGenQueries"));
         DeleteQueries_ = reinterpret_cast<PFNGLDELETEQUERIESPROC>(gl::get_proc_address("glDeleteQueries"));
@@ -72,20 +74,20 @@ public:
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
             glDepthMask(GL_FALSE);
             for (std::size_t k = 0; k < queried.size(); ++k) {
-                BeginQuery_(GL_SAMPLES_PASSED, queries_[k]);
+                BeginQuery_(target_, queries_[k]);
                 const NodeTest &t = tests[queried[k]];
                 if (leaf_triangles_ && t.leaf)
                     // All of them: a leaf whose see-through triangles show is visible.
                     renderer_.draw_leaf_flat(t.node, LeafPart::all);
                 else
                     draw_proxy_box(proxies_[k]);
-                EndQuery_(GL_SAMPLES_PASSED);
+                EndQuery_(target_);
             }
         }
         for (std::size_t k = 0; k < queried.size(); ++k) {
-            GLuint samples = 0;
-            GetQueryObjectuiv_(queries_[k], GL_QUERY_RESULT, &samples);
-            tests[queried[k]].result = samples == 0 ? Visibility::occluded : Visibility::visible;
+            GLuint passed = 0;   // a flag, or a count where the context has no flag
+            GetQueryObjectuiv_(queries_[k], GL_QUERY_RESULT, &passed);
+            tests[queried[k]].result = passed == 0 ? Visibility::occluded : Visibility::visible;
         }
         stats_.passes += std::uint32_t(queried.size());
     }
@@ -100,6 +102,7 @@ private:
     PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv_;
     const SceneRenderer &renderer_;
     bool leaf_triangles_;
+    GLenum target_;   // the HP test's flag (gl/occlusion_query.h)
     std::vector<GLuint> queries_;
     std::vector<Aabb> proxies_;   // of the queried boxes, in order (empty for a leaf drawn as its triangles)
     std::optional<Frame> frame_;
