@@ -780,39 +780,47 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // function at least the margin there.
     const int c_lo = p.x0 * k, c_hi = p.x1 * k - 1;
     const Run none{c_lo, c_lo - 1};
+    // The lines' crossings (raster::Crossings): edge e's held constant at
+    // sample row j in lane e k + j, the reach of the r-th edge with a
+    // triangle across in lane (n + r) k + j. An edge along a row (a = 0)
+    // holds the whole row or nothing: its lanes are set aside and
+    // tested here.
     constexpr double eps = std::numeric_limits<double>::epsilon();
-    // Edge e crosses a u + b v + c = 0 at u = A + B v (A = -c / a, B = -b
-    // / a), c being the held constant or the reach's.
-    double held_a[raster::max_edges], reach_a[3], slope[raster::max_edges];
-    for (int e = 0; e < n; ++e) {
-        held_a[e] = -p.held_c[e] / p.ea[e];
-        slope[e] = -p.eb[e] / p.ea[e];
-        if (e < 3)
-            reach_a[e] = -p.reach_c[e] / p.ea[e];
-    }
-    const auto run = [&](int e, double v, double c, double start) -> Run {
-        if (p.ea[e] == 0.0)   // held along the whole row or nowhere: within 4 eps (v, b v, the sum), twice
-            return p.eb[e] * v + c - 8.0 * eps * (std::abs(p.eb[e] * v) + std::abs(c)) >= 0.0 ? Run{c_lo, c_hi}
-                                                                                            : none;
-        // The rounding of A and B (eps each), of v (y + an offset: 2 eps
-        // of B v), of B v and of the sum (eps each): within 4 eps of |A| +
-        // |B v| + |crossing|, taken twice; then the column's own rounding,
-        // 4 eps of it. Columns (col + 0.5) / k beyond crossing + slack;
-        // NaN gives none.
-        const double bv = slope[e] * v, crossing = start + bv;
-        const double slack = 8.0 * eps * (std::abs(start) + std::abs(bv) + std::abs(crossing));
-        if (p.ea[e] > 0.0) {
-            const double x = (crossing + slack) * k - 0.5;
-            const double column = std::ceil(x + 4.0 * eps * (std::abs(x) + 1.0));
-            if (!(column <= double(c_hi)))
-                return none;
-            return {column < double(c_lo) ? c_lo : int(column), c_hi};
+    raster::Crossings c;
+    c.c_lo = c_lo;
+    c.c_hi = c_hi;
+    c.k = k;
+    int reach_lane[3] = {};
+    bool level[raster::max_edges];
+    const auto add_line = [&](int e, double constant) {
+        const int base = c.lanes;
+        for (int j = 0; j < k; ++j) {
+            c.offset[base + j] = (j + 0.5) / k;
+            c.start[base + j] = -constant / p.ea[e];
+            c.slope[base + j] = -p.eb[e] / p.ea[e];
+            c.rising[base + j] = p.ea[e] > 0.0 ? -1 : 0;
         }
-        const double x = (crossing - slack) * k - 0.5;
-        const double column = std::floor(x - 4.0 * eps * (std::abs(x) + 1.0));
-        if (!(column >= double(c_lo)))
-            return none;
-        return {c_lo, column > double(c_hi) ? c_hi : int(column)};
+        c.lanes += k;
+        return base;
+    };
+    c.lanes = 0;
+    for (int e = 0; e < n; ++e) {
+        level[e] = p.ea[e] == 0.0;
+        add_line(e, p.held_c[e]);
+    }
+    for (int e = 0; e < 3; ++e)
+        if (p.candidates >> e & 1)
+            reach_lane[e] = add_line(e, p.reach_c[e]);
+    // The AVX2 loop reads lanes four at a time.
+    for (int l = c.lanes; l % 4 != 0; ++l)
+        c.offset[l] = c.start[l] = c.slope[l] = 0.0, c.rising[l] = 0;
+    std::int32_t columns[raster::max_crossings];
+    const auto run = [&](int lane, int e, int j, int y, double constant) -> Run {
+        if (level[e]) {   // b v + c >= 0: within 4 eps (v, b v, the sum), twice
+            const double v = double(y) + (j + 0.5) / k, bv = p.eb[e] * v;
+            return bv + constant - 8.0 * eps * (std::abs(bv) + std::abs(constant)) >= 0.0 ? Run{c_lo, c_hi} : none;
+        }
+        return c.rising[lane] ? Run{columns[lane], c_hi} : Run{c_lo, columns[lane]};
     };
     bool wrote = false;
     float nearest = depth[0];
@@ -827,11 +835,14 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     for (int y = p.y0; y < p.y1; ++y) {
         int first = c_hi + 1, last = c_lo - 1;   // the columns some run holds
         int whole0 = p.x0, whole1 = p.x1 - 1;    // the pixels every row holds wholly
+        if (isa_ == Isa::avx2)
+            raster::crossing_columns_avx2(c, y, columns);
+        else
+            raster::crossing_columns_scalar(c, y, columns);
         for (int j = 0; j < k; ++j) {
-            const double v = y + (j + 0.5) / k;
             Run own[raster::max_edges], all{c_lo, c_hi};
             for (int e = 0; e < n; ++e) {
-                own[e] = run(e, v, p.held_c[e], held_a[e]);
+                own[e] = run(e * k + j, e, j, y, p.held_c[e]);
                 all = meet(all, own[e]);
             }
             held_run[j] = all;
@@ -848,7 +859,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
                     continue;
                 // The reach less the held run (the reach holds it, both
                 // ending on the same side), inside the other edges.
-                Run band = run(e, v, p.reach_c[e], reach_a[e]);
+                Run band = run(reach_lane[e] + j, e, j, y, p.reach_c[e]);
                 if (own[e].lo <= own[e].hi) {
                     if (p.ea[e] > 0.0)
                         band.hi = own[e].lo - 1;

@@ -176,6 +176,39 @@ inline float tile_farthest_depth(const PolygonSetup &s, const Band &band, int x8
 void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer);
 void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer);
 
+// Merged partial coverage (DepthRasterizer::merge_partial): where each
+// edge of a polygon crosses each row of samples of a row of depth pixels,
+// as the run of sample columns it holds. Sample column c (of depth pixel
+// c / k) lies at u = (c + 0.5) / k, sample row j of depth pixel row y at
+// v = y + (j + 0.5) / k. Lane l is one line (an edge's held constant, or
+// its reach beyond a shared edge) at one sample row: it crosses at u =
+// start + slope v (in double, start = -c / a and slope = -b / a for the
+// edge a u + b v + c >= 0); where rising (a > 0) it holds the columns
+// from the crossing on, else those up to it.
+//
+// Each crossing is moved inwards by a bound of its rounding before it
+// becomes a column, so that every column in the run has the exact edge
+// function at least the line's constant: the rounding of start and slope
+// (eps each of |start| and |slope v|), of v (2 eps of |slope v|), of the
+// product and the sum (eps each) is within 4 eps of |start| + |slope v| +
+// |crossing|, taken twice; the column's own, (crossing +- slack) k - 0.5,
+// within 4 eps of it and 1. Every step is one IEEE operation in the same
+// order in both loops (no fused multiply-add), so their columns are equal.
+constexpr int max_crossings = (max_edges + 3) * 8;
+struct Crossings {
+    int lanes;
+    int c_lo, c_hi;   // the sample columns of the polygon's box
+    double k;
+    double offset[max_crossings], start[max_crossings], slope[max_crossings];
+    std::int64_t rising[max_crossings];   // -1: rising, 0: not
+};
+
+// For row y, per lane: where rising, the first column held, clamped to
+// [c_lo, c_hi + 1] (c_hi + 1: none); else the last, clamped to [c_lo - 1,
+// c_hi] (c_lo - 1: none). A NaN crossing holds none.
+void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column);
+void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column);
+
 // std::nextafter(z, 2.0f), for merged coverage's depth bounds: the next float up (a NaN
 // or infinity stays; -0 becomes the least positive float, as 0 does).
 inline float partial_next_up(float z)

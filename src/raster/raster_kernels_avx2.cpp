@@ -140,6 +140,52 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
         fill_polygon<0>(s, buffer);
 }
 
+void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
+{
+    // Four lanes at a time, crossing_columns_scalar's expressions; the
+    // lanes past c.lanes are computed from whatever the arrays hold there
+    // and not stored.
+    const __m256d eight_eps = _mm256_set1_pd(8.0 * 0x1p-52);
+    const __m256d four_eps = _mm256_set1_pd(4.0 * 0x1p-52), one = _mm256_set1_pd(1.0);
+    const __m256d half = _mm256_set1_pd(0.5), k = _mm256_set1_pd(c.k), row = _mm256_set1_pd(double(y));
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    const __m256d lo = _mm256_set1_pd(double(c.c_lo)), hi = _mm256_set1_pd(double(c.c_hi));
+    const __m256d none_rising = _mm256_set1_pd(double(c.c_hi + 1)), none_falling = _mm256_set1_pd(double(c.c_lo - 1));
+    for (int l = 0; l < c.lanes; l += 4) {
+        const __m256d v = _mm256_add_pd(row, _mm256_loadu_pd(c.offset + l));
+        const __m256d start = _mm256_loadu_pd(c.start + l);
+        const __m256d bv = _mm256_mul_pd(_mm256_loadu_pd(c.slope + l), v);
+        const __m256d crossing = _mm256_add_pd(start, bv);
+        const __m256d slack = _mm256_mul_pd(
+            eight_eps, _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, start), _mm256_andnot_pd(sign, bv)),
+                                     _mm256_andnot_pd(sign, crossing)));
+        const __m256d rising = _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i *>(c.rising + l)));
+        // Rising: the first column from (crossing + slack) k - 0.5 up.
+        const __m256d x_up = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(crossing, slack), k), half);
+        const __m256d first = _mm256_round_pd(
+            _mm256_add_pd(x_up, _mm256_mul_pd(four_eps, _mm256_add_pd(_mm256_andnot_pd(sign, x_up), one))),
+            _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
+        // first <= c_hi (false for NaN) ? max(first, c_lo) : c_hi + 1, as
+        // the scalar (first < c_lo ? c_lo : first).
+        const __m256d first_in = _mm256_cmp_pd(first, hi, _CMP_LE_OQ);
+        const __m256d first_clamped = _mm256_blendv_pd(first, lo, _mm256_cmp_pd(first, lo, _CMP_LT_OQ));
+        const __m256d up = _mm256_blendv_pd(none_rising, first_clamped, first_in);
+        // Falling: the last column from (crossing - slack) k - 0.5 down.
+        const __m256d x_down = _mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(crossing, slack), k), half);
+        const __m256d last = _mm256_round_pd(
+            _mm256_sub_pd(x_down, _mm256_mul_pd(four_eps, _mm256_add_pd(_mm256_andnot_pd(sign, x_down), one))),
+            _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+        const __m256d last_in = _mm256_cmp_pd(last, lo, _CMP_GE_OQ);
+        const __m256d last_clamped = _mm256_blendv_pd(last, hi, _mm256_cmp_pd(last, hi, _CMP_GT_OQ));
+        const __m256d down = _mm256_blendv_pd(none_falling, last_clamped, last_in);
+        const __m128i columns = _mm256_cvtpd_epi32(_mm256_blendv_pd(down, up, rising));
+        alignas(16) std::int32_t out[4];
+        _mm_store_si128(reinterpret_cast<__m128i *>(out), columns);
+        for (int i = 0; i < 4 && l + i < c.lanes; ++i)
+            column[l + i] = out[i];
+    }
+}
+
 bool tile_behind_avx2(const float *tile, int c0, int c1, int r0, int r1, float z)
 {
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);

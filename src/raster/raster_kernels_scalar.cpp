@@ -53,6 +53,27 @@ void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
     }
 }
 
+void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column)
+{
+    constexpr double eps = 0x1p-52;
+    for (int l = 0; l < c.lanes; ++l) {
+        const double v = double(y) + c.offset[l];
+        const double bv = c.slope[l] * v, crossing = c.start[l] + bv;
+        const double slack = 8.0 * eps * ((std::fabs(c.start[l]) + std::fabs(bv)) + std::fabs(crossing));
+        if (c.rising[l]) {
+            const double x = (crossing + slack) * c.k - 0.5;
+            const double first = std::ceil(x + 4.0 * eps * (std::fabs(x) + 1.0));
+            column[l] = first <= double(c.c_hi) ? std::int32_t(first < double(c.c_lo) ? double(c.c_lo) : first)
+                                                : c.c_hi + 1;
+        } else {
+            const double x = (crossing - slack) * c.k - 0.5;
+            const double last = std::floor(x - 4.0 * eps * (std::fabs(x) + 1.0));
+            column[l] = last >= double(c.c_lo) ? std::int32_t(last > double(c.c_hi) ? double(c.c_hi) : last)
+                                               : c.c_lo - 1;
+        }
+    }
+}
+
 bool tile_behind_scalar(const float *tile, int c0, int c1, int r0, int r1, float z)
 {
     for (int r = r0; r < r1; ++r)
