@@ -614,8 +614,8 @@ struct DepthRasterizer::PartialEdges {
         double depth_error;   // the transform's, of both triangles' corners
         raster::PolygonSetup depth;
     } neighbour[3];
-    // The depth pixels holding a sample the polygon may reach, one more
-    // each way where a sample beyond a shared edge may count.
+    // The depth pixels holding a sample the polygon may reach, within the
+    // reach of a shared edge too (partial_edges).
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
@@ -675,11 +675,22 @@ DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *wi
         lo = glm::min(lo, window[i]);
         hi = glm::max(hi, window[i]);
     }
-    const int grow = p.candidates ? 1 : 0;
-    p.x0 = std::max(0, int(std::ceil(double(lo.x) - p.last)) - grow);
-    p.y0 = std::max(0, int(std::ceil(double(lo.y) - p.last)) - grow);
-    p.x1 = std::min(width_, int(std::floor(double(hi.x) - p.first)) + 1 + grow);
-    p.y1 = std::min(height_, int(std::floor(double(hi.y) - p.first)) + 1 + grow);
+    // A sample beyond a shared edge counts within the reach, margin / |(a,
+    // b)| beyond it (a little more for rounding): the box grows by that.
+    // Near a sliver's sharp corner such a sample may lie farther along the
+    // edge's line, beyond the box; it is left out (coverage lost, never
+    // added).
+    double grow = 0.0;
+    for (int e = 0; e < 3; ++e)
+        if (p.candidates >> e & 1)
+            grow = std::max(grow, p.margin[e] / std::sqrt(p.ea[e] * p.ea[e] + p.eb[e] * p.eb[e]));
+    grow = grow * (1.0 + 1e-6) + 1e-6;
+    if (!(grow < 1.0))
+        grow = 1.0;
+    p.x0 = std::max(0, int(std::ceil(double(lo.x) - grow - p.last)));
+    p.y0 = std::max(0, int(std::ceil(double(lo.y) - grow - p.last)));
+    p.x1 = std::min(width_, int(std::floor(double(hi.x) + grow - p.first)) + 1);
+    p.y1 = std::min(height_, int(std::floor(double(hi.y) + grow - p.first)) + 1);
     for (int e = 0; e < n; ++e)
         p.reach_c[e] = (p.candidates >> e & 1) ? p.held_c[e] + 2.0 * p.margin[e] : p.held_c[e];
     for (int i = 0; i < k; ++i)
@@ -794,11 +805,13 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     bool level[raster::max_edges];
     const auto add_line = [&](int e, double constant) {
         const int base = c.lanes;
+        const double start = -constant / p.ea[e], slope = -p.eb[e] / p.ea[e];
+        const std::int64_t rising = p.ea[e] > 0.0 ? -1 : 0;
         for (int j = 0; j < k; ++j) {
             c.offset[base + j] = (j + 0.5) / k;
-            c.start[base + j] = -constant / p.ea[e];
-            c.slope[base + j] = -p.eb[e] / p.ea[e];
-            c.rising[base + j] = p.ea[e] > 0.0 ? -1 : 0;
+            c.start[base + j] = start;
+            c.slope[base + j] = slope;
+            c.rising[base + j] = rising;
         }
         c.lanes += k;
         return base;
