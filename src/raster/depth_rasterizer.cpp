@@ -846,8 +846,9 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // (inside every other edge).
     Run held_run[8], maybe_run[3][8];
     for (int y = p.y0; y < p.y1; ++y) {
-        int first = c_hi + 1, last = c_lo - 1;   // the columns some run holds
-        int whole0 = p.x0, whole1 = p.x1 - 1;    // the pixels every row holds wholly
+        int first = c_hi + 1, last = c_lo - 1;           // the columns some run holds
+        int whole_first = c_lo, whole_last = c_hi;       // the columns every sample row holds
+        int maybe_edges = 0;                             // edges with a sample within their reach
         if (isa_ == Isa::avx2)
             raster::crossing_columns_avx2(c, y, columns);
         else
@@ -859,13 +860,11 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
                 all = meet(all, own[e]);
             }
             held_run[j] = all;
+            whole_first = std::max(whole_first, all.lo);
+            whole_last = std::min(whole_last, all.hi);
             if (all.lo <= all.hi) {
                 first = std::min(first, all.lo);
                 last = std::max(last, all.hi);
-                whole0 = std::max(whole0, (all.lo + k - 1) / k);
-                whole1 = std::min(whole1, (all.hi + 1) / k - 1);
-            } else {
-                whole0 = p.x1, whole1 = p.x0 - 1;
             }
             for (int e = 0; e < 3; ++e) {
                 if (!(candidates >> e & 1))
@@ -888,6 +887,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
                 if (band.lo <= band.hi) {
                     first = std::min(first, band.lo);
                     last = std::max(last, band.hi);
+                    maybe_edges |= 1 << e;
                 }
             }
         }
@@ -895,7 +895,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
             continue;
         // Pixels every sample of which is held, between two such pixels:
         // the fill has taken them (its margins are no wider than these).
-        const int skip0 = whole0 + 1, skip1 = whole1 - 1;
+        const int skip0 = (whole_first + k - 1) / k + 1, skip1 = (whole_last + 1) / k - 2;
         const float depth_term = s.zb * float(y) + s.zc;
         const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
         const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
@@ -922,23 +922,22 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
                 float(double(std::min(s.za * float(x) + depth_term, s.zcap)) + error.depth));
             if (!(pixel_z < tiles_[index]))
                 continue;
-            std::uint64_t mask = 0;
+            std::uint64_t mask = 0, maybe[3] = {};
             for (int j = 0; j < k; ++j)
                 mask |= run_bits(held_run[j], x, k, j * k);
+            for (int e = 0; e < 3; ++e)
+                if (maybe_edges >> e & 1)
+                    for (int j = 0; j < k; ++j)
+                        maybe[e] |= run_bits(maybe_run[e][j], x, k, j * k);
             for (int e = 0; e < 3; ++e) {
-                if (!(candidates >> e & 1))
-                    continue;
-                std::uint64_t maybe = 0;
-                for (int j = 0; j < k; ++j)
-                    maybe |= run_bits(maybe_run[e][j], x, k, j * k);
-                if (!maybe || !set_up_across(p, e))
+                if (!maybe[e] || !set_up_across(p, e))
                     continue;
                 // Within the margin beyond a shared edge only, and
                 // inside the triangle across: held, at the farther
                 // of the two triangles' depths.
                 const PartialEdges::Across &other = p.neighbour[e];
                 std::uint64_t across_held = 0;
-                for (std::uint64_t bits = maybe; bits; bits &= bits - 1) {
+                for (std::uint64_t bits = maybe[e]; bits; bits &= bits - 1) {
                     const int bit = __builtin_ctzll(bits);
                     const float u = float(x) + p.offset[bit % k], v = float(y) + p.offset[bit / k];
                     if (other.ea[0] * u + other.eb[0] * v >= other.held[0] &&
