@@ -759,8 +759,8 @@ inline Run meet(Run a, Run b) { return {std::max(a.lo, b.lo), std::min(a.hi, b.h
 // The samples of run r within depth pixel `x` (sample columns x k .. x k +
 // k - 1), as bits 0 .. k - 1 of a k-bit mask, shifted to `shift`: Masked
 // Occlusion Culling's coverage of a span from its edges' crossing points,
-// a mask shifted rather than samples tested (Hasselgren et al. 2016,
-// section 4.1).
+// a mask shifted rather than samples tested (Hasselgren, Andersson and
+// Akenine-Moeller 2016, its triangle rasterization).
 inline std::uint64_t run_bits(Run r, int x, int k, int shift)
 {
     const int lo = std::max(r.lo - x * k, 0), hi = std::min(r.hi - x * k, k - 1);
@@ -785,8 +785,8 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // samples on one side of its crossing point: one run of columns, found
     // from that point, shifted into each pixel's mask (run_bits) and met
     // with the other edges' runs, rather than the samples tested one by
-    // one (Hasselgren et al. 2016, section 4.1: a span's coverage from its
-    // edges' crossings). The crossing, in double, is moved inwards by a
+    // one (Hasselgren et al. 2016: a tile row's coverage from its edges'
+    // crossings). The crossing, in double, is moved inwards by a
     // bound of its rounding, so a sample in the run has the exact edge
     // function at least the margin there.
     const int c_lo = p.x0 * k, c_hi = p.x1 * k - 1;
