@@ -582,10 +582,9 @@ void DepthRasterizer::add_transform_error(const glm::dmat4 &m, const glm::dvec3 
 }
 
 // The polygon's edges as rasterize sets them up, with the same margins,
-// but tested at each sample rather than folded to a pixel's worst one
-// (merge_partial), in float (raster::PartialEdges8, whose thresholds
-// carry the bound of the float error), and the triangle across each edge
-// where the caller named one.
+// but applied to each sample rather than folded to a pixel's worst one
+// (merge_partial), and the triangle across each edge where the caller
+// named one.
 struct DepthRasterizer::PartialEdges {
     const glm::vec2 *window;
     const float *depth;
@@ -597,15 +596,16 @@ struct DepthRasterizer::PartialEdges {
     // Held where a u + b v + held_c >= 0, the edge function at least the
     // margin (in double: set_up_across measures room with them).
     double ea[raster::max_edges], eb[raster::max_edges], held_c[raster::max_edges], margin[raster::max_edges];
-    // The same tests in float, and the reach: the constant below which no
-    // sample is held at all (the margin beyond a shared edge, inside it
-    // elsewhere).
-    raster::PartialEdges8 f;
+    // The reach: the constant below which no sample is held at all (the
+    // margin beyond a shared edge, held_c elsewhere).
+    double reach_c[raster::max_edges];
+    int candidates;   // bit e (e < 3): a triangle lies across edge e
+    float offset[8];  // sample offsets within a depth pixel, as float
     // The triangle across each edge, where the caller named one GL draws
     // whole (between the near and far planes, inside the guard band) and
     // both face the eye by more than twice the margin: a sample within
     // the margin of the shared edge, inside the other edges of both, is
-    // drawn by one of the two. Its two other edges (in float, as f), and
+    // drawn by one of the two. Its two other edges (in float), and
     // its depth plane. Set up on first need (set_up_across): most
     // triangles of a detailed mesh have no sample in the margin of an edge.
     struct Across {
@@ -614,18 +614,24 @@ struct DepthRasterizer::PartialEdges {
         double depth_error;   // the transform's, of both triangles' corners
         raster::PolygonSetup depth;
     } neighbour[3];
-    // The depth pixels holding a sample the polygon may reach, one more
-    // each way where a sample beyond a shared edge may count.
+    // The depth pixels holding a sample the polygon may reach, within the
+    // reach of a shared edge too (partial_edges).
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
 namespace {
 
-// The float threshold for an edge a u + b v + c >= 0 tested as
-// fl(fl(a u) + fl(b v)) >= threshold (raster::PartialEdges8): -c raised
-// by the bound of the float error there (raster_kernels.h derives it:
-// 6 eps of ((|a| + |b|) extent + |c|), float_error being 8 eps), and
-// rounded up, so that a sample passing in float passes exactly.
+// The float threshold for an edge a u + b v + c >= 0 tested at a sample
+// (u, v) = (float(X) + offset[i], float(Y) + offset[j]) as fl(fl(a u) +
+// fl(b v)) >= threshold (the triangle across a shared edge, merge_partial):
+// -c raised by a bound of the float error and rounded up, so that a sample
+// passing in float passes exactly. With unit roundoff eps = 2^-24,
+// rounding the coefficients to float (eps |a| |u|, eps |b| |v|), the
+// sample coordinates (offset and sum, 2 eps of each term; offsets such as
+// 1/6 have no exact float), both products and the sum (eps each of at
+// most |a| |u| + |b| |v|) move the value by at most 5 eps (|a| |u| + |b|
+// |v|) and terms in eps^2, below 6 eps ((|a| + |b|) extent + |c|), extent
+// bounding every sample coordinate (the guard band); float_error is 8 eps.
 float float_threshold(double a, double b, double c, double extent)
 {
     const double t = -c + float_error * ((std::abs(a) + std::abs(b)) * extent + std::abs(c));
@@ -650,9 +656,7 @@ DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *wi
     p.first = 0.5 / k;
     p.last = (k - 0.5) / k;
     p.extent = guard * std::max(width_, height_) + tile_size;
-    p.f.edges = n;
-    p.f.k = k;
-    p.f.candidates = 0;
+    p.candidates = 0;
     for (int e = 0; e < n; ++e) {
         const glm::dvec2 a_point(window[e]), b_point(window[e + 1 == n ? 0 : e + 1]);
         const double a = a_point.y - b_point.y, b = b_point.x - a_point.x, c = -(a * a_point.x + b * a_point.y);
@@ -661,30 +665,36 @@ DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *wi
         p.ea[e] = a;
         p.eb[e] = b;
         p.held_c[e] = c - p.margin[e];
-        p.f.ea[e] = float(a);
-        p.f.eb[e] = float(b);
-        p.f.held[e] = float_threshold(a, b, p.held_c[e], p.extent);
     }
     if (across && n == 3)
         for (int e = 0; e < 3; ++e)
             if (std::isfinite(across[e].x + across[e].y + across[e].z))
-                p.f.candidates |= 1 << e;
+                p.candidates |= 1 << e;
     glm::vec2 lo = window[0], hi = window[0];
     for (int i = 1; i < n; ++i) {
         lo = glm::min(lo, window[i]);
         hi = glm::max(hi, window[i]);
     }
-    const int grow = p.f.candidates ? 1 : 0;
-    p.x0 = std::max(0, int(std::ceil(double(lo.x) - p.last)) - grow);
-    p.y0 = std::max(0, int(std::ceil(double(lo.y) - p.last)) - grow);
-    p.x1 = std::min(width_, int(std::floor(double(hi.x) - p.first)) + 1 + grow);
-    p.y1 = std::min(height_, int(std::floor(double(hi.y) - p.first)) + 1 + grow);
+    // A sample beyond a shared edge counts within the reach, margin / |(a,
+    // b)| beyond it (a little more for rounding): the box grows by that.
+    // Near a sliver's sharp corner such a sample may lie farther along the
+    // edge's line, beyond the box; it is left out (coverage lost, never
+    // added).
+    double grow = 0.0;
+    for (int e = 0; e < 3; ++e)
+        if (p.candidates >> e & 1)
+            grow = std::max(grow, p.margin[e] / std::sqrt(p.ea[e] * p.ea[e] + p.eb[e] * p.eb[e]));
+    grow = grow * (1.0 + 1e-6) + 1e-6;
+    if (!(grow < 1.0))
+        grow = 1.0;
+    p.x0 = std::max(0, int(std::ceil(double(lo.x) - grow - p.last)));
+    p.y0 = std::max(0, int(std::ceil(double(lo.y) - grow - p.last)));
+    p.x1 = std::min(width_, int(std::floor(double(hi.x) + grow - p.first)) + 1);
+    p.y1 = std::min(height_, int(std::floor(double(hi.y) + grow - p.first)) + 1);
     for (int e = 0; e < n; ++e)
-        p.f.reach[e] = (p.f.candidates >> e & 1)
-                           ? float_threshold(p.ea[e], p.eb[e], p.held_c[e] + 2.0 * p.margin[e], p.extent)
-                           : p.f.held[e];
+        p.reach_c[e] = (p.candidates >> e & 1) ? p.held_c[e] + 2.0 * p.margin[e] : p.held_c[e];
     for (int i = 0; i < k; ++i)
-        p.f.offset[i] = float((i + 0.5) / k);
+        p.offset[i] = float((i + 0.5) / k);
     return p;
 }
 
@@ -737,6 +747,30 @@ bool DepthRasterizer::set_up_across(PartialEdges &p, int e) const
     return true;
 }
 
+namespace {
+
+// A run of sample columns [lo, hi] of one sample row; empty where lo > hi.
+struct Run {
+    int lo, hi;
+};
+
+inline Run meet(Run a, Run b) { return {std::max(a.lo, b.lo), std::min(a.hi, b.hi)}; }
+
+// The samples of run r within depth pixel `x` (sample columns x k .. x k +
+// k - 1), as bits 0 .. k - 1 of a k-bit mask, shifted to `shift`: Masked
+// Occlusion Culling's coverage of a span from its edges' crossing points,
+// a mask shifted rather than samples tested (Hasselgren, Andersson and
+// Akenine-Moeller 2016, its triangle rasterization).
+inline std::uint64_t run_bits(Run r, int x, int k, int shift)
+{
+    const int lo = std::max(r.lo - x * k, 0), hi = std::min(r.hi - x * k, k - 1);
+    if (lo > hi)
+        return 0;
+    return ((std::uint64_t(2) << (hi - lo)) - 1) << (lo + shift);
+}
+
+}  // namespace
+
 void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
                                     const glm::vec3 *across, TransformError error)
 {
@@ -745,129 +779,184 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     PartialEdges p = partial_edges(window, depth, n, across, error);
     if (p.x0 >= p.x1 || p.y0 >= p.y1)
         return;
-    const raster::PartialEdges8 &f = p.f;
-    const float first_offset = f.offset[0], last_offset = f.offset[f.k - 1];
-    double inverse[raster::max_edges];
-    for (int e = 0; e < n; ++e)
-        inverse[e] = f.ea[e] != 0.0f ? 1.0 / double(f.ea[e]) : 0.0;
-    // Row by row, eight pixels of a tile row at a time: those some sample
-    // of which the polygon may reach, less those it holds wholly (the fill
-    // has taken them), and of these the pixels whose depth the polygon's
-    // bound there would lower (a pixel already nearer gains nothing,
-    // whatever the samples).
+    const int k = p.k;
+    // Sample column c of a row (c / k its depth pixel) lies at u = (c +
+    // 0.5) / k. Along a sample row v an edge a u + b v + c holds the
+    // samples on one side of its crossing point: one run of columns, found
+    // from that point, shifted into each pixel's mask (run_bits) and met
+    // with the other edges' runs, rather than the samples tested one by
+    // one (Hasselgren et al. 2016: a tile row's coverage from its edges'
+    // crossings). The crossing, in double, is moved inwards by a
+    // bound of its rounding, so a sample in the run has the exact edge
+    // function at least the margin there.
+    const int c_lo = p.x0 * k, c_hi = p.x1 * k - 1;
+    const Run none{c_lo, c_lo - 1};
+    // The lines' crossings (raster::Crossings): edge e's held constant at
+    // sample row j in lane e k + j, the reach of the r-th edge with a
+    // triangle across in lane (n + r) k + j. An edge along a row (a = 0)
+    // holds the whole row or nothing: its lanes are set aside and
+    // tested here.
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    raster::Crossings c;
+    c.c_lo = c_lo;
+    c.c_hi = c_hi;
+    c.k = k;
+    int reach_lane[3] = {};
+    bool level[raster::max_edges];
+    const auto add_line = [&](int e, double constant) {
+        const int base = c.lanes;
+        const double start = -constant / p.ea[e], slope = -p.eb[e] / p.ea[e];
+        const std::int64_t rising = p.ea[e] > 0.0 ? -1 : 0;
+        for (int j = 0; j < k; ++j) {
+            c.offset[base + j] = (j + 0.5) / k;
+            c.start[base + j] = start;
+            c.slope[base + j] = slope;
+            c.rising[base + j] = rising;
+        }
+        c.lanes += k;
+        return base;
+    };
+    c.lanes = 0;
+    for (int e = 0; e < n; ++e) {
+        level[e] = p.ea[e] == 0.0;
+        add_line(e, p.held_c[e]);
+    }
+    for (int e = 0; e < 3; ++e)
+        if (p.candidates >> e & 1)
+            reach_lane[e] = add_line(e, p.reach_c[e]);
+    // The AVX2 loop reads lanes four at a time.
+    for (int l = c.lanes; l % 4 != 0; ++l)
+        c.offset[l] = c.start[l] = c.slope[l] = 0.0, c.rising[l] = 0;
+    std::int32_t columns[raster::max_crossings];
+    const auto run = [&](int lane, int e, int j, int y, double constant) -> Run {
+        if (level[e]) {   // b v + c >= 0: within 4 eps (v, b v, the sum), twice
+            const double v = double(y) + (j + 0.5) / k, bv = p.eb[e] * v;
+            return bv + constant - 8.0 * eps * (std::abs(bv) + std::abs(constant)) >= 0.0 ? Run{c_lo, c_hi} : none;
+        }
+        return c.rising[lane] ? Run{columns[lane], c_hi} : Run{c_lo, columns[lane]};
+    };
     bool wrote = false;
-    std::uint64_t held[8], maybe[3][8];
     float nearest = depth[0];
     for (int i = 1; i < n; ++i)
         nearest = std::min(nearest, depth[i]);
     const float behind = float(double(nearest) - depth_margin);
+    const int candidates = p.candidates;
+    // Per sample row j: the samples every edge holds, and for each edge e
+    // with a triangle across, those outside it alone but within its reach
+    // (inside every other edge).
+    Run held_run[8], maybe_run[3][8];
     for (int y = p.y0; y < p.y1; ++y) {
-        const float depth_term = s.zb * float(y) + s.zc;
-        const float v_low = float(y) + first_offset, v_high = float(y) + last_offset;
-        const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
-        // The row's span of pixels some sample of which reaches every edge
-        // (its largest value over the pixel's samples at least the reach
-        // threshold) and of pixels all of whose samples every edge holds,
-        // one pixel wider and narrower than the arithmetic says: the
-        // samples decide, the spans only skip pixels.
-        // A polygon two chunks wide or less is walked whole: its chunks
-        // cost less than the spans.
-        const auto column = [&](double x) { return std::max(double(p.x0 - 2), std::min(double(p.x1 + 1), x)); };
-        double reach_lo = p.x0, reach_hi = p.x1 - 1, whole_lo = p.x0, whole_hi = p.x1 - 1;
-        const bool spans = p.x1 - p.x0 > 2 * tile_size;
-        bool reached = true, whole = spans;
-        for (int e = 0; e < n && reached && spans; ++e) {
-            const double ea = f.ea[e], eb = f.eb[e];
-            const double v_largest = eb > 0.0 ? v_high : v_low, v_least = eb > 0.0 ? v_low : v_high;
-            const double reach_x = (double(f.reach[e]) - eb * v_largest) * inverse[e];
-            const double whole_x = (double(f.held[e]) - eb * v_least) * inverse[e];
-            if (ea > 0.0) {
-                reach_lo = std::max(reach_lo, std::ceil(column(reach_x - last_offset)) - 1.0);
-                whole_lo = std::max(whole_lo, std::ceil(column(whole_x - first_offset)) + 1.0);
-            } else if (ea < 0.0) {
-                reach_hi = std::min(reach_hi, std::floor(column(reach_x - first_offset)) + 1.0);
-                whole_hi = std::min(whole_hi, std::floor(column(whole_x - last_offset)) - 1.0);
-            } else {
-                reached = eb * v_largest >= double(f.reach[e]);
-                whole = whole && eb * v_least >= double(f.held[e]);
+        int first = c_hi + 1, last = c_lo - 1;           // the columns some run holds
+        int whole_first = c_lo, whole_last = c_hi;       // the columns every sample row holds
+        int maybe_edges = 0;                             // edges with a sample within their reach
+        if (isa_ == Isa::avx2)
+            raster::crossing_columns_avx2(c, y, columns);
+        else
+            raster::crossing_columns_scalar(c, y, columns);
+        for (int j = 0; j < k; ++j) {
+            Run own[raster::max_edges], all{c_lo, c_hi};
+            for (int e = 0; e < n; ++e) {
+                own[e] = run(e * k + j, e, j, y, p.held_c[e]);
+                all = meet(all, own[e]);
             }
-            reached = reached && reach_lo <= reach_hi;   // NaN included
+            held_run[j] = all;
+            whole_first = std::max(whole_first, all.lo);
+            whole_last = std::min(whole_last, all.hi);
+            if (all.lo <= all.hi) {
+                first = std::min(first, all.lo);
+                last = std::max(last, all.hi);
+            }
+            for (int e = 0; e < 3; ++e) {
+                if (!(candidates >> e & 1))
+                    continue;
+                // The reach less the held run (the reach holds it, both
+                // ending on the same side), inside the other edges.
+                Run band = run(reach_lane[e] + j, e, j, y, p.reach_c[e]);
+                if (own[e].lo <= own[e].hi) {
+                    if (p.ea[e] > 0.0)
+                        band.hi = own[e].lo - 1;
+                    else if (p.ea[e] < 0.0)
+                        band.lo = own[e].hi + 1;
+                    else
+                        band.hi = band.lo - 1;
+                }
+                for (int o = 0; o < n; ++o)
+                    if (o != e)
+                        band = meet(band, own[o]);
+                maybe_run[e][j] = band;
+                if (band.lo <= band.hi) {
+                    first = std::min(first, band.lo);
+                    last = std::max(last, band.hi);
+                    maybe_edges |= 1 << e;
+                }
+            }
         }
-        if (!reached)
+        if (first > last)
             continue;
-        if (!(whole && whole_lo <= whole_hi))
-            whole_lo = reach_hi + 1, whole_hi = reach_hi;
-        const int r0 = int(reach_lo), r1 = int(reach_hi) + 1, w0 = int(whole_lo), w1 = int(whole_hi) + 1;
-        // The two runs of partial pixels, each in chunks of a tile row.
-        const int runs[2][2] = {{r0, std::min(w0, r1)}, {std::max(w1, r0), r1}};
-        for (const auto &run : runs)
-        for (int x8 = run[0] / tile_size * tile_size; x8 < run[1]; x8 += tile_size) {
+        // Pixels every sample of which is held, between two such pixels:
+        // the fill has taken them (its margins are no wider than these).
+        const int skip0 = (whole_first + k - 1) / k + 1, skip1 = (whole_last + 1) / k - 2;
+        const float depth_term = s.zb * float(y) + s.zc;
+        const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
+        const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
+        for (int x = first / k; x <= last / k; ++x) {
+            if (x >= skip0 && x <= skip1) {
+                x = skip1;
+                continue;
+            }
             // A tile nearer everywhere than the polygon's nearest corner
             // takes nothing from it (behind_everything, tile by tile), by
             // its maximum where up to date (the partial layer writes tiles
             // often, and taking a maximum costs more than the test saves),
             // or else by the bound the fill keeps of it.
-            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
-            if ((!dirty_[tile] && tile_max_[tile] < behind) || farthest_bound_[tile] < behind)
+            const std::size_t tile = row_tiles + std::size_t(x / tile_size);
+            if ((!dirty_[tile] && tile_max_[tile] < behind) || farthest_bound_[tile] < behind) {
+                x = x / tile_size * tile_size + tile_size - 1;
                 continue;
-            int lanes = 0;
-            for (int l = 0; l < tile_size; ++l)
-                lanes |= int(x8 + l >= run[0] && x8 + l < run[1]) << l;
-            if (lanes == 0)
-                continue;
-            // No sample of the eight within reach of some edge: each
-            // float edge value is monotone in u and v, so its largest over
-            // the samples is at a corner, by the samples' own expression.
-            bool missed = false;
-            for (int e = 0; e < n && !missed; ++e) {
-                const float u = f.ea[e] > 0.0f ? float(x8 + tile_size - 1) + last_offset : float(x8) + first_offset;
-                const float v = f.eb[e] > 0.0f ? v_high : v_low;
-                missed = !(f.ea[e] * u + f.eb[e] * v >= f.reach[e]);
             }
-            if (missed)
-                continue;
-            float *row = tiles_.data() + tile * tile_pixels + std::size_t(y % tile_size) * tile_size;
+            const std::size_t index = tile * tile_pixels + row_offset + std::size_t(x % tile_size);
             // The fill's depth: the farthest over all the pixel's samples,
-            // so over those the polygon holds, widened by the transform's error.
-            const raster::PartialDepth d{s.za, depth_term, s.zcap, error.depth};
-            float z[tile_size];
-            lanes = isa_ == Isa::avx2 ? raster::partial_masks_avx2(f, d, x8, y, lanes, row, z, held, maybe)
-                                      : raster::partial_masks_scalar(f, d, x8, y, lanes, row, z, held, maybe);
-            for (; lanes; lanes &= lanes - 1) {
-                const int l = __builtin_ctz(unsigned(lanes));
-                std::uint64_t mask = held[l];
-                float pixel_z = z[l];
-                const int x = x8 + l;
-                for (int e = 0; e < 3; ++e) {
-                    if (!maybe[e][l] || !set_up_across(p, e))
-                        continue;
-                    // Within the margin beyond a shared edge only, and
-                    // inside the triangle across: held, at the farther
-                    // of the two triangles' depths.
-                    const PartialEdges::Across &other = p.neighbour[e];
-                    std::uint64_t across_held = 0;
-                    for (std::uint64_t bits = maybe[e][l]; bits; bits &= bits - 1) {
-                        const int bit = __builtin_ctzll(bits);
-                        const float u = float(x) + f.offset[bit % f.k], v = float(y) + f.offset[bit / f.k];
-                        if (other.ea[0] * u + other.eb[0] * v >= other.held[0] &&
-                            other.ea[1] * u + other.eb[1] * v >= other.held[1])
-                            across_held |= std::uint64_t(1) << bit;
-                    }
-                    if (!across_held)
-                        continue;
-                    mask |= across_held;
-                    const raster::PolygonSetup &d = other.depth;
-                    pixel_z = std::max(pixel_z, raster::partial_next_up(float(double(std::min(d.za * float(x) + (d.zb * float(y) + d.zc),
-                                                                                d.zcap)) +
-                                                              other.depth_error)));
-                }
-                if (!mask || !(pixel_z < row[l]))
+            // so over those the polygon holds, widened by the transform's
+            // error and rounded up.
+            float pixel_z = raster::partial_next_up(
+                float(double(std::min(s.za * float(x) + depth_term, s.zcap)) + error.depth));
+            if (!(pixel_z < tiles_[index]))
+                continue;
+            std::uint64_t mask = 0, maybe[3] = {};
+            for (int j = 0; j < k; ++j)
+                mask |= run_bits(held_run[j], x, k, j * k);
+            for (int e = 0; e < 3; ++e)
+                if (maybe_edges >> e & 1)
+                    for (int j = 0; j < k; ++j)
+                        maybe[e] |= run_bits(maybe_run[e][j], x, k, j * k);
+            for (int e = 0; e < 3; ++e) {
+                if (!maybe[e] || !set_up_across(p, e))
                     continue;
-                if (add_partial(tile * tile_pixels + std::size_t(y % tile_size) * tile_size + std::size_t(l), mask,
-                                pixel_z)) {
-                    dirty_[tile] = 1;
-                    wrote = true;
+                // Within the margin beyond a shared edge only, and
+                // inside the triangle across: held, at the farther
+                // of the two triangles' depths.
+                const PartialEdges::Across &other = p.neighbour[e];
+                std::uint64_t across_held = 0;
+                for (std::uint64_t bits = maybe[e]; bits; bits &= bits - 1) {
+                    const int bit = __builtin_ctzll(bits);
+                    const float u = float(x) + p.offset[bit % k], v = float(y) + p.offset[bit / k];
+                    if (other.ea[0] * u + other.eb[0] * v >= other.held[0] &&
+                        other.ea[1] * u + other.eb[1] * v >= other.held[1])
+                        across_held |= std::uint64_t(1) << bit;
                 }
+                if (!across_held)
+                    continue;
+                mask |= across_held;
+                const raster::PolygonSetup &d = other.depth;
+                pixel_z = std::max(pixel_z, raster::partial_next_up(float(
+                                                double(std::min(d.za * float(x) + (d.zb * float(y) + d.zc), d.zcap)) +
+                                                other.depth_error)));
+            }
+            if (!mask || !(pixel_z < tiles_[index]))
+                continue;
+            if (add_partial(index, mask, pixel_z)) {
+                dirty_[tile] = 1;
+                wrote = true;
             }
         }
     }

@@ -60,9 +60,12 @@
 // path screens and sets up triangles eight at a time in this mode too,
 // keeping those that cover no depth pixel wholly, with the same float and
 // double expressions (the transform error's bound included) as the one
-// at a time way, and the samples of eight depth pixels are tested at once
-// in float (raster::PartialEdges8 derives the bound of the float error
-// its thresholds carry), so the two paths' buffers stay equal.
+// at a time way. A polygon's partial coverage of a row of depth pixels is
+// found as Masked Occlusion Culling finds a span's: each edge's crossing
+// point along each row of samples bounds the run of samples it holds, and
+// the runs, met across the edges and shifted into each pixel's mask, give
+// the samples held (merge_partial), with no sample tested alone; both
+// paths share it, so their buffers stay equal.
 //
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
 // the caller); both evaluate the same float expressions in the same order,

@@ -176,52 +176,40 @@ inline float tile_farthest_depth(const PolygonSetup &s, const Band &band, int x8
 void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer);
 void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer);
 
-// Merged partial coverage (DepthRasterizer::merge_partial): a polygon's
-// edges tested at each sample of eight depth pixels of one row, in float.
-// A sample (u, v) is held by edge e where ea u + eb v >= held[e], and
-// reached (within the margin beyond it) where >= reach[e]; u and v are
-// float(X) + offset[i] and float(Y) + offset[j], and ea u + eb v is
-// summed as fl(fl(ea u) + fl(eb v)), the same in both loops.
+// Merged partial coverage (DepthRasterizer::merge_partial): where each
+// edge of a polygon crosses each row of samples of a row of depth pixels,
+// as the run of sample columns it holds. Sample column c (of depth pixel
+// c / k) lies at u = (c + 0.5) / k, sample row j of depth pixel row y at
+// v = y + (j + 0.5) / k. Lane l is one line (an edge's held constant, or
+// its reach beyond a shared edge) at one sample row: it crosses at u =
+// start + slope v (in double, start = -c / a and slope = -b / a for the
+// edge a u + b v + c >= 0); where rising (a > 0) it holds the columns
+// from the crossing on, else those up to it.
 //
-// Single precision suffices because the caller raises each threshold
-// (-c, for an edge function a u + b v + c) by a bound of the float error
-// and rounds it up (depth_rasterizer.cpp, float_threshold): with unit
-// roundoff eps = 2^-24, rounding the coefficients to float (eps |a| |u|,
-// eps |b| |v|), the sample coordinates (offset and sum, 2 eps of each
-// term; offsets such as 1/6 have no exact float), both products and the
-// sum (eps each of at most |a| |u| + |b| |v|) move the value by at most
-// 5 eps (|a| |u| + |b| |v|) and terms in eps^2, below 6 eps ((|a| + |b|)
-// extent + |c|), extent bounding every sample coordinate (the guard
-// band); the threshold is raised by 8 eps times that (float_error), so a
-// sample the float test holds is held by the exact edge function too.
-struct PartialEdges8 {
-    int edges, k;
-    float ea[max_edges], eb[max_edges], held[max_edges], reach[max_edges];
-    int candidates;   // bit e (e < 3): a triangle lies across edge e
-    float offset[8];  // sample offsets within a depth pixel
+// Each crossing is moved inwards by a bound of its rounding before it
+// becomes a column, so that every column in the run has the exact edge
+// function at least the line's constant: the rounding of start and slope
+// (eps each of |start| and |slope v|), of v (2 eps of |slope v|), of the
+// product and the sum (eps each) is within 4 eps of |start| + |slope v| +
+// |crossing|, taken twice; the column's own, (crossing +- slack) k - 0.5,
+// within 4 eps of it and 1. Every step is one IEEE operation in the same
+// order in both loops (no fused multiply-add), so their columns are equal.
+constexpr int max_crossings = (max_edges + 3) * 8;
+struct Crossings {
+    int lanes;
+    int c_lo, c_hi;   // the sample columns of the polygon's box
+    double k;
+    double offset[max_crossings], start[max_crossings], slope[max_crossings];
+    std::int64_t rising[max_crossings];   // -1: rising, 0: not
 };
 
-// The polygon's bound over a depth pixel (x, y) of that row, as the fill
-// evaluates it, widened by the transform's error and rounded up:
-// next_up(float(double(min(za float(x) + row_term, zcap)) + error)).
-struct PartialDepth {
-    float za, row_term, zcap;   // row_term: zb float(y) + zc
-    double error;
-};
+// For row y, per lane: where rising, the first column held, clamped to
+// [c_lo, c_hi + 1] (c_hi + 1: none); else the last, clamped to [c_lo - 1,
+// c_hi] (c_lo - 1: none). A NaN crossing holds none.
+void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column);
+void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column);
 
-// For the pixels (x8 + l, y) of `lanes` (bits l < 8), of `row` (their
-// eight depths in the tile): z[l] the polygon's bound there; of those
-// whose bound is nearer than row[l], held[l] the samples (bit j k + i)
-// inside every edge and maybe[e][l] those outside candidate edge e
-// alone, within its reach, inside the others (0 for edges that are not
-// candidates). Returns the lanes whose bound is nearer and that hold or
-// may hold a sample (the other lanes' masks are undefined).
-int partial_masks_scalar(const PartialEdges8 &p, const PartialDepth &d, int x8, int y, int lanes, const float *row,
-                         float z[8], std::uint64_t held[8], std::uint64_t maybe[3][8]);
-int partial_masks_avx2(const PartialEdges8 &p, const PartialDepth &d, int x8, int y, int lanes, const float *row,
-                       float z[8], std::uint64_t held[8], std::uint64_t maybe[3][8]);
-
-// std::nextafter(z, 2.0f) for the depths above: the next float up (a NaN
+// std::nextafter(z, 2.0f), for merged coverage's depth bounds: the next float up (a NaN
 // or infinity stays; -0 becomes the least positive float, as 0 does).
 inline float partial_next_up(float z)
 {

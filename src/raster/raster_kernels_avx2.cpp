@@ -140,103 +140,50 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
         fill_polygon<0>(s, buffer);
 }
 
-int partial_masks_avx2(const PartialEdges8 &p, const PartialDepth &d, int x8, int y, int lanes, const float *row,
-                       float z[8], std::uint64_t held[8], std::uint64_t maybe[3][8])
+void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
 {
-    const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(x8)), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
-    // The bound: min(za x + row_term, zcap) (min_ps(zcap, z) is std::min's
-    // (zcap < z ? zcap : z)), plus the error in double, rounded to float
-    // (as the scalar conversion), then the next float up.
-    {
-        const __m256 plane =
-            _mm256_min_ps(_mm256_set1_ps(d.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(d.za), fx),
-                                                                _mm256_set1_ps(d.row_term)));
-        const __m256d error = _mm256_set1_pd(d.error);
-        const __m128 low = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(plane)), error));
-        const __m128 high = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(plane, 1)), error));
-        __m256 bound = _mm256_add_ps(_mm256_set_m128(high, low), _mm256_setzero_ps());   // -0 is 0
-        const __m256i bits = _mm256_castps_si256(bound);
-        const __m256i negative = _mm256_castps_si256(_mm256_cmp_ps(bound, _mm256_setzero_ps(), _CMP_LT_OQ));
-        // +1, or -1 where negative: bits + (1 + 2 negative), negative being -1.
-        const __m256i step = _mm256_add_epi32(_mm256_set1_epi32(1), _mm256_add_epi32(negative, negative));
-        const __m256 stepped = _mm256_castsi256_ps(_mm256_add_epi32(bits, step));
-        const __m256 keep = _mm256_or_ps(_mm256_cmp_ps(bound, bound, _CMP_UNORD_Q),
-                                         _mm256_cmp_ps(bound, _mm256_set1_ps(__builtin_inff()), _CMP_EQ_OQ));
-        bound = _mm256_blendv_ps(stepped, bound, keep);
-        _mm256_storeu_ps(z, bound);
-        lanes &= _mm256_movemask_ps(_mm256_cmp_ps(bound, _mm256_loadu_ps(row), _CMP_LT_OQ));
-        if (lanes == 0)
-            return 0;
+    // Four lanes at a time, crossing_columns_scalar's expressions; the
+    // lanes past c.lanes are computed from whatever the arrays hold there
+    // and not stored.
+    const __m256d eight_eps = _mm256_set1_pd(8.0 * 0x1p-52);
+    const __m256d four_eps = _mm256_set1_pd(4.0 * 0x1p-52), one = _mm256_set1_pd(1.0);
+    const __m256d half = _mm256_set1_pd(0.5), k = _mm256_set1_pd(c.k), row = _mm256_set1_pd(double(y));
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    const __m256d lo = _mm256_set1_pd(double(c.c_lo)), hi = _mm256_set1_pd(double(c.c_hi));
+    const __m256d none_rising = _mm256_set1_pd(double(c.c_hi + 1)), none_falling = _mm256_set1_pd(double(c.c_lo - 1));
+    for (int l = 0; l < c.lanes; l += 4) {
+        const __m256d v = _mm256_add_pd(row, _mm256_loadu_pd(c.offset + l));
+        const __m256d start = _mm256_loadu_pd(c.start + l);
+        const __m256d bv = _mm256_mul_pd(_mm256_loadu_pd(c.slope + l), v);
+        const __m256d crossing = _mm256_add_pd(start, bv);
+        const __m256d slack = _mm256_mul_pd(
+            eight_eps, _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, start), _mm256_andnot_pd(sign, bv)),
+                                     _mm256_andnot_pd(sign, crossing)));
+        const __m256d rising = _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i *>(c.rising + l)));
+        // Rising: the first column from (crossing + slack) k - 0.5 up.
+        const __m256d x_up = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(crossing, slack), k), half);
+        const __m256d first = _mm256_round_pd(
+            _mm256_add_pd(x_up, _mm256_mul_pd(four_eps, _mm256_add_pd(_mm256_andnot_pd(sign, x_up), one))),
+            _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
+        // first <= c_hi (false for NaN) ? max(first, c_lo) : c_hi + 1, as
+        // the scalar (first < c_lo ? c_lo : first).
+        const __m256d first_in = _mm256_cmp_pd(first, hi, _CMP_LE_OQ);
+        const __m256d first_clamped = _mm256_blendv_pd(first, lo, _mm256_cmp_pd(first, lo, _CMP_LT_OQ));
+        const __m256d up = _mm256_blendv_pd(none_rising, first_clamped, first_in);
+        // Falling: the last column from (crossing - slack) k - 0.5 down.
+        const __m256d x_down = _mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(crossing, slack), k), half);
+        const __m256d last = _mm256_round_pd(
+            _mm256_sub_pd(x_down, _mm256_mul_pd(four_eps, _mm256_add_pd(_mm256_andnot_pd(sign, x_down), one))),
+            _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+        const __m256d last_in = _mm256_cmp_pd(last, lo, _CMP_GE_OQ);
+        const __m256d last_clamped = _mm256_blendv_pd(last, hi, _mm256_cmp_pd(last, hi, _CMP_GT_OQ));
+        const __m256d down = _mm256_blendv_pd(none_falling, last_clamped, last_in);
+        const __m128i columns = _mm256_cvtpd_epi32(_mm256_blendv_pd(down, up, rising));
+        alignas(16) std::int32_t out[4];
+        _mm_store_si128(reinterpret_cast<__m128i *>(out), columns);
+        for (int i = 0; i < 4 && l + i < c.lanes; ++i)
+            column[l + i] = out[i];
     }
-    // Eight pixels in lanes, one sample of each at a time; the masks built
-    // in two 32-bit halves of 64 bits.
-    const int edges = p.edges;
-    __m256i held_bits[2] = {_mm256_setzero_si256(), _mm256_setzero_si256()};
-    // Cleared only where some edge has a triangle across: most polygons
-    // have none, and clearing six registers' worth of stack each call
-    // costs more than the edge tests.
-    __m256i maybe_bits[3][2];
-    if (p.candidates != 0)
-        for (auto &bits : maybe_bits)
-            bits[0] = bits[1] = _mm256_setzero_si256();
-    const __m256i all_ones = _mm256_set1_epi32(-1);
-    int bit = 0;
-    for (int j = 0; j < p.k; ++j) {
-        const float v = float(y) + p.offset[j];
-        float row_term[max_edges];
-        for (int e = 0; e < edges; ++e)
-            row_term[e] = p.eb[e] * v;
-        for (int i = 0; i < p.k; ++i, ++bit) {
-            const __m256 u = _mm256_add_ps(fx, _mm256_set1_ps(p.offset[i]));
-            __m256i inside_all = all_ones;
-            __m256i inside[3], reached[3];
-            for (int e = 0; e < edges; ++e) {
-                const __m256 value = _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(p.ea[e]), u),
-                                                   _mm256_set1_ps(row_term[e]));
-                const __m256i in = _mm256_castps_si256(_mm256_cmp_ps(value, _mm256_set1_ps(p.held[e]), _CMP_GE_OQ));
-                inside_all = _mm256_and_si256(inside_all, in);
-                if (e < 3) {
-                    inside[e] = in;
-                    reached[e] =
-                        _mm256_castps_si256(_mm256_cmp_ps(value, _mm256_set1_ps(p.reach[e]), _CMP_GE_OQ));
-                }
-            }
-            const __m256i one_bit = _mm256_set1_epi32(int(1u << (bit & 31)));
-            held_bits[bit >> 5] = _mm256_or_si256(held_bits[bit >> 5], _mm256_and_si256(inside_all, one_bit));
-            if (p.candidates == 0)
-                continue;
-            // Outside edge e alone: inside every other edge.
-            for (int e = 0; e < 3; ++e) {
-                if (!(p.candidates >> e & 1))
-                    continue;
-                __m256i others = _mm256_andnot_si256(inside[e], reached[e]);
-                for (int f = 0; f < edges; ++f)
-                    if (f != e)
-                        others = _mm256_and_si256(others, f < 3 ? inside[f] : all_ones);
-                maybe_bits[e][bit >> 5] = _mm256_or_si256(maybe_bits[e][bit >> 5], _mm256_and_si256(others, one_bit));
-            }
-        }
-    }
-    alignas(32) std::uint32_t low[8], high[8];
-    __m256i any = _mm256_or_si256(held_bits[0], held_bits[1]);
-    const auto store = [&](const __m256i *bits, std::uint64_t *out) {
-        _mm256_store_si256(reinterpret_cast<__m256i *>(low), bits[0]);
-        _mm256_store_si256(reinterpret_cast<__m256i *>(high), bits[1]);
-        for (int l = 0; l < 8; ++l)
-            out[l] = (lanes >> l & 1) ? std::uint64_t(low[l]) | std::uint64_t(high[l]) << 32 : 0;
-    };
-    store(held_bits, held);
-    if (p.candidates != 0)
-        for (int e = 0; e < 3; ++e) {
-            store(maybe_bits[e], maybe[e]);
-            any = _mm256_or_si256(any, _mm256_or_si256(maybe_bits[e][0], maybe_bits[e][1]));
-        }
-    else
-        for (int e = 0; e < 3; ++e)
-            for (int l = 0; l < 8; ++l)
-                maybe[e][l] = 0;
-    const int empty = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(any, _mm256_setzero_si256())));
-    return lanes & ~empty;
 }
 
 bool tile_behind_avx2(const float *tile, int c0, int c1, int r0, int r1, float z)

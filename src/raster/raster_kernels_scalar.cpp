@@ -53,44 +53,25 @@ void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
     }
 }
 
-int partial_masks_scalar(const PartialEdges8 &p, const PartialDepth &d, int x8, int y, int lanes, const float *row,
-                         float z[8], std::uint64_t held[8], std::uint64_t maybe[3][8])
+void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column)
 {
-    int found = 0;
-    for (int l = 0; l < 8; ++l) {
-        held[l] = 0;
-        maybe[0][l] = maybe[1][l] = maybe[2][l] = 0;
-        if (!(lanes >> l & 1))
-            continue;
-        z[l] = partial_next_up(float(double(std::min(d.za * float(x8 + l) + d.row_term, d.zcap)) + d.error));
-        if (!(z[l] < row[l]))
-            continue;
-        const float fx = float(x8 + l);
-        std::uint64_t bit = 1;
-        for (int j = 0; j < p.k; ++j) {
-            const float v = float(y) + p.offset[j];
-            for (int i = 0; i < p.k; ++i, bit <<= 1) {
-                const float u = fx + p.offset[i];
-                int inside = 0, reached = 0;
-                for (int e = 0; e < p.edges; ++e) {
-                    const float value = p.ea[e] * u + p.eb[e] * v;
-                    inside |= int(value >= p.held[e]) << e;
-                    reached |= int(value >= p.reach[e]) << e;
-                }
-                const int all = (1 << p.edges) - 1;
-                if (inside == all) {
-                    held[l] |= bit;
-                    continue;
-                }
-                for (int e = 0; e < 3; ++e)
-                    if ((p.candidates >> e & 1) && inside == (all & ~(1 << e)) && (reached >> e & 1))
-                        maybe[e][l] |= bit;
-            }
+    constexpr double eps = 0x1p-52;
+    for (int l = 0; l < c.lanes; ++l) {
+        const double v = double(y) + c.offset[l];
+        const double bv = c.slope[l] * v, crossing = c.start[l] + bv;
+        const double slack = 8.0 * eps * ((std::fabs(c.start[l]) + std::fabs(bv)) + std::fabs(crossing));
+        if (c.rising[l]) {
+            const double x = (crossing + slack) * c.k - 0.5;
+            const double first = std::ceil(x + 4.0 * eps * (std::fabs(x) + 1.0));
+            column[l] = first <= double(c.c_hi) ? std::int32_t(first < double(c.c_lo) ? double(c.c_lo) : first)
+                                                : c.c_hi + 1;
+        } else {
+            const double x = (crossing - slack) * c.k - 0.5;
+            const double last = std::floor(x - 4.0 * eps * (std::fabs(x) + 1.0));
+            column[l] = last >= double(c.c_lo) ? std::int32_t(last > double(c.c_hi) ? double(c.c_hi) : last)
+                                               : c.c_lo - 1;
         }
-        if (held[l] | maybe[0][l] | maybe[1][l] | maybe[2][l])
-            found |= 1 << l;
     }
-    return found;
 }
 
 bool tile_behind_scalar(const float *tile, int c0, int c1, int r0, int r1, float z)
