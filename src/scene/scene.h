@@ -101,10 +101,12 @@ void require_finite_vertices(const Scene &scene, const std::string &source);
 // Whether a triangle's corners are collinear to float precision: the third
 // lies within a float step at their largest coordinate (the rounding the
 // stored corners carry) of the line through the other two. Such a triangle
-// has no surface, yet GL may rasterize its edge through a pixel centre
-// with depth and colour interpolated over an area that is rounding noise
-// (llvmpipe drew one of a level's floor at depth 0, in black, in front of
-// everything): the scene readers leave them out.
+// has no surface to draw or to hide anything, yet a driver may rasterize
+// its edge through a pixel centre with depth and colour interpolated over
+// an area that is rounding noise (Debian's unpatched llvmpipe drew one of a
+// level's floor at depth 0, in black, in front of everything;
+// tests/spec/gl-1.0/degenerate-triangle-depth-within-corners.c): the scene
+// readers leave them out.
 bool collinear_corners(const glm::vec3 &a, const glm::vec3 &b, const glm::vec3 &c);
 // Removes the triangles of `mesh` whose corners are collinear (above), the
 // others kept in order; returns how many it removed.
