@@ -953,11 +953,14 @@ bool DepthRasterizer::all_nearer(int x0, int y0, int x1, int y1, float z) const
 
 void DepthRasterizer::refresh_tile_maximum(std::size_t t) const
 {
+    // Column by column first (a row's lanes at once), then across.
     const float *tile = tiles_.data() + t * tile_pixels;
-    float m = tile[0];
-    for (int i = 1; i < tile_pixels; ++i)
-        m = std::max(m, tile[i]);
-    tile_max_[t] = m;
+    float column[tile_size];
+    std::copy(tile, tile + tile_size, column);
+    for (int y = 1; y < tile_size; ++y)
+        for (int x = 0; x < tile_size; ++x)
+            column[x] = std::max(column[x], tile[y * tile_size + x]);
+    tile_max_[t] = *std::max_element(column, column + tile_size);
     dirty_[t] = 0;
 }
 
