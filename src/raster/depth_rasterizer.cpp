@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "raster/occludee_kernels.h"
 #include "raster/raster_kernels.h"
 
 namespace occu {
@@ -1125,23 +1126,27 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *co
         return true;
     // Outward edges: the largest E over a pixel's square, at the corner on
     // the edge's inside, >= -margin.
-    double ea[4], eb[4], ec[4];
+    raster::OccludeeEdges q;
+    q.edges = n;
     for (int e = 0; e < n; ++e) {
         const glm::dvec2 &a = p[e], &b = p[(e + 1) % n];
-        ea[e] = a.y - b.y;
-        eb[e] = b.x - a.x;
-        ec[e] = -(ea[e] * a.x + eb[e] * a.y) + std::max(ea[e], 0.0) + std::max(eb[e], 0.0) +
-                (std::abs(ea[e]) + std::abs(eb[e])) * grow;
+        q.ea[e] = a.y - b.y;
+        q.eb[e] = b.x - a.x;
+        q.ec[e] = -(q.ea[e] * a.x + q.eb[e] * a.y) + std::max(q.ea[e], 0.0) + std::max(q.eb[e], 0.0) +
+                  (std::abs(q.ea[e]) + std::abs(q.eb[e])) * grow;
     }
     // The polygon's plane, its smallest value over a pixel's square.
     const glm::dvec2 u = p[1] - p[0], v = p[2] - p[0];
     const double twice = u.x * v.y - u.y * v.x;
-    double za = 0.0, zb = 0.0, zc = floor_z;
+    q.za = 0.0;
+    q.zb = 0.0;
+    q.zc = floor_z;
+    q.floor_z = floor_z;
     if (twice > 0.0 && !edge_on) {
         const double du = z[1] - z[0], dv = z[2] - z[0];
-        za = (du * v.y - dv * u.y) / twice;
-        zb = (dv * u.x - du * v.x) / twice;
-        zc = z[0] - za * p[0].x - zb * p[0].y + std::min(za, 0.0) + std::min(zb, 0.0) - depth_margin;
+        q.za = (du * v.y - dv * u.y) / twice;
+        q.zb = (dv * u.x - du * v.x) / twice;
+        q.zc = z[0] - q.za * p[0].x - q.zb * p[0].y + std::min(q.za, 0.0) + std::min(q.zb, 0.0) - depth_margin;
     }
     // Tile by tile: a tile whose farthest depth is nearer than the
     // polygon's nearest over the tile settles all its pixels at once.
@@ -1150,19 +1155,25 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *co
             const int tx0 = std::max(x0, tx * tile_size), tx1 = std::min(x1, (tx + 1) * tile_size);
             const int ty0 = std::max(y0, ty * tile_size), ty1 = std::min(y1, (ty + 1) * tile_size);
             const double tile_nearest =
-                std::max(floor_z, za * (za < 0.0 ? tx1 - 1 : tx0) + zb * (zb < 0.0 ? ty1 - 1 : ty0) + zc);
+                std::max(floor_z, q.za * (q.za < 0.0 ? tx1 - 1 : tx0) + q.zb * (q.zb < 0.0 ? ty1 - 1 : ty0) + q.zc);
             const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
             if (double(tile_max_[t]) < tile_nearest)
                 continue;
             const float *tile = tiles_.data() + t * tile_pixels;
+            if (isa_ == Isa::avx2) {
+                const int x8 = tx * tile_size, y8 = ty * tile_size;
+                if (!raster::tile_pixels_behind_avx2(q, tile, x8, y8, tx0 - x8, tx1 - x8, ty0 - y8, ty1 - y8))
+                    return false;
+                continue;
+            }
             for (int y = ty0; y < ty1; ++y)
                 for (int x = tx0; x < tx1; ++x) {
                     bool inside = true;
                     for (int e = 0; e < n && inside; ++e)
-                        inside = ea[e] * x + eb[e] * y + ec[e] >= 0.0;
+                        inside = q.ea[e] * x + q.eb[e] * y + q.ec[e] >= 0.0;
                     if (!inside)
                         continue;
-                    const double nearest = std::max(floor_z, za * x + zb * y + zc);
+                    const double nearest = std::max(floor_z, q.za * x + q.zb * y + q.zc);
                     if (!(double(tile[(y % tile_size) * tile_size + x % tile_size]) < nearest))
                         return false;
                 }
