@@ -142,6 +142,9 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
                                     std::to_string(options.divisor) + " given: a mask holds at most 64 samples)");
     options_ = options;
     view_projection_ = view_projection;
+    view_projection_double_ = glm::dmat4(view_projection);
+    for (int c = 0; c < 4; ++c)
+        view_projection_magnitude_[c] = glm::abs(view_projection_double_[c]);
     frame_width_ = frame_width;
     frame_height_ = frame_height;
     width_ = (frame_width + options.divisor - 1) / options.divisor;
@@ -1047,7 +1050,7 @@ bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::
 {
     const double k = options_.divisor;
     const double sx = 0.5 * double(frame_width_) / k, sy = 0.5 * double(frame_height_) / k;
-    const glm::dmat4 m(view_projection_);
+    const glm::dmat4 &m = view_projection_double_;
     if (any_dirty_)
         update_tile_maxima();
     for (std::size_t t = 0; t < count; ++t) {
@@ -1062,9 +1065,21 @@ bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::
                 return false;   // across the near plane, around the eye, or unknown: not shown hidden
             out_all &= unsigned(c.x > c.w) << 0 | unsigned(c.x < -c.w) << 1 | unsigned(c.y > c.w) << 2 |
                        unsigned(c.y < -c.w) << 3 | unsigned(c.z > c.w) << 4;
-            p[i] = {(c.x / c.w + 1.0) * sx, (c.y / c.w + 1.0) * sy};
-            z[i] = c.z / c.w * 0.5 + 0.5;
-            add_transform_error(m, corner, c, error);
+            const glm::dvec3 ndc = glm::dvec3(c) / c.w;
+            p[i] = {(ndc.x + 1.0) * sx, (ndc.y + 1.0) * sy};
+            z[i] = ndc.z * 0.5 + 0.5;
+            // add_transform_error's bound, each row's sum of magnitudes as
+            // one product of magnitudes (|m| |p|; only the order of the
+            // additions differs, far below product_error's slack).
+            const glm::dvec4 bound = product_error * (view_projection_magnitude_ * glm::dvec4(glm::abs(corner), 1.0));
+            if (!(c.w > bound.w)) {
+                error.window = error.depth = std::numeric_limits<double>::infinity();
+                continue;
+            }
+            const double w = c.w - bound.w;
+            error.window = std::max({error.window, sx * (bound.x + std::abs(ndc.x) * bound.w) / w,
+                                     sy * (bound.y + std::abs(ndc.y) * bound.w) / w});
+            error.depth = std::max(error.depth, 0.5 * (bound.z + std::abs(ndc.z) * bound.w) / w);
         }
         if (out_all)
             continue;
