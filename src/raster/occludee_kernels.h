@@ -1,13 +1,23 @@
 // SPDX-License-Identifier: MIT
-// The occludee test's inner loop (DepthRasterizer::polygon_behind): a
-// polygon's reach and nearest depth over the depth pixels of one tile,
-// tested against their depths. The scalar loop lives in polygon_behind;
-// this AVX2 one takes four depth pixels of a tile row at once with the same
-// double expressions in the same order, no fused multiply-add (the file
-// builds with -ffp-contract=off), so the two answer alike.
+// The occludee test's inner loops (DepthRasterizer::triangles_occluded and
+// polygon_behind): a triangle's corners transformed with the bound of GL's
+// error, and a polygon's reach and nearest depth over the depth pixels of
+// one tile, tested against their depths. The scalar loops live in
+// depth_rasterizer.cpp; these AVX2 ones take a corner's four rows, or four
+// depth pixels of a tile row, at once, with the same double expressions in
+// the same order and no fused multiply-add (the file builds with
+// -ffp-contract=off), so the two answer alike.
 #pragma once
 
 namespace occu::raster {
+
+// A triangle's corners (positions, xyz floats each) through a view-projection
+// matrix given as double columns m0..m3: each corner's clip position, glm's
+// order (m0 x + m1 y) + (m2 z + m3), and the bound of GL's float error in
+// each of its rows, product_error ((|m0| |x| + |m1| |y|) + (|m2| |z| + |m3|))
+// with the matrix's magnitudes `magnitude`; four doubles per corner each.
+void occludee_transform_avx2(const double *m, const double *magnitude, double product_error,
+                             const float *const corners[3], double clip[3][4], double bound[3][4]);
 
 // A convex polygon of at most 4 edges in buffer pixels: depth pixel (X, Y)
 // is reached where (ea[e] X + eb[e] Y) + ec[e] >= 0 for every edge e, and

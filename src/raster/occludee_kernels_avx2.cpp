@@ -7,6 +7,27 @@
 
 namespace occu::raster {
 
+void occludee_transform_avx2(const double *m, const double *magnitude, double product_error,
+                             const float *const corners[3], double clip[3][4], double bound[3][4])
+{
+    const __m256d m0 = _mm256_loadu_pd(m), m1 = _mm256_loadu_pd(m + 4), m2 = _mm256_loadu_pd(m + 8),
+                  m3 = _mm256_loadu_pd(m + 12);
+    const __m256d a0 = _mm256_loadu_pd(magnitude), a1 = _mm256_loadu_pd(magnitude + 4),
+                  a2 = _mm256_loadu_pd(magnitude + 8), a3 = _mm256_loadu_pd(magnitude + 12);
+    const __m256d error = _mm256_set1_pd(product_error);
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    for (int i = 0; i < 3; ++i) {
+        const __m256d x = _mm256_set1_pd(double(corners[i][0])), y = _mm256_set1_pd(double(corners[i][1])),
+                      z = _mm256_set1_pd(double(corners[i][2]));
+        _mm256_storeu_pd(clip[i], _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(m0, x), _mm256_mul_pd(m1, y)),
+                                                _mm256_add_pd(_mm256_mul_pd(m2, z), m3)));
+        const __m256d sum = _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(a0, _mm256_andnot_pd(sign, x)), _mm256_mul_pd(a1, _mm256_andnot_pd(sign, y))),
+            _mm256_add_pd(_mm256_mul_pd(a2, _mm256_andnot_pd(sign, z)), a3));
+        _mm256_storeu_pd(bound[i], _mm256_mul_pd(error, sum));
+    }
+}
+
 bool tile_pixels_behind_avx2(const OccludeeEdges &p, const float *tile, int x8, int y8, int c0, int c1, int r0,
                              int r1)
 {
