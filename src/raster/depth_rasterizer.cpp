@@ -1124,7 +1124,8 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *co
     double area = 0.0, area_error = 2.0 * n * grow * grow;
     glm::dvec2 lo(1e300), hi(-1e300);
     for (int i = 0; i < n; ++i) {
-        const glm::dvec2 &a = corners[i], &b = corners[(i + 1) % n], &before = corners[(i + n - 1) % n];
+        const glm::dvec2 &a = corners[i], &b = corners[i + 1 < n ? i + 1 : 0];
+        const glm::dvec2 &before = corners[i > 0 ? i - 1 : n - 1];
         area += a.x * b.y - b.x * a.y;
         area_error += grow * (std::abs(b.x - before.x) + std::abs(b.y - before.y));
         lo = glm::min(lo, a);
@@ -1159,7 +1160,7 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *co
     raster::OccludeeEdges q;
     q.edges = n;
     for (int e = 0; e < n; ++e) {
-        const glm::dvec2 &a = p[e], &b = p[(e + 1) % n];
+        const glm::dvec2 &a = p[e], &b = p[e + 1 < n ? e + 1 : 0];
         q.ea[e] = a.y - b.y;
         q.eb[e] = b.x - a.x;
         q.ec[e] = -(q.ea[e] * a.x + q.eb[e] * a.y) + std::max(q.ea[e], 0.0) + std::max(q.eb[e], 0.0) +
