@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "raster/occludee_kernels.h"
 #include "raster/raster_kernels.h"
 
 namespace occu {
@@ -141,6 +142,9 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
                                     std::to_string(options.divisor) + " given: a mask holds at most 64 samples)");
     options_ = options;
     view_projection_ = view_projection;
+    view_projection_double_ = glm::dmat4(view_projection);
+    for (int c = 0; c < 4; ++c)
+        view_projection_magnitude_[c] = glm::abs(view_projection_double_[c]);
     frame_width_ = frame_width;
     frame_height_ = frame_height;
     width_ = (frame_width + options.divisor - 1) / options.divisor;
@@ -1042,11 +1046,14 @@ bool DepthRasterizer::all_nearer(int x0, int y0, int x1, int y1, float z) const
 
 void DepthRasterizer::refresh_tile_maximum(std::size_t t) const
 {
+    // Column by column first (a row's lanes at once), then across.
     const float *tile = tiles_.data() + t * tile_pixels;
-    float m = tile[0];
-    for (int i = 1; i < tile_pixels; ++i)
-        m = std::max(m, tile[i]);
-    tile_max_[t] = m;
+    float column[tile_size];
+    std::copy(tile, tile + tile_size, column);
+    for (int y = 1; y < tile_size; ++y)
+        for (int x = 0; x < tile_size; ++x)
+            column[x] = std::max(column[x], tile[y * tile_size + x]);
+    tile_max_[t] = *std::max_element(column, column + tile_size);
     dirty_[t] = 0;
 }
 
@@ -1132,24 +1139,51 @@ bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::
 {
     const double k = options_.divisor;
     const double sx = 0.5 * double(frame_width_) / k, sy = 0.5 * double(frame_height_) / k;
-    const glm::dmat4 m(view_projection_);
+    const glm::dmat4 &m = view_projection_double_, &magnitude = view_projection_magnitude_;
     if (any_dirty_)
         update_tile_maxima();
     for (std::size_t t = 0; t < count; ++t) {
+        // Each corner's clip position, and the bound of GL's float error in
+        // its rows: add_transform_error's, each row's sum of magnitudes
+        // taken as one product of magnitudes (|m| |p|; only the order of the
+        // additions differs, far below product_error's slack).
+        const float *const corner[3] = {&positions[indices[3 * t]].x, &positions[indices[3 * t + 1]].x,
+                                        &positions[indices[3 * t + 2]].x};
+        double clip[3][4], bound[3][4];
+        if (isa_ == Isa::avx2) {
+            raster::occludee_transform_avx2(&m[0][0], &magnitude[0][0], product_error, corner, clip, bound);
+        } else {
+            for (int i = 0; i < 3; ++i) {
+                const glm::dvec3 p(corner[i][0], corner[i][1], corner[i][2]);
+                const glm::dvec4 c = m * glm::dvec4(p, 1.0), b = product_error * (magnitude * glm::dvec4(glm::abs(p), 1.0));
+                for (int r = 0; r < 4; ++r) {
+                    clip[i][r] = c[r];
+                    bound[i][r] = b[r];
+                }
+            }
+        }
         glm::dvec2 p[3];
         double z[3];
         unsigned out_all = 63;   // beyond one side of the frustum with every corner: GL draws none of it
         TransformError error{0.0, 0.0};   // how far GL's transform may move it
         for (int i = 0; i < 3; ++i) {
-            const glm::dvec3 corner(positions[indices[3 * t + std::size_t(i)]]);
-            const glm::dvec4 c = m * glm::dvec4(corner, 1.0);
+            const glm::dvec4 c(clip[i][0], clip[i][1], clip[i][2], clip[i][3]);
+            const glm::dvec4 b(bound[i][0], bound[i][1], bound[i][2], bound[i][3]);
             if (!std::isfinite(c.x + c.y + c.z + c.w) || !(c.w > 0.0) || c.z < -c.w)
                 return false;   // across the near plane, around the eye, or unknown: not shown hidden
             out_all &= unsigned(c.x > c.w) << 0 | unsigned(c.x < -c.w) << 1 | unsigned(c.y > c.w) << 2 |
                        unsigned(c.y < -c.w) << 3 | unsigned(c.z > c.w) << 4;
-            p[i] = {(c.x / c.w + 1.0) * sx, (c.y / c.w + 1.0) * sy};
-            z[i] = c.z / c.w * 0.5 + 0.5;
-            add_transform_error(m, corner, c, error);
+            const glm::dvec3 ndc = glm::dvec3(c) / c.w;
+            p[i] = {(ndc.x + 1.0) * sx, (ndc.y + 1.0) * sy};
+            z[i] = ndc.z * 0.5 + 0.5;
+            if (!(c.w > b.w)) {
+                error.window = error.depth = std::numeric_limits<double>::infinity();
+                continue;
+            }
+            const double w = c.w - b.w;
+            error.window = std::max({error.window, sx * (b.x + std::abs(ndc.x) * b.w) / w,
+                                     sy * (b.y + std::abs(ndc.y) * b.w) / w});
+            error.depth = std::max(error.depth, 0.5 * (b.z + std::abs(ndc.z) * b.w) / w);
         }
         if (out_all)
             continue;
@@ -1179,7 +1213,8 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *co
     double area = 0.0, area_error = 2.0 * n * grow * grow;
     glm::dvec2 lo(1e300), hi(-1e300);
     for (int i = 0; i < n; ++i) {
-        const glm::dvec2 &a = corners[i], &b = corners[(i + 1) % n], &before = corners[(i + n - 1) % n];
+        const glm::dvec2 &a = corners[i], &b = corners[i + 1 < n ? i + 1 : 0];
+        const glm::dvec2 &before = corners[i > 0 ? i - 1 : n - 1];
         area += a.x * b.y - b.x * a.y;
         area_error += grow * (std::abs(b.x - before.x) + std::abs(b.y - before.y));
         lo = glm::min(lo, a);
@@ -1211,23 +1246,27 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *co
         return true;
     // Outward edges: the largest E over a pixel's square, at the corner on
     // the edge's inside, >= -margin.
-    double ea[4], eb[4], ec[4];
+    raster::OccludeeEdges q;
+    q.edges = n;
     for (int e = 0; e < n; ++e) {
-        const glm::dvec2 &a = p[e], &b = p[(e + 1) % n];
-        ea[e] = a.y - b.y;
-        eb[e] = b.x - a.x;
-        ec[e] = -(ea[e] * a.x + eb[e] * a.y) + std::max(ea[e], 0.0) + std::max(eb[e], 0.0) +
-                (std::abs(ea[e]) + std::abs(eb[e])) * grow;
+        const glm::dvec2 &a = p[e], &b = p[e + 1 < n ? e + 1 : 0];
+        q.ea[e] = a.y - b.y;
+        q.eb[e] = b.x - a.x;
+        q.ec[e] = -(q.ea[e] * a.x + q.eb[e] * a.y) + std::max(q.ea[e], 0.0) + std::max(q.eb[e], 0.0) +
+                  (std::abs(q.ea[e]) + std::abs(q.eb[e])) * grow;
     }
     // The polygon's plane, its smallest value over a pixel's square.
     const glm::dvec2 u = p[1] - p[0], v = p[2] - p[0];
     const double twice = u.x * v.y - u.y * v.x;
-    double za = 0.0, zb = 0.0, zc = floor_z;
+    q.za = 0.0;
+    q.zb = 0.0;
+    q.zc = floor_z;
+    q.floor_z = floor_z;
     if (twice > 0.0 && !edge_on) {
         const double du = z[1] - z[0], dv = z[2] - z[0];
-        za = (du * v.y - dv * u.y) / twice;
-        zb = (dv * u.x - du * v.x) / twice;
-        zc = z[0] - za * p[0].x - zb * p[0].y + std::min(za, 0.0) + std::min(zb, 0.0) - depth_margin;
+        q.za = (du * v.y - dv * u.y) / twice;
+        q.zb = (dv * u.x - du * v.x) / twice;
+        q.zc = z[0] - q.za * p[0].x - q.zb * p[0].y + std::min(q.za, 0.0) + std::min(q.zb, 0.0) - depth_margin;
     }
     // Tile by tile: a tile whose farthest depth is nearer than the
     // polygon's nearest over the tile settles all its pixels at once.
@@ -1236,19 +1275,25 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *co
             const int tx0 = std::max(x0, tx * tile_size), tx1 = std::min(x1, (tx + 1) * tile_size);
             const int ty0 = std::max(y0, ty * tile_size), ty1 = std::min(y1, (ty + 1) * tile_size);
             const double tile_nearest =
-                std::max(floor_z, za * (za < 0.0 ? tx1 - 1 : tx0) + zb * (zb < 0.0 ? ty1 - 1 : ty0) + zc);
+                std::max(floor_z, q.za * (q.za < 0.0 ? tx1 - 1 : tx0) + q.zb * (q.zb < 0.0 ? ty1 - 1 : ty0) + q.zc);
             const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
             if (double(tile_max_[t]) < tile_nearest)
                 continue;
             const float *tile = tiles_.data() + t * tile_pixels;
+            if (isa_ == Isa::avx2) {
+                const int x8 = tx * tile_size, y8 = ty * tile_size;
+                if (!raster::tile_pixels_behind_avx2(q, tile, x8, y8, tx0 - x8, tx1 - x8, ty0 - y8, ty1 - y8))
+                    return false;
+                continue;
+            }
             for (int y = ty0; y < ty1; ++y)
                 for (int x = tx0; x < tx1; ++x) {
                     bool inside = true;
                     for (int e = 0; e < n && inside; ++e)
-                        inside = ea[e] * x + eb[e] * y + ec[e] >= 0.0;
+                        inside = q.ea[e] * x + q.eb[e] * y + q.ec[e] >= 0.0;
                     if (!inside)
                         continue;
-                    const double nearest = std::max(floor_z, za * x + zb * y + zc);
+                    const double nearest = std::max(floor_z, q.za * x + q.zb * y + q.zc);
                     if (!(double(tile[(y % tile_size) * tile_size + x % tile_size]) < nearest))
                         return false;
                 }

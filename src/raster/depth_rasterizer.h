@@ -236,6 +236,8 @@ private:
     Isa isa_;
     Options options_;
     glm::mat4 view_projection_{1.0f};
+    glm::dmat4 view_projection_double_{1.0};      // the same in double, and its entries' magnitudes:
+    glm::dmat4 view_projection_magnitude_{1.0};   // the occludee test's transform and its error bound
     int frame_width_ = 0, frame_height_ = 0;
     int width_ = 0, height_ = 0;    // depth pixels
     int tiles_x_ = 0, tiles_y_ = 0;  // 8 x 8 tiles

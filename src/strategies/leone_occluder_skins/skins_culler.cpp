@@ -59,17 +59,21 @@ public:
 
     // Every triangle of the leaf, see-through ones included (GL draws
     // them), hidden pixel by pixel: what the leaf draws, tighter than its
-    // box. The largest first: a leaf that shows mostly shows a large
-    // triangle, and the test stops at the first that shows.
-    bool triangles_occluded(std::uint32_t node) const
+    // box. The test stops at the first that shows, so the likeliest to
+    // show go first: the one that showed when the leaf was last tested
+    // (frames are coherent), then the largest.
+    bool triangles_occluded(std::uint32_t node)
     {
         const HierarchyNode &n = hierarchy_.nodes()[node];
         const auto &triangles = hierarchy_.triangles();
-        for (std::uint32_t j = n.first_triangle; j < n.first_triangle + n.triangle_count; ++j) {
-            const TriangleRef &t = triangles[largest_first_[j]];
+        const auto first = largest_first_.begin() + n.first_triangle;
+        for (auto j = first; j != first + n.triangle_count; ++j) {
+            const TriangleRef &t = triangles[*j];
             const Mesh &mesh = scene_.meshes[t.mesh];
-            if (!raster_.triangles_occluded(mesh.positions.data(), mesh.indices.data() + t.first_index, 1))
+            if (!raster_.triangles_occluded(mesh.positions.data(), mesh.indices.data() + t.first_index, 1)) {
+                std::rotate(first, j, j + 1);
                 return false;
+            }
         }
         return true;
     }
@@ -121,7 +125,8 @@ private:
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
     std::optional<DepthOccluders> occluders_;
-    std::vector<std::uint32_t> largest_first_;   // occludee=triangles: hierarchy triangles, each leaf's by area
+    std::vector<std::uint32_t> largest_first_;   // occludee=triangles: hierarchy triangles, each leaf's by area,
+                                                 // the last one seen to show moved first
     std::optional<Frame> frame_;
     CullerStats stats_;
 };

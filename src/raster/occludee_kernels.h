@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// The occludee test's inner loops (DepthRasterizer::triangles_occluded and
+// polygon_behind): a triangle's corners transformed with the bound of GL's
+// error, and a polygon's reach and nearest depth over the depth pixels of
+// one tile, tested against their depths. The scalar loops live in
+// depth_rasterizer.cpp; these AVX2 ones take a corner's four rows, or four
+// depth pixels of a tile row, at once, with the same double expressions in
+// the same order and no fused multiply-add (the file builds with
+// -ffp-contract=off), so the two answer alike.
+#pragma once
+
+namespace occu::raster {
+
+// A triangle's corners (positions, xyz floats each) through a view-projection
+// matrix given as double columns m0..m3: each corner's clip position, glm's
+// order (m0 x + m1 y) + (m2 z + m3), and the bound of GL's float error in
+// each of its rows, product_error ((|m0| |x| + |m1| |y|) + (|m2| |z| + |m3|))
+// with the matrix's magnitudes `magnitude`; four doubles per corner each.
+void occludee_transform_avx2(const double *m, const double *magnitude, double product_error,
+                             const float *const corners[3], double clip[3][4], double bound[3][4]);
+
+// A convex polygon of at most 4 edges in buffer pixels: depth pixel (X, Y)
+// is reached where (ea[e] X + eb[e] Y) + ec[e] >= 0 for every edge e, and
+// the polygon is no nearer there than max(floor_z, (za X + zb Y) + zc).
+struct OccludeeEdges {
+    int edges;
+    double ea[4], eb[4], ec[4];
+    double za, zb, zc, floor_z;
+};
+
+// Whether every depth pixel of rows [r0, r1) and columns [c0, c1) of `tile`
+// (tile-relative; the tile's lower left depth pixel is (x8, y8)) that the
+// polygon reaches is nearer than the polygon there; false at the first
+// that is not, or holds NaN.
+bool tile_pixels_behind_avx2(const OccludeeEdges &p, const float *tile, int x8, int y8, int c0, int c1, int r0,
+                             int r1);
+
+}  // namespace occu::raster

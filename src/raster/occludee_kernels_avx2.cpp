@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+#include "raster/occludee_kernels.h"
+
+#include <immintrin.h>
+
+#include "raster/raster_kernels.h"
+
+namespace occu::raster {
+
+void occludee_transform_avx2(const double *m, const double *magnitude, double product_error,
+                             const float *const corners[3], double clip[3][4], double bound[3][4])
+{
+    const __m256d m0 = _mm256_loadu_pd(m), m1 = _mm256_loadu_pd(m + 4), m2 = _mm256_loadu_pd(m + 8),
+                  m3 = _mm256_loadu_pd(m + 12);
+    const __m256d a0 = _mm256_loadu_pd(magnitude), a1 = _mm256_loadu_pd(magnitude + 4),
+                  a2 = _mm256_loadu_pd(magnitude + 8), a3 = _mm256_loadu_pd(magnitude + 12);
+    const __m256d error = _mm256_set1_pd(product_error);
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    for (int i = 0; i < 3; ++i) {
+        const __m256d x = _mm256_set1_pd(double(corners[i][0])), y = _mm256_set1_pd(double(corners[i][1])),
+                      z = _mm256_set1_pd(double(corners[i][2]));
+        _mm256_storeu_pd(clip[i], _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(m0, x), _mm256_mul_pd(m1, y)),
+                                                _mm256_add_pd(_mm256_mul_pd(m2, z), m3)));
+        const __m256d sum = _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(a0, _mm256_andnot_pd(sign, x)), _mm256_mul_pd(a1, _mm256_andnot_pd(sign, y))),
+            _mm256_add_pd(_mm256_mul_pd(a2, _mm256_andnot_pd(sign, z)), a3));
+        _mm256_storeu_pd(bound[i], _mm256_mul_pd(error, sum));
+    }
+}
+
+bool tile_pixels_behind_avx2(const OccludeeEdges &p, const float *tile, int x8, int y8, int c0, int c1, int r0,
+                             int r1)
+{
+    const __m256d zero = _mm256_setzero_pd();
+    const __m256d za = _mm256_set1_pd(p.za), zb = _mm256_set1_pd(p.zb), zc = _mm256_set1_pd(p.zc);
+    const __m256d floor_z = _mm256_set1_pd(p.floor_z);
+    const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
+    // The row's two halves of four columns, and which of their lanes lie in
+    // [c0, c1).
+    for (int half = c0 / 4 * 4; half < c1; half += 4) {
+        const __m128i column = _mm_add_epi32(lane, _mm_set1_epi32(half));
+        const __m256d chosen = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
+            _mm_and_si128(_mm_cmpgt_epi32(column, _mm_set1_epi32(c0 - 1)), _mm_cmpgt_epi32(_mm_set1_epi32(c1), column))));
+        const __m256d x = _mm256_cvtepi32_pd(_mm_add_epi32(column, _mm_set1_epi32(x8)));
+        __m256d ex[4];
+        for (int e = 0; e < p.edges; ++e)
+            ex[e] = _mm256_mul_pd(_mm256_set1_pd(p.ea[e]), x);
+        const __m256d zx = _mm256_mul_pd(za, x);
+        for (int r = r0; r < r1; ++r) {
+            const __m256d y = _mm256_set1_pd(double(y8 + r));
+            __m256d reached = chosen;
+            for (int e = 0; e < p.edges; ++e) {
+                const __m256d value = _mm256_add_pd(_mm256_add_pd(ex[e], _mm256_mul_pd(_mm256_set1_pd(p.eb[e]), y)),
+                                                    _mm256_set1_pd(p.ec[e]));
+                reached = _mm256_and_pd(reached, _mm256_cmp_pd(value, zero, _CMP_GE_OQ));
+            }
+            // max_pd(plane, floor) is floor where the plane is not above it
+            // (NaN included), as std::max(floor, plane).
+            const __m256d nearest = _mm256_max_pd(_mm256_add_pd(_mm256_add_pd(zx, _mm256_mul_pd(zb, y)), zc), floor_z);
+            const __m256d depth = _mm256_cvtps_pd(_mm_loadu_ps(tile + r * tile_size + half));
+            if (_mm256_movemask_pd(_mm256_and_pd(reached, _mm256_cmp_pd(depth, nearest, _CMP_NLT_UQ))) != 0)
+                return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace occu::raster
