@@ -2,6 +2,7 @@
 #include "gl/occlusion_query.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "gl/extensions.h"
 
@@ -30,6 +31,20 @@ GLenum boolean_occlusion_query_target()
     if (glGetError() != GL_NO_ERROR)
         major = minor = 0;
     return boolean_occlusion_query_target(major, minor, current_extensions());
+}
+
+QueryFunctions QueryFunctions::load(const std::string &user)
+{
+    QueryFunctions f{
+        reinterpret_cast<PFNGLGENQUERIESPROC>(get_proc_address("glGenQueries")),
+        reinterpret_cast<PFNGLDELETEQUERIESPROC>(get_proc_address("glDeleteQueries")),
+        reinterpret_cast<PFNGLBEGINQUERYPROC>(get_proc_address("glBeginQuery")),
+        reinterpret_cast<PFNGLENDQUERYPROC>(get_proc_address("glEndQuery")),
+        reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(get_proc_address("glGetQueryObjectuiv")),
+    };
+    if (!f.GenQueries || !f.DeleteQueries || !f.BeginQuery || !f.EndQuery || !f.GetQueryObjectuiv)
+        throw std::runtime_error(user + " needs occlusion queries (GL 1.5 or ARB_occlusion_query)");
+    return f;
 }
 
 }  // namespace occu::gl

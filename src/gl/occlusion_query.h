@@ -25,4 +25,17 @@ GLenum boolean_occlusion_query_target(int major, int minor, const std::vector<st
 // The same for the current context.
 GLenum boolean_occlusion_query_target();
 
+// GL 1.5's occlusion query entry points (ARB_occlusion_query), looked up
+// once; load() throws std::runtime_error naming `user` where the context
+// lacks any of them.
+struct QueryFunctions {
+    PFNGLGENQUERIESPROC GenQueries;
+    PFNGLDELETEQUERIESPROC DeleteQueries;
+    PFNGLBEGINQUERYPROC BeginQuery;
+    PFNGLENDQUERYPROC EndQuery;
+    PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv;
+
+    static QueryFunctions load(const std::string &user);
+};
+
 }  // namespace occu::gl

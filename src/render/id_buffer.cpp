@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "render/id_buffer.h"
 
-#include <stdexcept>
-
+#include "gl/occlusion_query.h"
 #include "gl/state.h"
 
 namespace occu {
@@ -20,31 +19,24 @@ std::vector<std::uint32_t> see_through_passing(const SceneRenderer &renderer, co
             candidates.push_back(n);
     if (candidates.empty())
         return {};
-    auto GenQueries = reinterpret_cast<PFNGLGENQUERIESPROC>(gl::get_proc_address("glGenQueries"));
-    auto DeleteQueries = reinterpret_cast<PFNGLDELETEQUERIESPROC>(gl::get_proc_address("glDeleteQueries"));
-    auto BeginQuery = reinterpret_cast<PFNGLBEGINQUERYPROC>(gl::get_proc_address("glBeginQuery"));
-    auto EndQuery = reinterpret_cast<PFNGLENDQUERYPROC>(gl::get_proc_address("glEndQuery"));
-    auto GetQueryObjectuiv =
-        reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(gl::get_proc_address("glGetQueryObjectuiv"));
-    if (!GenQueries || !DeleteQueries || !BeginQuery || !EndQuery || !GetQueryObjectuiv)
-        throw std::runtime_error("the visibility of see-through meshes needs occlusion queries (GL 1.5)");
+    const auto gl_query = gl::QueryFunctions::load("the visibility of see-through meshes");
     std::vector<GLuint> queries(candidates.size());
-    GenQueries(GLsizei(queries.size()), queries.data());
+    gl_query.GenQueries(GLsizei(queries.size()), queries.data());
     glDepthMask(GL_FALSE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     for (std::size_t i = 0; i < candidates.size(); ++i) {
-        BeginQuery(GL_SAMPLES_PASSED, queries[i]);
+        gl_query.BeginQuery(GL_SAMPLES_PASSED, queries[i]);
         renderer.draw_leaf_flat(candidates[i], LeafPart::see_through);
-        EndQuery(GL_SAMPLES_PASSED);
+        gl_query.EndQuery(GL_SAMPLES_PASSED);
     }
     std::vector<std::uint32_t> shown;
     for (std::size_t i = 0; i < candidates.size(); ++i) {
         GLuint samples = 0;
-        GetQueryObjectuiv(queries[i], GL_QUERY_RESULT, &samples);
+        gl_query.GetQueryObjectuiv(queries[i], GL_QUERY_RESULT, &samples);
         if (samples)
             shown.push_back(candidates[i]);
     }
-    DeleteQueries(GLsizei(queries.size()), queries.data());
+    gl_query.DeleteQueries(GLsizei(queries.size()), queries.data());
     return shown;
 }
 

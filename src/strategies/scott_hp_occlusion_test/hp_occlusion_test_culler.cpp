@@ -2,7 +2,6 @@
 #include "strategies/scott_hp_occlusion_test/family.h"
 
 #include <optional>
-#include <stdexcept>
 
 #include "gl/occlusion_query.h"
 #include "render/occlusion_proxy.h"
@@ -16,21 +15,12 @@ class HpOcclusionTestCuller final : public Culler {
 public:
     HpOcclusionTestCuller(const StrategyContext &context, const Settings &settings)
         : renderer_(context.renderer), leaf_triangles_(settings.text("proxy") == "triangles"),
-          target_(gl::boolean_occlusion_query_target())
-    {
-        GenQueries_ = reinterpret_cast<PFNGLGENQUERIESPROC>(gl::get_proc_address("glGenQueries"));
-        DeleteQueries_ = reinterpret_cast<PFNGLDELETEQUERIESPROC>(gl::get_proc_address("glDeleteQueries"));
-        BeginQuery_ = reinterpret_cast<PFNGLBEGINQUERYPROC>(gl::get_proc_address("glBeginQuery"));
-        EndQuery_ = reinterpret_cast<PFNGLENDQUERYPROC>(gl::get_proc_address("glEndQuery"));
-        GetQueryObjectuiv_ =
-            reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(gl::get_proc_address("glGetQueryObjectuiv"));
-        if (!GenQueries_ || !DeleteQueries_ || !BeginQuery_ || !EndQuery_ || !GetQueryObjectuiv_)
-            throw std::runtime_error("hp needs occlusion queries (GL 1.5 or ARB_occlusion_query)");
-    }
+          target_(gl::boolean_occlusion_query_target()), gl_(gl::QueryFunctions::load("hp"))
+    {}
     ~HpOcclusionTestCuller() override
     {
         if (!queries_.empty())
-            DeleteQueries_(GLsizei(queries_.size()), queries_.data());
+            gl_.DeleteQueries(GLsizei(queries_.size()), queries_.data());
     }
 
     void begin_frame(const Frame &frame) override
@@ -66,7 +56,7 @@ public:
         if (queries_.size() < queried.size()) {
             const std::size_t more = queried.size() - queries_.size();
             queries_.resize(queried.size());
-            GenQueries_(GLsizei(more), queries_.data() + (queries_.size() - more));
+            gl_.GenQueries(GLsizei(more), queries_.data() + (queries_.size() - more));
         }
         {
             const ProxyTestState proxy_state;
@@ -74,19 +64,19 @@ public:
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
             glDepthMask(GL_FALSE);
             for (std::size_t k = 0; k < queried.size(); ++k) {
-                BeginQuery_(target_, queries_[k]);
+                gl_.BeginQuery(target_, queries_[k]);
                 const NodeTest &t = tests[queried[k]];
                 if (leaf_triangles_ && t.leaf)
                     // All of them: a leaf whose see-through triangles show is visible.
                     renderer_.draw_leaf_flat(t.node, LeafPart::all);
                 else
                     draw_proxy_box(proxies_[k]);
-                EndQuery_(target_);
+                gl_.EndQuery(target_);
             }
         }
         for (std::size_t k = 0; k < queried.size(); ++k) {
             GLuint passed = 0;   // a flag, or a count where the context has no flag
-            GetQueryObjectuiv_(queries_[k], GL_QUERY_RESULT, &passed);
+            gl_.GetQueryObjectuiv(queries_[k], GL_QUERY_RESULT, &passed);
             tests[queried[k]].result = passed == 0 ? Visibility::occluded : Visibility::visible;
         }
         stats_.passes += std::uint32_t(queried.size());
@@ -95,14 +85,10 @@ public:
     CullerStats stats() const override { return stats_; }
 
 private:
-    PFNGLGENQUERIESPROC GenQueries_;
-    PFNGLDELETEQUERIESPROC DeleteQueries_;
-    PFNGLBEGINQUERYPROC BeginQuery_;
-    PFNGLENDQUERYPROC EndQuery_;
-    PFNGLGETQUERYOBJECTUIVPROC GetQueryObjectuiv_;
     const SceneRenderer &renderer_;
     bool leaf_triangles_;
     GLenum target_;   // the HP test's flag (gl/occlusion_query.h)
+    gl::QueryFunctions gl_;
     std::vector<GLuint> queries_;
     std::vector<Aabb> proxies_;   // of the queried boxes, in order (empty for a leaf drawn as its triangles)
     std::optional<Frame> frame_;

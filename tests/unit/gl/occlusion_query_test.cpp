@@ -51,13 +51,7 @@ TEST(BooleanOcclusionQueryTarget, TheCurrentContextsQueryAnswersHiddenAndVisible
         EXPECT_EQ(target, GLenum(GL_ANY_SAMPLES_PASSED_CONSERVATIVE));
     std::printf("GL %d.%d: query target 0x%04X\n", major, minor, target);
 
-    auto GenQueries = reinterpret_cast<PFNGLGENQUERIESPROC>(gl::get_proc_address("glGenQueries"));
-    auto DeleteQueries = reinterpret_cast<PFNGLDELETEQUERIESPROC>(gl::get_proc_address("glDeleteQueries"));
-    auto BeginQuery = reinterpret_cast<PFNGLBEGINQUERYPROC>(gl::get_proc_address("glBeginQuery"));
-    auto EndQuery = reinterpret_cast<PFNGLENDQUERYPROC>(gl::get_proc_address("glEndQuery"));
-    auto GetQueryObjectuiv =
-        reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(gl::get_proc_address("glGetQueryObjectuiv"));
-    ASSERT_TRUE(GenQueries && DeleteQueries && BeginQuery && EndQuery && GetQueryObjectuiv);
+    const auto gl_query = gl::QueryFunctions::load("this test");
 
     glViewport(0, 0, 64, 64);
     glMatrixMode(GL_PROJECTION);
@@ -79,19 +73,19 @@ TEST(BooleanOcclusionQueryTarget, TheCurrentContextsQueryAnswersHiddenAndVisible
     quad(0, 0, 32, 64, 0.5f);   // the occluder: the left half, near
 
     GLuint queries[2];
-    GenQueries(2, queries);
+    gl_query.GenQueries(2, queries);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthMask(GL_FALSE);
-    BeginQuery(target, queries[0]);
+    gl_query.BeginQuery(target, queries[0]);
     quad(4, 4, 28, 60, -0.5f);   // behind the occluder
-    EndQuery(target);
-    BeginQuery(target, queries[1]);
+    gl_query.EndQuery(target);
+    gl_query.BeginQuery(target, queries[1]);
     quad(36, 4, 60, 60, -0.5f);   // beside it, in front of the cleared depth
-    EndQuery(target);
+    gl_query.EndQuery(target);
     GLuint hidden = 7, visible = 0;
-    GetQueryObjectuiv(queries[0], GL_QUERY_RESULT, &hidden);
-    GetQueryObjectuiv(queries[1], GL_QUERY_RESULT, &visible);
-    DeleteQueries(2, queries);
+    gl_query.GetQueryObjectuiv(queries[0], GL_QUERY_RESULT, &hidden);
+    gl_query.GetQueryObjectuiv(queries[1], GL_QUERY_RESULT, &visible);
+    gl_query.DeleteQueries(2, queries);
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
     EXPECT_EQ(hidden, 0u);
     EXPECT_NE(visible, 0u);
