@@ -188,16 +188,24 @@ Comparison compare(const DepthRasterizer &r, const std::vector<float> &gl)
     return c;
 }
 
-class DepthRasterizerAgainstGl : public ::testing::TestWithParam<int> {};
+// Each comparison draws at frame_size in an off-screen context of its own,
+// through the test camera, at the divisor the test is instantiated with;
+// its random numbers come from a seed of its own and the divisor.
+class DepthRasterizerAgainstGl : public ::testing::TestWithParam<int> {
+protected:
+    std::mt19937 seeded(unsigned seed) const { return std::mt19937(seed + unsigned(divisor)); }
+
+    const int divisor = GetParam();
+    gl::OffscreenContext ctx{frame_size, frame_size};
+    const Camera camera = test_camera();
+    const glm::mat4 vp = camera.view_projection();
+    std::uniform_real_distribution<float> unit{0.0f, 1.0f};
+    DepthRasterizer r;
+};
 
 TEST_P(DepthRasterizerAgainstGl, CoversOnlyWhatGlCoversAndNeverNearer)
 {
-    const int divisor = GetParam();
-    gl::OffscreenContext ctx(frame_size, frame_size);
-    const Camera camera = test_camera();
-    const glm::mat4 vp = camera.view_projection();
-    std::mt19937 rng(1234u + unsigned(divisor));
-    DepthRasterizer r;
+    std::mt19937 rng = seeded(1234u);
     long covered = 0, gl_covered = 0;
     for (int per_pixel = 0; per_pixel < 2; ++per_pixel)
         for (int trial = 0; trial < 120; ++trial) {
@@ -222,13 +230,7 @@ TEST_P(DepthRasterizerAgainstGl, CoversOnlyWhatGlCoversAndNeverNearer)
 // pixels along their nearest edge to the silhouette.
 TEST_P(DepthRasterizerAgainstGl, BoxesCoverOnlyWhatGlCoversAndNeverNearer)
 {
-    const int divisor = GetParam();
-    gl::OffscreenContext ctx(frame_size, frame_size);
-    const Camera camera = test_camera();
-    const glm::mat4 vp = camera.view_projection();
-    std::mt19937 rng(4321u + unsigned(divisor));
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    DepthRasterizer r;
+    std::mt19937 rng = seeded(4321u);
     long covered = 0, gl_covered = 0;
     for (int per_pixel = 0; per_pixel < 2; ++per_pixel)
         for (int trial = 0; trial < 80; ++trial) {
@@ -262,13 +264,7 @@ TEST_P(DepthRasterizerAgainstGl, BoxesCoverOnlyWhatGlCoversAndNeverNearer)
 // show either; and the box test settles more boxes than the rectangle.
 TEST_P(DepthRasterizerAgainstGl, BoxTestHidesOnlyBoxesGlHides)
 {
-    const int divisor = GetParam();
-    gl::OffscreenContext ctx(frame_size, frame_size);
-    const Camera camera = test_camera();
-    const glm::mat4 vp = camera.view_projection();
-    std::mt19937 rng(77u + unsigned(divisor));
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    DepthRasterizer r;
+    std::mt19937 rng = seeded(77u);
     int by_rect = 0, by_box = 0;
     for (int scene = 0; scene < 30; ++scene) {
         const Polygons p = random_polygons(rng, 40);
@@ -317,12 +313,7 @@ TEST_P(DepthRasterizerAgainstGl, BoxTestHidesOnlyBoxesGlHides)
 // shared edges that covering whole depth pixels leaves.
 TEST_P(DepthRasterizerAgainstGl, MergedCoverageCoversOnlyWhatGlCoversAndClosesSeams)
 {
-    const int divisor = GetParam();
-    gl::OffscreenContext ctx(frame_size, frame_size);
-    const Camera camera = test_camera();
-    const glm::mat4 vp = camera.view_projection();
-    std::mt19937 rng(4321u + unsigned(divisor));
-    DepthRasterizer r;
+    std::mt19937 rng = seeded(4321u);
     long whole = 0, merged = 0, across = 0, gl_covered = 0;
     for (int trial = 0; trial < 40; ++trial) {
         // Grids of 4 to 40 quads a side: up to 80 triangles across 128
@@ -372,13 +363,7 @@ TEST_P(DepthRasterizerAgainstGl, MergedCoverageCoversOnlyWhatGlCoversAndClosesSe
 // triangles than the box test of each triangle's bounds.
 TEST_P(DepthRasterizerAgainstGl, TriangleTestHidesOnlyTrianglesGlHides)
 {
-    const int divisor = GetParam();
-    gl::OffscreenContext ctx(frame_size, frame_size);
-    const Camera camera = test_camera();
-    const glm::mat4 vp = camera.view_projection();
-    std::mt19937 rng(91u + unsigned(divisor));
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    DepthRasterizer r;
+    std::mt19937 rng = seeded(91u);
     int by_box = 0, by_triangles = 0;
     for (int scene = 0; scene < 30; ++scene) {
         const Polygons p = random_polygons(rng, 40);
