@@ -258,3 +258,32 @@ TEST(TraversalPolicies, ProbeStopsAtItsBudgetAndIsJudgedThere)
     EXPECT_FALSE(switch_off.off());
     EXPECT_EQ(switch_off.begin_frame(4), FrameTesting::full);
 }
+
+// The switch-off judges the tested frames lately drawn, each by its
+// triangles: a small view that hides nothing (a wall close by, 600
+// triangles) after one whose tests culled much (3,000 of 4,000) does not
+// switch the tests off for the views that follow; frames of the same size
+// that keep hiding nothing do, within a few frames.
+TEST(TraversalPolicies, ASmallFrameHidingNothingDoesNotOutweighTheFramesBefore)
+{
+    SwitchOff switch_off;   // min_gain 0.5
+    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+    FrameStats much_hidden;
+    much_hidden.triangles = 1000;
+    much_hidden.triangles_occluded = 3000;
+    switch_off.end_frame(much_hidden);
+    ASSERT_FALSE(switch_off.off());
+    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+    FrameStats small_nothing_hidden;
+    small_nothing_hidden.triangles = 600;
+    switch_off.end_frame(small_nothing_hidden);
+    EXPECT_FALSE(switch_off.off()) << "one small frame hiding nothing switched the tests off";
+    int frames = 0;
+    for (; frames < 8 && !switch_off.off(); ++frames) {
+        ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+        FrameStats nothing_hidden;
+        nothing_hidden.triangles = 1000;
+        switch_off.end_frame(nothing_hidden);
+    }
+    EXPECT_TRUE(switch_off.off()) << "8 frames hiding nothing left the tests on";
+}
