@@ -60,7 +60,8 @@ void SwitchOff::end_frame(const FrameStats &stats)
     const double triangles_drawn = double(cut_ ? judged_triangles_ : stats.triangles);
     const double triangles_occluded = double(cut_ ? judged_occluded_ : stats.triangles_occluded);
     const bool was_off = off_;
-    off_ = triangles_occluded < settings_.min_gain * triangles_drawn;
+    balance_ = (was_off ? 0.0 : carried * balance_) + triangles_occluded - settings_.min_gain * triangles_drawn;
+    off_ = balance_ < 0.0;
     if (!off_)
         return;
     // Switching off waits the base period; a probe that finds occlusion

@@ -73,9 +73,16 @@ private:
 
 // Adaptive switch-off (Bartz et al. 1998, section 5; Poon and Wang lost
 // 30% on their open route without one): when occlusion tests culled fewer
-// than `min_gain` of the triangles drawn in a frame, the next frames test
-// no occlusion (view-frustum culling only) except probe frames, whose
-// result can switch the tests back on. The first probe comes
+// than `min_gain` of the triangles drawn in the frames lately tested, the
+// next frames test no occlusion (view-frustum culling only) except probe
+// frames, whose result can switch the tests back on. Each tested frame
+// weighs by its triangles, and what the frames before it gained or lost
+// is carried, halved each frame (`carried`): a view of a wall close by,
+// which hides nothing and costs little either way, does not switch off
+// the tests that culled most of the views before it (a level's spawn
+// points: oa_minia, docs/no-occlusion.md), while frames that keep hiding
+// less than the share switch them off within a few frames. A probe is
+// judged alone, by what it saw up to its cut. The first probe comes
 // `probe_period` frames after switching off; each probe that finds the
 // tests still not worth it doubles the wait, up to `max_probe_period`.
 // A probe stops testing after `probe_nodes` node tests and judges by what
@@ -116,14 +123,20 @@ public:
     // what it saw until then.
     bool stop_testing(const FrameStats &so_far) override;
     // Judged by the frame's triangles drawn and triangles in the subtrees
-    // found occluded, as far as the frame tested (for a cut probe, up to the cut).
+    // found occluded, as far as the frame tested (for a cut probe, up to
+    // the cut), with the balance carried from the frames before (none
+    // into a probe).
     void end_frame(const FrameStats &stats) override;
     bool reads_triangles_occluded() const override { return true; }
     bool off() const { return off_; }
 
 private:
     Settings settings_;
+    // The share of the balance (triangles occluded less min_gain times
+    // those drawn) of the frames before that the next tested frame adds to.
+    static constexpr double carried = 0.5;
     bool off_ = false, probe_ = false;
+    double balance_ = 0.0;               // of the frames tested since the tests came on
     bool cut_ = false;                   // this probe stopped testing
     std::uint64_t judged_triangles_ = 0, judged_occluded_ = 0;   // at the cut
     std::uint32_t wait_ = 0;             // frames between probes now
