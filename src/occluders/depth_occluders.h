@@ -23,13 +23,15 @@ class DepthOccluders {
 public:
     // Keeps `scene` and `hierarchy` by reference; the triangles are chosen
     // leaf by leaf of `hierarchy` where given (TriangleOccluders). Where
-    // the scene has no skin at all and the settings ask for
-    // scene-triangles, the triangle budget is at least
-    // scene_triangle_budget (occluders/sources.h).
+    // meshes without skins hold at least scene_triangle_share of the
+    // scene's occluder triangles and the settings ask for scene-triangles,
+    // the triangle budget is at least scene_triangle_budget
+    // (occluders/sources.h).
     DepthOccluders(const Scene &scene, const Settings &settings, const Hierarchy *hierarchy = nullptr)
         : skins_(scene, settings),
           triangles_(scene, settings,
-                     skins_.size() == 0 && settings.knows("scene-triangles") && settings.on("scene-triangles")
+                     skins_.share_without_skins() >= scene_triangle_share && settings.knows("scene-triangles") &&
+                             settings.on("scene-triangles")
                          ? std::size_t(scene_triangle_budget)
                          : 0,
                      hierarchy)

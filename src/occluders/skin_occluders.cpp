@@ -36,10 +36,15 @@ SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, in
                              const SkinOptions &options)
     : scene_(&scene)
 {
+    for (const Mesh &m : scene.meshes)
+        if (m.occluder)
+            occluder_triangles_ += m.triangle_count();
     auto keep = [&](std::uint32_t mesh, const std::vector<Aabb> &boxes) {
         // A see-through mesh hides nothing, whatever a database says.
         if (mesh >= scene.meshes.size() || !scene.meshes[mesh].occluder)
             return;
+        if (!boxes.empty() && boxes_per_mesh > 0)
+            skinned_triangles_ += scene.meshes[mesh].triangle_count();
         Aabb bounds;
         for (const glm::vec3 &p : scene.meshes[mesh].positions)
             bounds.expand(p);
@@ -59,6 +64,15 @@ SkinOccluders::SkinOccluders(const Scene &scene, const std::string &database, in
         throw std::runtime_error(database + ": " + mismatch);
     for (const auto &[mesh, boxes] : db.skins)
         keep(mesh, boxes);
+}
+
+double SkinOccluders::share_without_skins() const
+{
+    if (brushes_)
+        return boxes_.empty() ? 1.0 : 0.0;
+    if (occluder_triangles_ == 0)
+        return 1.0;
+    return 1.0 - double(skinned_triangles_) / double(occluder_triangles_);
 }
 
 bool SkinOccluders::usable(std::size_t i, const Frame &frame) const

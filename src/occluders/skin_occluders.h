@@ -57,6 +57,10 @@ public:
     bool usable(std::size_t i, const Frame &frame) const;
 
     std::size_t size() const { return boxes_.size(); }
+    // The share of the scene's occluder triangles in meshes that have no
+    // skin here: 1 without skins, 0 with a level's box brushes (they stand
+    // for the level's meshes).
+    double share_without_skins() const;
     const std::vector<Aabb> &boxes() const { return boxes_; }
     // The bounding box of skin i's mesh.
     const Aabb &mesh_bounds(std::size_t i) const { return mesh_bounds_[i]; }
@@ -64,6 +68,8 @@ public:
 private:
     std::vector<Aabb> boxes_;
     std::vector<Aabb> mesh_bounds_;   // per skin, its mesh's
+    // The scene's occluder triangles, and those in meshes with a skin kept.
+    std::size_t occluder_triangles_ = 0, skinned_triangles_ = 0;
     std::vector<std::pair<float, std::uint32_t>> chosen_;
 
     // skin-source=brushes: every solid brush's bounds, and whether the eye

@@ -60,9 +60,9 @@ SettingSpec coverage_setting()
 SettingSpec scene_triangles_setting()
 {
     return on_off_setting("scene-triangles", true, SettingSpec::Role::choice,
-                          "where no mesh of the scene has a skin (a level, open models), its own largest triangles "
-                          "stand in (occluder-triangles " + std::to_string(scene_triangle_budget) +
-                              " unless set higher); off: occluder-triangles alone");
+                          "where meshes without skins hold half the scene's triangles or more (a level, open models, "
+                          "thin walls), its own largest triangles join the skins (occluder-triangles " +
+                              std::to_string(scene_triangle_budget) + " unless set higher); off: occluder-triangles alone");
 }
 
 bool merges_partial_coverage(const Settings &settings, int divisor)
