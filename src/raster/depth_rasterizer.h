@@ -249,7 +249,12 @@ private:
     // merge_partial_coverage: per depth pixel (the tiles' layout), the
     // samples held by polygons not covering it wholly, and their farthest
     // depth; empty otherwise.
-    std::vector<std::uint64_t> partial_mask_;
+    // The masks in two planes, bits 0-31 and 32-63 (raster::MaskRow).
+    std::vector<std::uint32_t> partial_mask_lo_, partial_mask_hi_;
+    std::uint64_t partial_mask(std::size_t index) const
+    {
+        return std::uint64_t(partial_mask_hi_[index]) << 32 | partial_mask_lo_[index];
+    }
     std::vector<float> partial_depth_;
     std::vector<std::uint8_t> partial_written_;   // per tile: a mask set since begin
     std::uint64_t full_mask_ = 0;

@@ -209,6 +209,73 @@ struct Crossings {
 void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column);
 void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column);
 
+// A tile row of merged partial coverage at once, as Masked Occlusion
+// Culling updates a tile row (Hasselgren, Andersson and Akenine-Moeller
+// 2016, its triangle rasterization): the eight depth pixels x8 .. x8 + 7 of one row, each
+// a lane, with no branch per pixel. A pixel's k x k sample mask (bit j k +
+// i: sample column i of sample row j) is held in two planes of 32 bits,
+// bits 0-31 and 32-63, so that masks, depths and compares are all eight
+// 32-bit lanes.
+struct MaskRow {
+    std::uint32_t lo[tile_size], hi[tile_size];
+};
+
+// Per sample row j < k, a run of sample columns [lo[j], hi[j]] (empty
+// where lo > hi; column c of depth pixel c / k).
+struct SampleRuns {
+    std::int32_t lo[8], hi[8];
+};
+
+// The runs' samples in depth pixels x8 .. x8 + 7, as their masks; returns
+// the lanes with a bit set (bit l: lane l).
+unsigned run_masks_scalar(const SampleRuns &runs, int k, int x8, MaskRow &out);
+unsigned run_masks_avx2(const SampleRuns &runs, int k, int x8, MaskRow &out);
+
+// The triangle across a shared edge (DepthRasterizer::set_up_across): a
+// sample (u, v) is inside it where fl(fl(ea u) + fl(eb v)) >= held for its
+// two other edges, and its depth over a depth pixel is depth's (as
+// PolygonSetup's), widened by depth_error and rounded up.
+struct PartialAcross {
+    float ea[2], eb[2], held[2];
+    double depth_error;
+    PolygonSetup depth;
+};
+
+// One tile row's update, in two steps. First each pixel's depth bound:
+// min(za X + depth_term, zcap) widened by depth_error and rounded up
+// (partial_next_up); a pixel whose depth is no farther than that takes
+// nothing (the bound only rises). Then each pixel's mask is `held` and, for
+// each triangle across, the samples of its band inside that triangle, and
+// its depth bound rises to each triangle across's that holds one of its
+// samples. A pixel with no sample or whose depth is no farther than the
+// bound takes nothing; else its mask joins the pixel's partial mask and
+// its partial depth becomes the farther of the two (its own where the mask
+// was empty), and where the joint mask fills, the pixel takes that depth
+// if nearer and the partial mask empties.
+struct PartialRow {
+    int x8, y, k;
+    float offset[8];            // sample offsets within a depth pixel
+    std::uint32_t full_lo, full_hi;
+    float za, depth_term, zcap;
+    double depth_error;
+    float z[tile_size];         // the first step's bounds
+    MaskRow held;
+    int across_count;
+    const PartialAcross *across[3];
+    MaskRow band[3];
+};
+struct PartialTileRow {
+    float *depth, *partial_depth;
+    std::uint32_t *mask_lo, *mask_hi;
+};
+// The first step: sets row.z, returns the lanes whose depth is farther.
+unsigned partial_row_depth_scalar(PartialRow &row, const float *depth);
+unsigned partial_row_depth_avx2(PartialRow &row, const float *depth);
+// The second: bit 0 of the result, a depth changed; bit 1, a partial mask
+// was stored.
+unsigned merge_partial_row_scalar(const PartialRow &row, const PartialTileRow &tile);
+unsigned merge_partial_row_avx2(const PartialRow &row, const PartialTileRow &tile);
+
 // std::nextafter(z, 2.0f), for merged coverage's depth bounds: the next float up (a NaN
 // or infinity stays; -0 becomes the least positive float, as 0 does).
 inline float partial_next_up(float z)

@@ -186,6 +186,145 @@ void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
     }
 }
 
+namespace {
+
+// partial_next_up lane by lane: the next float up, a NaN or +infinity kept.
+inline __m256 next_up(__m256 z)
+{
+    z = _mm256_add_ps(z, _mm256_setzero_ps());
+    const __m256i bits = _mm256_castps_si256(z);
+    // -1 below zero, else +1.
+    const __m256i step =
+        _mm256_or_si256(_mm256_castps_si256(_mm256_cmp_ps(z, _mm256_setzero_ps(), _CMP_LT_OQ)), _mm256_set1_epi32(1));
+    const __m256 keep = _mm256_or_ps(_mm256_cmp_ps(z, z, _CMP_UNORD_Q),
+                                     _mm256_cmp_ps(z, _mm256_set1_ps(__builtin_inff()), _CMP_EQ_OQ));
+    return _mm256_blendv_ps(_mm256_castsi256_ps(_mm256_add_epi32(bits, step)), z, keep);
+}
+
+// partial_next_up(float(double(z) + error)) lane by lane.
+inline __m256 widened(__m256 z, double error)
+{
+    const __m256d e = _mm256_set1_pd(error);
+    const __m128 low = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(z)), e));
+    const __m128 high = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(z, 1)), e));
+    return next_up(_mm256_insertf128_ps(_mm256_castps128_ps256(low), high, 1));
+}
+
+inline __m128i shift_count(int n) { return _mm_cvtsi32_si128(n); }
+
+}  // namespace
+
+unsigned run_masks_avx2(const SampleRuns &runs, int k, int x8, MaskRow &out)
+{
+    // Lane l: pixel x8 + l's first sample column; the scalar loop's
+    // expressions (shifts by 32 or more give 0 in both).
+    const __m256i first = _mm256_add_epi32(_mm256_set1_epi32(x8 * k),
+                                           _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+                                                              _mm256_set1_epi32(k)));
+    const __m256i zero = _mm256_setzero_si256(), kk = _mm256_set1_epi32(k), one = _mm256_set1_epi32(1);
+    __m256i lo = zero, hi = zero;
+    for (int j = 0; j < k; ++j) {
+        const __m256i s = _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(runs.lo[j]), first), zero), kk);
+        const __m256i t =
+            _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(runs.hi[j] + 1), first), s), kk);
+        const __m256i bits = _mm256_sub_epi32(_mm256_sllv_epi32(one, t), _mm256_sllv_epi32(one, s));
+        const int b = j * k;
+        lo = _mm256_or_si256(lo, _mm256_sll_epi32(bits, shift_count(b)));
+        hi = _mm256_or_si256(hi, _mm256_or_si256(_mm256_sll_epi32(bits, shift_count(b >= 32 ? b - 32 : 32)),
+                                                 _mm256_srl_epi32(bits, shift_count(b < 32 ? 32 - b : 32))));
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.lo), lo);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.hi), hi);
+    return unsigned(~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero)))) & 0xffu;
+}
+
+unsigned partial_row_depth_avx2(PartialRow &r, const float *depth)
+{
+    // float(x8 + lane), exactly, as the scalar loop converts it; std::min(z,
+    // zcap) is min_ps(zcap, z).
+    const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(r.x8)), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
+    const __m256 z = widened(_mm256_min_ps(_mm256_set1_ps(r.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(r.za), fx),
+                                                                                _mm256_set1_ps(r.depth_term))),
+                             r.depth_error);
+    _mm256_storeu_ps(r.z, z);
+    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, _mm256_loadu_ps(depth), _CMP_LT_OQ)));
+}
+
+unsigned merge_partial_row_avx2(const PartialRow &r, const PartialTileRow &t)
+{
+    const int k = r.k;
+    const float fy = float(r.y);
+    const __m256i zero = _mm256_setzero_si256();
+    // float(x8 + lane), exactly, as the scalar loop converts it.
+    const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(r.x8)), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
+    __m256i lo = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.held.lo));
+    __m256i hi = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.held.hi));
+    // std::min(z, zcap) is min_ps(zcap, z); std::max(a, b) is max_ps(b, a).
+    __m256 z = _mm256_loadu_ps(r.z);
+    for (int a = 0; a < r.across_count; ++a) {
+        const PartialAcross &n = *r.across[a];
+        const __m256 ea0 = _mm256_set1_ps(n.ea[0]), ea1 = _mm256_set1_ps(n.ea[1]);
+        const __m256 held0 = _mm256_set1_ps(n.held[0]), held1 = _mm256_set1_ps(n.held[1]);
+        __m256i in_lo = zero, in_hi = zero;
+        for (int j = 0; j < k; ++j) {
+            const float v = fy + r.offset[j];
+            const __m256 bv0 = _mm256_set1_ps(n.eb[0] * v), bv1 = _mm256_set1_ps(n.eb[1] * v);
+            for (int i = 0; i < k; ++i) {
+                const __m256 u = _mm256_add_ps(fx, _mm256_set1_ps(r.offset[i]));
+                const __m256 in = _mm256_and_ps(
+                    _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea0, u), bv0), held0, _CMP_GE_OQ),
+                    _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea1, u), bv1), held1, _CMP_GE_OQ));
+                const int b = j * k + i;
+                const __m256i bit = b < 32 ? _mm256_set1_epi32(int(1u << b)) : zero;
+                const __m256i bit_hi = b >= 32 ? _mm256_set1_epi32(int(1u << (b - 32))) : zero;
+                in_lo = _mm256_or_si256(in_lo, _mm256_and_si256(_mm256_castps_si256(in), bit));
+                in_hi = _mm256_or_si256(in_hi, _mm256_and_si256(_mm256_castps_si256(in), bit_hi));
+            }
+        }
+        in_lo = _mm256_and_si256(in_lo, _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.band[a].lo)));
+        in_hi = _mm256_and_si256(in_hi, _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.band[a].hi)));
+        lo = _mm256_or_si256(lo, in_lo);
+        hi = _mm256_or_si256(hi, in_hi);
+        const PolygonSetup &d = n.depth;
+        const __m256 across_z = widened(
+            _mm256_min_ps(_mm256_set1_ps(d.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(d.za), fx),
+                                                                _mm256_set1_ps(d.zb * fy + d.zc))),
+            n.depth_error);
+        const __m256 some = _mm256_castsi256_ps(
+            _mm256_xor_si256(_mm256_cmpeq_epi32(_mm256_or_si256(in_lo, in_hi), zero), _mm256_set1_epi32(-1)));
+        z = _mm256_blendv_ps(z, _mm256_max_ps(across_z, z), some);
+    }
+    const __m256 depth = _mm256_loadu_ps(t.depth);
+    const __m256i held_none = _mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero);
+    const __m256 take = _mm256_andnot_ps(_mm256_castsi256_ps(held_none), _mm256_cmp_ps(z, depth, _CMP_LT_OQ));
+    const int take_bits = _mm256_movemask_ps(take);
+    if (take_bits == 0)
+        return 0;
+    const __m256i old_lo = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(t.mask_lo));
+    const __m256i old_hi = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(t.mask_hi));
+    const __m256 old_depth = _mm256_loadu_ps(t.partial_depth);
+    const __m256 open = _mm256_castsi256_ps(
+        _mm256_xor_si256(_mm256_cmpeq_epi32(_mm256_or_si256(old_lo, old_hi), zero), _mm256_set1_epi32(-1)));
+    const __m256 farthest = _mm256_blendv_ps(z, _mm256_max_ps(z, old_depth), open);
+    lo = _mm256_or_si256(lo, old_lo);
+    hi = _mm256_or_si256(hi, old_hi);
+    const __m256 full = _mm256_castsi256_ps(_mm256_and_si256(_mm256_cmpeq_epi32(lo, _mm256_set1_epi32(int(r.full_lo))),
+                                                             _mm256_cmpeq_epi32(hi, _mm256_set1_epi32(int(r.full_hi)))));
+    // Taken and not full: the joint mask and the farther depth stored.
+    // Taken and full: the mask empties, and the depth is kept where nearer.
+    const __m256 store = _mm256_andnot_ps(full, take), fills = _mm256_and_ps(full, take);
+    const __m256 nearer = _mm256_and_ps(fills, _mm256_cmp_ps(farthest, depth, _CMP_LT_OQ));
+    const __m256i stored_lo = _mm256_andnot_si256(_mm256_castps_si256(full), lo);
+    const __m256i stored_hi = _mm256_andnot_si256(_mm256_castps_si256(full), hi);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(t.mask_lo),
+                        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_lo), _mm256_castsi256_ps(stored_lo), take)));
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(t.mask_hi),
+                        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_hi), _mm256_castsi256_ps(stored_hi), take)));
+    _mm256_storeu_ps(t.partial_depth, _mm256_blendv_ps(old_depth, farthest, store));
+    _mm256_storeu_ps(t.depth, _mm256_blendv_ps(depth, farthest, nearer));
+    return (_mm256_movemask_ps(nearer) != 0 ? 1u : 0u) | (_mm256_movemask_ps(store) != 0 ? 2u : 0u);
+}
+
 bool tile_behind_avx2(const float *tile, int c0, int c1, int r0, int r1, float z)
 {
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
