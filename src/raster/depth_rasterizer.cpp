@@ -752,16 +752,6 @@ bool DepthRasterizer::set_up_across(PartialEdges &p, int e) const
     return true;
 }
 
-namespace {
-
-// A run of sample columns [lo, hi] of one sample row; empty where lo > hi.
-struct Run {
-    int lo, hi;
-};
-
-inline Run meet(Run a, Run b) { return {std::max(a.lo, b.lo), std::min(a.hi, b.hi)}; }
-
-}  // namespace
 
 void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
                                     const glm::vec3 *across, TransformError error)
@@ -775,71 +765,59 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // Sample column c of a row (c / k its depth pixel) lies at u = (c +
     // 0.5) / k. Along a sample row v an edge a u + b v + c holds the
     // samples on one side of its crossing point: one run of columns, found
-    // from that point, shifted into each pixel's mask (run_bits) and met
-    // with the other edges' runs, rather than the samples tested one by
-    // one (Hasselgren et al. 2016: a tile row's coverage from its edges'
-    // crossings). The crossing, in double, is moved inwards by a
-    // bound of its rounding, so a sample in the run has the exact edge
-    // function at least the margin there.
-    const int c_lo = p.x0 * k, c_hi = p.x1 * k - 1;
-    const Run none{c_lo, c_lo - 1};
+    // from that point, met with the other edges' runs and turned into
+    // each pixel's mask, rather than the samples tested one by one
+    // (Hasselgren et al. 2016: a tile row's coverage from its edges'
+    // crossings). The crossing, in double, is moved inwards by a bound of
+    // its rounding, so a sample in the run has the exact edge function at
+    // least the margin there.
+    raster::Crossings c;
+    c.c_lo = p.x0 * k;
+    c.c_hi = p.x1 * k - 1;
+    c.k = k;
+    c.edges = n;
+    c.candidates = p.candidates;
+    c.rising_edges = 0;
+    c.lanes = 0;
     // The lines' crossings (raster::Crossings): edge e's held constant at
     // sample row j in lane e k + j, the reach of the r-th edge with a
-    // triangle across in lane (n + r) k + j. An edge along a row (a = 0)
-    // holds the whole row or nothing: its lanes are set aside and
-    // tested here.
-    constexpr double eps = std::numeric_limits<double>::epsilon();
-    raster::Crossings c;
-    c.c_lo = c_lo;
-    c.c_hi = c_hi;
-    c.k = k;
-    int reach_lane[3] = {};
-    bool level[raster::max_edges];
+    // triangle across in lane (n + r) k + j.
     const auto add_line = [&](int e, double constant) {
         const int base = c.lanes;
-        const double start = -constant / p.ea[e], slope = -p.eb[e] / p.ea[e];
-        const std::int64_t rising = p.ea[e] > 0.0 ? -1 : 0;
+        const bool level = p.ea[e] == 0.0;
+        const double start = level ? constant : -constant / p.ea[e], slope = level ? p.eb[e] : -p.eb[e] / p.ea[e];
+        const std::int64_t rising = p.ea[e] >= 0.0 ? -1 : 0;
         for (int j = 0; j < k; ++j) {
             c.offset[base + j] = (j + 0.5) / k;
             c.start[base + j] = start;
             c.slope[base + j] = slope;
             c.rising[base + j] = rising;
+            c.level[base + j] = level ? -1 : 0;
         }
         c.lanes += k;
         return base;
     };
-    c.lanes = 0;
     for (int e = 0; e < n; ++e) {
-        level[e] = p.ea[e] == 0.0;
         add_line(e, p.held_c[e]);
+        if (p.ea[e] >= 0.0)
+            c.rising_edges |= 1u << e;
     }
     for (int e = 0; e < 3; ++e)
         if (p.candidates >> e & 1)
-            reach_lane[e] = add_line(e, p.reach_c[e]);
+            c.reach_lane[e] = add_line(e, p.reach_c[e]);
     // The AVX2 loop reads lanes four at a time.
     for (int l = c.lanes; l % 4 != 0; ++l)
-        c.offset[l] = c.start[l] = c.slope[l] = 0.0, c.rising[l] = 0;
-    std::int32_t columns[raster::max_crossings];
-    const auto run = [&](int lane, int e, int j, int y, double constant) -> Run {
-        if (level[e]) {   // b v + c >= 0: within 4 eps (v, b v, the sum), twice
-            const double v = double(y) + (j + 0.5) / k, bv = p.eb[e] * v;
-            return bv + constant - 8.0 * eps * (std::abs(bv) + std::abs(constant)) >= 0.0 ? Run{c_lo, c_hi} : none;
-        }
-        return c.rising[lane] ? Run{columns[lane], c_hi} : Run{c_lo, columns[lane]};
-    };
+        c.offset[l] = c.start[l] = c.slope[l] = 0.0, c.rising[l] = c.level[l] = 0;
     float nearest = depth[0];
     for (int i = 1; i < n; ++i)
         nearest = std::min(nearest, depth[i]);
     const float behind = float(double(nearest) - depth_margin);
-    const int candidates = p.candidates;
     const bool avx2 = isa_ == Isa::avx2;
+    const auto row_runs = avx2 ? raster::partial_row_runs_avx2 : raster::partial_row_runs_scalar;
     const auto run_masks = avx2 ? raster::run_masks_avx2 : raster::run_masks_scalar;
     const auto row_depth = avx2 ? raster::partial_row_depth_avx2 : raster::partial_row_depth_scalar;
     const auto merge_row = avx2 ? raster::merge_partial_row_avx2 : raster::merge_partial_row_scalar;
-    // Per sample row j: the samples every edge holds, and for each edge e
-    // with a triangle across, those outside it alone but within its reach
-    // (inside every other edge).
-    raster::SampleRuns held, band[3];
+    raster::RowRuns runs;
     raster::PartialRow row;
     row.k = k;
     std::copy(p.offset, p.offset + k, row.offset);
@@ -853,51 +831,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     row.depth_error = error.depth;
     bool wrote = false;
     for (int y = p.y0; y < p.y1; ++y) {
-        int first = c_hi + 1, last = c_lo - 1;   // the columns some run holds
-        int band_edges = 0;                      // edges with a sample within their reach
-        if (avx2)
-            raster::crossing_columns_avx2(c, y, columns);
-        else
-            raster::crossing_columns_scalar(c, y, columns);
-        for (int j = 0; j < k; ++j) {
-            Run own[raster::max_edges], all{c_lo, c_hi};
-            for (int e = 0; e < n; ++e) {
-                own[e] = run(e * k + j, e, j, y, p.held_c[e]);
-                all = meet(all, own[e]);
-            }
-            held.lo[j] = all.lo;
-            held.hi[j] = all.hi;
-            if (all.lo <= all.hi) {
-                first = std::min(first, all.lo);
-                last = std::max(last, all.hi);
-            }
-            for (int e = 0; e < 3; ++e) {
-                if (!(candidates >> e & 1))
-                    continue;
-                // The reach less the held run (the reach holds it, both
-                // ending on the same side), inside the other edges.
-                Run r = run(reach_lane[e] + j, e, j, y, p.reach_c[e]);
-                if (own[e].lo <= own[e].hi) {
-                    if (p.ea[e] > 0.0)
-                        r.hi = own[e].lo - 1;
-                    else if (p.ea[e] < 0.0)
-                        r.lo = own[e].hi + 1;
-                    else
-                        r.hi = r.lo - 1;
-                }
-                for (int o = 0; o < n; ++o)
-                    if (o != e)
-                        r = meet(r, own[o]);
-                band[e].lo[j] = r.lo;
-                band[e].hi[j] = r.hi;
-                if (r.lo <= r.hi) {
-                    first = std::min(first, r.lo);
-                    last = std::max(last, r.hi);
-                    band_edges |= 1 << e;
-                }
-            }
-        }
-        if (first > last)
+        if (!row_runs(c, y, runs))
             continue;
         row.y = y;
         row.depth_term = s.zb * float(y) + s.zc;
@@ -906,7 +840,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         // A tile row at a time (raster::merge_partial_row): the masks of
         // its eight pixels from the runs, met with the triangles across,
         // merged lane by lane.
-        for (int x8 = first / k / tile_size * tile_size; x8 <= last / k; x8 += tile_size) {
+        for (int x8 = runs.first / k / tile_size * tile_size; x8 <= runs.last / k; x8 += tile_size) {
             // A tile nearer everywhere than the polygon's nearest corner
             // takes nothing from it (behind_everything, tile by tile), by
             // its maximum where up to date (the partial layer writes tiles
@@ -921,12 +855,12 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
             const unsigned farther = row_depth(row, &tiles_[index]);
             if (!farther)
                 continue;
-            unsigned taking = run_masks(held, k, x8, row.held) & farther;
+            unsigned taking = run_masks(runs.held, k, x8, row.held) & farther;
             row.across_count = 0;
             for (int e = 0; e < 3; ++e) {
-                if (!(band_edges >> e & 1))
+                if (!(runs.band_edges >> e & 1))
                     continue;
-                const unsigned lanes = run_masks(band[e], k, x8, row.band[row.across_count]) & farther;
+                const unsigned lanes = run_masks(runs.band[e], k, x8, row.band[row.across_count]) & farther;
                 if (lanes && set_up_across(p, e)) {
                     row.across[row.across_count++] = &p.neighbour[e].setup;
                     taking |= lanes;

@@ -140,14 +140,33 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
         fill_polygon<0>(s, buffer);
 }
 
-void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
+namespace {
+
+// Lane by lane, the least (or greatest) of eight 32-bit integers.
+inline int lanes_min(__m256i v)
 {
-    // Four lanes at a time, crossing_columns_scalar's expressions; the
-    // lanes past c.lanes are computed from whatever the arrays hold there
-    // and not stored.
+    v = _mm256_min_epi32(v, _mm256_permute2x128_si256(v, v, 1));
+    v = _mm256_min_epi32(v, _mm256_shuffle_epi32(v, 0x4e));
+    return _mm256_cvtsi256_si32(_mm256_min_epi32(v, _mm256_shuffle_epi32(v, 0xb1)));
+}
+inline int lanes_max(__m256i v)
+{
+    v = _mm256_max_epi32(v, _mm256_permute2x128_si256(v, v, 1));
+    v = _mm256_max_epi32(v, _mm256_shuffle_epi32(v, 0x4e));
+    return _mm256_cvtsi256_si32(_mm256_max_epi32(v, _mm256_shuffle_epi32(v, 0xb1)));
+}
+
+}  // namespace
+
+bool partial_row_runs_avx2(const Crossings &c, int y, RowRuns &out)
+{
+    // The crossings four lanes at a time, partial_row_runs_scalar's
+    // expressions; the lanes past c.lanes are computed from whatever the
+    // arrays hold there and not read.
+    alignas(32) std::int32_t column[max_crossings + 8];
     const __m256d eight_eps = _mm256_set1_pd(8.0 * 0x1p-52);
-    const __m256d four_eps = _mm256_set1_pd(4.0 * 0x1p-52), one = _mm256_set1_pd(1.0);
-    const __m256d half = _mm256_set1_pd(0.5), k = _mm256_set1_pd(c.k), row = _mm256_set1_pd(double(y));
+    const __m256d four_eps = _mm256_set1_pd(4.0 * 0x1p-52), one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+    const __m256d half = _mm256_set1_pd(0.5), k = _mm256_set1_pd(double(c.k)), row = _mm256_set1_pd(double(y));
     const __m256d sign = _mm256_set1_pd(-0.0);
     const __m256d lo = _mm256_set1_pd(double(c.c_lo)), hi = _mm256_set1_pd(double(c.c_hi));
     const __m256d none_rising = _mm256_set1_pd(double(c.c_hi + 1)), none_falling = _mm256_set1_pd(double(c.c_lo - 1));
@@ -156,10 +175,10 @@ void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
         const __m256d start = _mm256_loadu_pd(c.start + l);
         const __m256d bv = _mm256_mul_pd(_mm256_loadu_pd(c.slope + l), v);
         const __m256d crossing = _mm256_add_pd(start, bv);
-        const __m256d slack = _mm256_mul_pd(
-            eight_eps, _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, start), _mm256_andnot_pd(sign, bv)),
-                                     _mm256_andnot_pd(sign, crossing)));
+        const __m256d terms = _mm256_add_pd(_mm256_andnot_pd(sign, start), _mm256_andnot_pd(sign, bv));
+        const __m256d slack = _mm256_mul_pd(eight_eps, _mm256_add_pd(terms, _mm256_andnot_pd(sign, crossing)));
         const __m256d rising = _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i *>(c.rising + l)));
+        const __m256d level = _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i *>(c.level + l)));
         // Rising: the first column from (crossing + slack) k - 0.5 up.
         const __m256d x_up = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(crossing, slack), k), half);
         const __m256d first = _mm256_round_pd(
@@ -178,12 +197,69 @@ void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
         const __m256d last_in = _mm256_cmp_pd(last, lo, _CMP_GE_OQ);
         const __m256d last_clamped = _mm256_blendv_pd(last, hi, _mm256_cmp_pd(last, hi, _CMP_GT_OQ));
         const __m256d down = _mm256_blendv_pd(none_falling, last_clamped, last_in);
-        const __m128i columns = _mm256_cvtpd_epi32(_mm256_blendv_pd(down, up, rising));
-        alignas(16) std::int32_t out[4];
-        _mm_store_si128(reinterpret_cast<__m128i *>(out), columns);
-        for (int i = 0; i < 4 && l + i < c.lanes; ++i)
-            column[l + i] = out[i];
+        // Level: the whole row or none.
+        const __m256d holds = _mm256_cmp_pd(_mm256_sub_pd(crossing, _mm256_mul_pd(eight_eps, terms)), zero, _CMP_GE_OQ);
+        const __m256d flat = _mm256_blendv_pd(none_rising, lo, holds);
+        const __m256d columns = _mm256_blendv_pd(_mm256_blendv_pd(down, up, rising), flat, level);
+        _mm_store_si128(reinterpret_cast<__m128i *>(column + l), _mm256_cvtpd_epi32(columns));
     }
+    // Lane j: sample row j (lanes j >= k read the next lines' columns and
+    // are left out). Edge e's bound: from its column on where it rises,
+    // else up to it.
+    const int kk = c.k;
+    const __m256i c_lo = _mm256_set1_epi32(c.c_lo), c_hi = _mm256_set1_epi32(c.c_hi);
+    const __m256i ones = _mm256_set1_epi32(1);
+    const __m256i rows = _mm256_cmpgt_epi32(_mm256_set1_epi32(kk), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    const auto bound = [&](int e) { return _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + e * kk)); };
+    __m256i held_lo = c_lo, held_hi = c_hi;
+    for (int e = 0; e < c.edges; ++e) {
+        if (c.rising_edges >> e & 1)
+            held_lo = _mm256_max_epi32(held_lo, bound(e));
+        else
+            held_hi = _mm256_min_epi32(held_hi, bound(e));
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.held.lo), held_lo);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.held.hi), held_hi);
+    // Columns of the nonempty runs: the least first and greatest last.
+    const auto nonempty = [&](__m256i run_lo, __m256i run_hi) {
+        return _mm256_andnot_si256(_mm256_cmpgt_epi32(run_lo, run_hi), rows);
+    };
+    const __m256i past = _mm256_set1_epi32(c.c_hi + 1), before = _mm256_set1_epi32(c.c_lo - 1);
+    __m256i some = nonempty(held_lo, held_hi);
+    __m256i first = _mm256_blendv_epi8(past, held_lo, some), last = _mm256_blendv_epi8(before, held_hi, some);
+    out.band_edges = 0;
+    for (int e = 0; e < 3; ++e) {
+        if (!(c.candidates >> e & 1))
+            continue;
+        const __m256i reach = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + c.reach_lane[e]));
+        const __m256i own = bound(e);
+        __m256i band_lo, band_hi;
+        if (c.rising_edges >> e & 1) {
+            band_lo = reach;
+            band_hi = _mm256_sub_epi32(own, ones);
+        } else {
+            band_lo = _mm256_add_epi32(own, ones);
+            band_hi = reach;
+        }
+        for (int o = 0; o < c.edges; ++o) {
+            if (o == e)
+                continue;
+            if (c.rising_edges >> o & 1)
+                band_lo = _mm256_max_epi32(band_lo, bound(o));
+            else
+                band_hi = _mm256_min_epi32(band_hi, bound(o));
+        }
+        _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.band[e].lo), band_lo);
+        _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.band[e].hi), band_hi);
+        const __m256i in_band = nonempty(band_lo, band_hi);
+        if (!_mm256_testz_si256(in_band, in_band))
+            out.band_edges |= 1u << e;
+        first = _mm256_blendv_epi8(first, _mm256_min_epi32(first, band_lo), in_band);
+        last = _mm256_blendv_epi8(last, _mm256_max_epi32(last, band_hi), in_band);
+    }
+    out.first = lanes_min(first);
+    out.last = lanes_max(last);
+    return out.first <= out.last;
 }
 
 namespace {

@@ -53,12 +53,18 @@ void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
     }
 }
 
-void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column)
+bool partial_row_runs_scalar(const Crossings &c, int y, RowRuns &out)
 {
     constexpr double eps = 0x1p-52;
+    std::int32_t column[max_crossings];
     for (int l = 0; l < c.lanes; ++l) {
         const double v = double(y) + c.offset[l];
         const double bv = c.slope[l] * v, crossing = c.start[l] + bv;
+        if (c.level[l]) {
+            const bool holds = crossing - 8.0 * eps * (std::fabs(c.start[l]) + std::fabs(bv)) >= 0.0;
+            column[l] = holds ? c.c_lo : c.c_hi + 1;
+            continue;
+        }
         const double slack = 8.0 * eps * ((std::fabs(c.start[l]) + std::fabs(bv)) + std::fabs(crossing));
         if (c.rising[l]) {
             const double x = (crossing + slack) * c.k - 0.5;
@@ -72,6 +78,48 @@ void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column)
                                                : c.c_lo - 1;
         }
     }
+    // Edge e's bound at sample row j: from column[e k + j] on where it
+    // rises, else up to it.
+    const int k = c.k;
+    const auto lower = [&](int e, int j) { return c.rising_edges >> e & 1 ? column[e * k + j] : c.c_lo; };
+    const auto upper = [&](int e, int j) { return c.rising_edges >> e & 1 ? c.c_hi : column[e * k + j]; };
+    out.first = c.c_hi + 1;
+    out.last = c.c_lo - 1;
+    out.band_edges = 0;
+    const auto extend = [&](int lo, int hi) {
+        if (lo <= hi) {
+            out.first = std::min(out.first, lo);
+            out.last = std::max(out.last, hi);
+        }
+        return lo <= hi;
+    };
+    for (int j = 0; j < k; ++j) {
+        int lo = c.c_lo, hi = c.c_hi;
+        for (int e = 0; e < c.edges; ++e) {
+            lo = std::max(lo, lower(e, j));
+            hi = std::min(hi, upper(e, j));
+        }
+        out.held.lo[j] = lo;
+        out.held.hi[j] = hi;
+        extend(lo, hi);
+        for (int e = 0; e < 3; ++e) {
+            if (!(c.candidates >> e & 1))
+                continue;
+            const int reach = column[c.reach_lane[e] + j], own = column[e * k + j];
+            int band_lo = c.rising_edges >> e & 1 ? reach : own + 1;
+            int band_hi = c.rising_edges >> e & 1 ? own - 1 : reach;
+            for (int o = 0; o < c.edges; ++o)
+                if (o != e) {
+                    band_lo = std::max(band_lo, lower(o, j));
+                    band_hi = std::min(band_hi, upper(o, j));
+                }
+            out.band[e].lo[j] = band_lo;
+            out.band[e].hi[j] = band_hi;
+            if (extend(band_lo, band_hi))
+                out.band_edges |= 1u << e;
+        }
+    }
+    return out.first <= out.last;
 }
 
 namespace {
