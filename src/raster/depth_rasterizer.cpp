@@ -176,6 +176,9 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
         partial_depth_.resize(tiles * tile_pixels);
         const int samples = options.divisor * options.divisor;
         full_mask_ = samples == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << samples) - 1;
+        lane_offset_.resize(raster::max_crossings);
+        for (int l = 0; l < raster::max_crossings; ++l)
+            lane_offset_[std::size_t(l)] = (l % options.divisor + 0.5) / options.divisor;
     }
     stats_ = {};
 }
@@ -232,7 +235,11 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
                                         options_.merge_partial_coverage,
                                         product_error,
                                         0.5 * double(frame_width_) / options_.divisor,
-                                        0.5 * double(frame_height_) / options_.divisor};
+                                        0.5 * double(frame_height_) / options_.divisor,
+                                        tiles_.data(),
+                                        tile_max_.data(),
+                                        dirty_.data(),
+                                        tiles_x_};
     const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
     for (std::size_t first = 0; first < triangle_count; first += batch) {
         const std::size_t count = std::min(batch, triangle_count - first);
@@ -788,7 +795,6 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         const double start = level ? constant : -constant / p.ea[e], slope = level ? p.eb[e] : -p.eb[e] / p.ea[e];
         const std::int64_t rising = p.ea[e] >= 0.0 ? -1 : 0;
         for (int j = 0; j < k; ++j) {
-            c.offset[base + j] = (j + 0.5) / k;
             c.start[base + j] = start;
             c.slope[base + j] = slope;
             c.rising[base + j] = rising;
@@ -807,7 +813,8 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
             c.reach_lane[e] = add_line(e, p.reach_c[e]);
     // The AVX2 loop reads lanes four at a time.
     for (int l = c.lanes; l % 4 != 0; ++l)
-        c.offset[l] = c.start[l] = c.slope[l] = 0.0, c.rising[l] = c.level[l] = 0;
+        c.start[l] = c.slope[l] = 0.0, c.rising[l] = c.level[l] = 0;
+    c.offset = lane_offset_.data();
     float nearest = depth[0];
     for (int i = 1; i < n; ++i)
         nearest = std::min(nearest, depth[i]);

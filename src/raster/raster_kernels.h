@@ -70,6 +70,14 @@ struct TriangleScreen {
     bool keep_partial;
     double product_error;
     double error_scale_x, error_scale_y;   // half the buffer's size, in double
+    // keep_partial: the buffer's tiles, for DepthRasterizer::
+    // behind_everything's test before a triangle's setup (a triangle it
+    // drops would change no pixel); each dirty tile's maximum is taken
+    // as that test takes it.
+    const float *tiles;
+    float *tile_max;
+    std::uint8_t *dirty;
+    int tiles_x;
 };
 
 struct ScreenedTriangle {
@@ -222,7 +230,8 @@ struct Crossings {
     int lanes;
     int c_lo, c_hi;   // the sample columns of the polygon's box
     int k;
-    double offset[max_crossings], start[max_crossings], slope[max_crossings];
+    const double *offset;   // lane l's sample row offset, ((l mod k) + 0.5) / k
+    double start[max_crossings], slope[max_crossings];
     std::int64_t rising[max_crossings];   // -1: rising (or level), 0: not
     std::int64_t level[max_crossings];    // -1: level, 0: not
     // The polygon's edges: edge e's held line at sample row j in lane e k

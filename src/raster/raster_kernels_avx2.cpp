@@ -7,6 +7,9 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace occu::raster {
 
 namespace {
@@ -210,13 +213,17 @@ bool partial_row_runs_avx2(const Crossings &c, int y, RowRuns &out)
     const __m256i c_lo = _mm256_set1_epi32(c.c_lo), c_hi = _mm256_set1_epi32(c.c_hi);
     const __m256i ones = _mm256_set1_epi32(1);
     const __m256i rows = _mm256_cmpgt_epi32(_mm256_set1_epi32(kk), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    const auto bound = [&](int e) { return _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + e * kk)); };
+    // Edge e's bound at sample row j: from its column on where it rises
+    // (lower), else up to it (upper).
+    __m256i lower[max_edges], upper[max_edges];
     __m256i held_lo = c_lo, held_hi = c_hi;
     for (int e = 0; e < c.edges; ++e) {
-        if (c.rising_edges >> e & 1)
-            held_lo = _mm256_max_epi32(held_lo, bound(e));
-        else
-            held_hi = _mm256_min_epi32(held_hi, bound(e));
+        const __m256i column_e = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + e * kk));
+        const __m256i rises = _mm256_set1_epi32(-int(c.rising_edges >> e & 1));
+        lower[e] = _mm256_blendv_epi8(c_lo, column_e, rises);
+        upper[e] = _mm256_blendv_epi8(column_e, c_hi, rises);
+        held_lo = _mm256_max_epi32(held_lo, lower[e]);
+        held_hi = _mm256_min_epi32(held_hi, upper[e]);
     }
     _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.held.lo), held_lo);
     _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.held.hi), held_hi);
@@ -225,35 +232,25 @@ bool partial_row_runs_avx2(const Crossings &c, int y, RowRuns &out)
         return _mm256_andnot_si256(_mm256_cmpgt_epi32(run_lo, run_hi), rows);
     };
     const __m256i past = _mm256_set1_epi32(c.c_hi + 1), before = _mm256_set1_epi32(c.c_lo - 1);
-    __m256i some = nonempty(held_lo, held_hi);
+    const __m256i some = nonempty(held_lo, held_hi);
     __m256i first = _mm256_blendv_epi8(past, held_lo, some), last = _mm256_blendv_epi8(before, held_hi, some);
     out.band_edges = 0;
+    // Triangles only (c.edges == 3) have edges with a triangle across.
     for (int e = 0; e < 3; ++e) {
         if (!(c.candidates >> e & 1))
             continue;
         const __m256i reach = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + c.reach_lane[e]));
-        const __m256i own = bound(e);
-        __m256i band_lo, band_hi;
-        if (c.rising_edges >> e & 1) {
-            band_lo = reach;
-            band_hi = _mm256_sub_epi32(own, ones);
-        } else {
-            band_lo = _mm256_add_epi32(own, ones);
-            band_hi = reach;
-        }
-        for (int o = 0; o < c.edges; ++o) {
-            if (o == e)
-                continue;
-            if (c.rising_edges >> o & 1)
-                band_lo = _mm256_max_epi32(band_lo, bound(o));
-            else
-                band_hi = _mm256_min_epi32(band_hi, bound(o));
-        }
+        const __m256i own = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + e * kk));
+        const __m256i rises = _mm256_set1_epi32(-int(c.rising_edges >> e & 1));
+        const int o1 = e == 2 ? 0 : e + 1, o2 = e == 0 ? 2 : e - 1;
+        const __m256i band_lo = _mm256_max_epi32(
+            _mm256_max_epi32(_mm256_blendv_epi8(_mm256_add_epi32(own, ones), reach, rises), lower[o1]), lower[o2]);
+        const __m256i band_hi = _mm256_min_epi32(
+            _mm256_min_epi32(_mm256_blendv_epi8(reach, _mm256_sub_epi32(own, ones), rises), upper[o1]), upper[o2]);
         _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.band[e].lo), band_lo);
         _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.band[e].hi), band_hi);
         const __m256i in_band = nonempty(band_lo, band_hi);
-        if (!_mm256_testz_si256(in_band, in_band))
-            out.band_edges |= 1u << e;
+        out.band_edges |= unsigned(!_mm256_testz_si256(in_band, in_band)) << e;
         first = _mm256_blendv_epi8(first, _mm256_min_epi32(first, band_lo), in_band);
         last = _mm256_blendv_epi8(last, _mm256_max_epi32(last, band_hi), in_band);
     }
@@ -634,6 +631,40 @@ int set_up_four(const TriangleScreen &screen, const __m128 *wx, const __m128 *wy
     return front;
 }
 
+// DepthRasterizer::behind_everything for a triangle's window box and
+// nearest corner: whether every tile its depth pixels (and a pixel more
+// each way) lie in is nearer everywhere than its nearest corner, by the
+// tiles' maxima, a dirty tile's taken first (DepthRasterizer::
+// refresh_tile_maximum: the largest of its pixels, which hold no NaN).
+bool behind_tiles(const TriangleScreen &screen, float lo_x, float lo_y, float hi_x, float hi_y, float nearest)
+{
+    const int x0 = std::max(0, int(std::floor(double(lo_x))) - 1);
+    const int y0 = std::max(0, int(std::floor(double(lo_y))) - 1);
+    const int x1 = std::min(screen.width, int(std::floor(double(hi_x))) + 2);
+    const int y1 = std::min(screen.height, int(std::floor(double(hi_y))) + 2);
+    if (x0 >= x1 || y0 >= y1)
+        return true;
+    const float z = float(double(nearest) - screen.depth_margin);
+    for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
+        for (int tx = x0 / tile_size; tx <= (x1 - 1) / tile_size; ++tx) {
+            const std::size_t t = std::size_t(ty) * std::size_t(screen.tiles_x) + std::size_t(tx);
+            if (screen.dirty[t]) {
+                const float *tile = screen.tiles + t * tile_pixels;
+                __m256 m = _mm256_loadu_ps(tile);
+                for (int y = 1; y < tile_size; ++y)
+                    m = _mm256_max_ps(m, _mm256_loadu_ps(tile + y * tile_size));
+                __m128 h = _mm_max_ps(_mm256_castps256_ps128(m), _mm256_extractf128_ps(m, 1));
+                h = _mm_max_ps(h, _mm_movehl_ps(h, h));
+                h = _mm_max_ss(h, _mm_shuffle_ps(h, h, 1));
+                screen.tile_max[t] = _mm_cvtss_f32(h);
+                screen.dirty[t] = 0;
+            }
+            if (!(screen.tile_max[t] < z))
+                return false;
+        }
+    return true;
+}
+
 }  // namespace
 
 std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *positions, const std::uint32_t *indices,
@@ -713,6 +744,21 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
                 const __m256 empty = _mm256_or_ps(span_empty(lo_x, hi_x, screen.first, screen.last, screen.width),
                                                   span_empty(lo_y, hi_y, screen.first, screen.last, screen.height));
                 projected &= ~_mm256_movemask_ps(empty);
+            } else {
+                // Drawn nearest first, most of a mesh's later triangles
+                // lie behind what is there already: dropped before their
+                // setup and transform error.
+                alignas(32) float box[4][8], nearest[8];
+                _mm256_store_ps(box[0], lo_x);
+                _mm256_store_ps(box[1], lo_y);
+                _mm256_store_ps(box[2], hi_x);
+                _mm256_store_ps(box[3], hi_y);
+                _mm256_store_ps(nearest, _mm256_min_ps(_mm256_min_ps(depth[0], depth[1]), depth[2]));
+                for (int bits = projected; bits != 0; bits &= bits - 1) {
+                    const int lane = __builtin_ctz(unsigned(bits));
+                    if (behind_tiles(screen, box[0][lane], box[1][lane], box[2][lane], box[3][lane], nearest[lane]))
+                        projected &= ~(1 << lane);
+                }
             }
         }
         // Set up, four lanes at a time; a lane whose area is not positive drops out.
