@@ -844,10 +844,15 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
         row.depth_term = s.zb * float(y) + s.zc;
         const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
         const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
+        // Pixels every sample of which is held, between two such pixels:
+        // the fill has taken them (its margins are no wider than these).
+        const int skip0 = (runs.whole_first + k - 1) / k + 1, skip1 = (runs.whole_last + 1) / k - 2;
         // A tile row at a time (raster::merge_partial_row): the masks of
         // its eight pixels from the runs, met with the triangles across,
         // merged lane by lane.
         for (int x8 = runs.first / k / tile_size * tile_size; x8 <= runs.last / k; x8 += tile_size) {
+            if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
+                continue;
             // A tile nearer everywhere than the polygon's nearest corner
             // takes nothing from it (behind_everything, tile by tile), by
             // its maximum where up to date (the partial layer writes tiles

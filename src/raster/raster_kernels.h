@@ -245,11 +245,12 @@ struct Crossings {
 // j, the columns every edge holds (`held`), and for each edge e with a
 // triangle across, those within its reach but outside it (its reach less
 // its held run: both end on the same side), inside every other edge
-// (band[e]); the columns some run holds, [first, last]; bit e of
+// (band[e]); the columns some run holds, [first, last], and those every
+// sample row's held run holds, [whole_first, whole_last]; bit e of
 // band_edges, a sample in band[e].
 struct RowRuns {
     SampleRuns held, band[3];
-    int first, last;
+    int first, last, whole_first, whole_last;
     unsigned band_edges;
 };
 

@@ -254,6 +254,8 @@ bool partial_row_runs_avx2(const Crossings &c, int y, RowRuns &out)
         first = _mm256_blendv_epi8(first, _mm256_min_epi32(first, band_lo), in_band);
         last = _mm256_blendv_epi8(last, _mm256_max_epi32(last, band_hi), in_band);
     }
+    out.whole_first = lanes_max(_mm256_blendv_epi8(c_lo, held_lo, rows));
+    out.whole_last = lanes_min(_mm256_blendv_epi8(c_hi, held_hi, rows));
     out.first = lanes_min(first);
     out.last = lanes_max(last);
     return out.first <= out.last;

@@ -86,6 +86,8 @@ bool partial_row_runs_scalar(const Crossings &c, int y, RowRuns &out)
     out.first = c.c_hi + 1;
     out.last = c.c_lo - 1;
     out.band_edges = 0;
+    out.whole_first = c.c_lo;
+    out.whole_last = c.c_hi;
     const auto extend = [&](int lo, int hi) {
         if (lo <= hi) {
             out.first = std::min(out.first, lo);
@@ -101,6 +103,8 @@ bool partial_row_runs_scalar(const Crossings &c, int y, RowRuns &out)
         }
         out.held.lo[j] = lo;
         out.held.hi[j] = hi;
+        out.whole_first = std::max(out.whole_first, lo);
+        out.whole_last = std::min(out.whole_last, hi);
         extend(lo, hi);
         for (int e = 0; e < 3; ++e) {
             if (!(c.candidates >> e & 1))
