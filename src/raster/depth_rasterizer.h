@@ -64,8 +64,10 @@
 // found as Masked Occlusion Culling finds a span's: each edge's crossing
 // point along each row of samples bounds the run of samples it holds, and
 // the runs, met across the edges and shifted into each pixel's mask, give
-// the samples held (merge_partial), with no sample tested alone; both
-// paths share it, so their buffers stay equal.
+// the samples held (merge_partial), with no sample tested alone; the
+// eight depth pixels of a tile row then take their masks, the triangles
+// across and the merge rule at once, in lanes, with no branch per pixel
+// (raster::merge_partial_row, scalar and AVX2 twins equal bit for bit).
 //
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
 // the caller); both evaluate the same float expressions in the same order,
@@ -216,7 +218,9 @@ private:
                                TransformError error) const;
     bool set_up_across(PartialEdges &edges, int e) const;
     // Adds sample mask `mask` held no farther than z to the pixel at
-    // `index` (tile layout); returns whether its depth changed.
+    // `index` (tile layout), as raster::merge_partial_row's rule does
+    // (merge_nearest: another buffer's layer); returns whether its depth
+    // changed.
     bool add_partial(std::size_t index, std::uint64_t mask, float z);
     void update_tile_maxima() const;
     void refresh_tile_maximum(std::size_t tile) const;   // tile_max_ from its pixels; no longer dirty
