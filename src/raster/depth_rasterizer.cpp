@@ -161,19 +161,24 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
         // Only the tiles the last frame's partial layer wrote need
         // clearing; a pixel's partial depth means nothing while its mask
         // is empty (add_partial), so it is never cleared.
-        if (partial_mask_.size() == tiles * tile_pixels && partial_written_.size() == tiles) {
+        if (partial_mask_lo_.size() == tiles * tile_pixels && partial_written_.size() == tiles) {
             for (std::size_t t = 0; t < tiles; ++t)
                 if (partial_written_[t]) {
-                    std::fill_n(partial_mask_.begin() + std::ptrdiff_t(t * tile_pixels), tile_pixels, 0);
+                    std::fill_n(partial_mask_lo_.begin() + std::ptrdiff_t(t * tile_pixels), tile_pixels, 0);
+                    std::fill_n(partial_mask_hi_.begin() + std::ptrdiff_t(t * tile_pixels), tile_pixels, 0);
                     partial_written_[t] = 0;
                 }
         } else {
-            partial_mask_.assign(tiles * tile_pixels, 0);
+            partial_mask_lo_.assign(tiles * tile_pixels, 0);
+            partial_mask_hi_.assign(tiles * tile_pixels, 0);
             partial_written_.assign(tiles, 0);
         }
         partial_depth_.resize(tiles * tile_pixels);
         const int samples = options.divisor * options.divisor;
         full_mask_ = samples == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << samples) - 1;
+        lane_offset_.resize(raster::max_crossings);
+        for (int l = 0; l < raster::max_crossings; ++l)
+            lane_offset_[std::size_t(l)] = (l % options.divisor + 0.5) / options.divisor;
     }
     stats_ = {};
 }
@@ -230,7 +235,11 @@ void DepthRasterizer::render_triangles_avx2(const glm::vec3 *positions, const st
                                         options_.merge_partial_coverage,
                                         product_error,
                                         0.5 * double(frame_width_) / options_.divisor,
-                                        0.5 * double(frame_height_) / options_.divisor};
+                                        0.5 * double(frame_height_) / options_.divisor,
+                                        tiles_.data(),
+                                        tile_max_.data(),
+                                        dirty_.data(),
+                                        tiles_x_};
     const raster::TileBuffer buffer{tiles_.data(), dirty_.data(), farthest_bound_.data(), tiles_x_};
     for (std::size_t first = 0; first < triangle_count; first += batch) {
         const std::size_t count = std::min(batch, triangle_count - first);
@@ -614,9 +623,8 @@ struct DepthRasterizer::PartialEdges {
     // triangles of a detailed mesh have no sample in the margin of an edge.
     struct Across {
         int state = 0;   // 0: not yet looked at; 1: usable; -1: not
-        float ea[2], eb[2], held[2];
-        double depth_error;   // the transform's, of both triangles' corners
-        raster::PolygonSetup depth;
+        // depth_error: the transform's, of both triangles' corners.
+        raster::PartialAcross setup;
     } neighbour[3];
     // The depth pixels holding a sample the polygon may reach, within the
     // reach of a shared edge too (partial_edges).
@@ -713,7 +721,7 @@ bool DepthRasterizer::set_up_across(PartialEdges &p, int e) const
     if (!(far.window <= p.error.window && far.depth <= p.error.depth) && !(far.window < 1.0 && far.depth < 1e-2))
         return false;
     const double extra = std::max(far.window, p.error.window);
-    x.depth_error = std::max(far.depth, p.error.depth);
+    x.setup.depth_error = std::max(far.depth, p.error.depth);
     const glm::vec4 c = clip_position(view_projection_, p.across[e]);
     const float g = float(guard) * c.w;
     if (!(c.w > 0.0f && c.z > -c.w && c.z < c.w && std::abs(c.x) <= g && std::abs(c.y) <= g))
@@ -742,38 +750,15 @@ bool DepthRasterizer::set_up_across(PartialEdges &p, int e) const
         const double ta = from.y - to.y, tb = to.x - from.x, tc = -(ta * from.x + tb * from.y);
         const double m = (std::abs(ta) + std::abs(tb)) * (edge_margin / k + extra) +
                          float_error * ((std::abs(ta) + std::abs(tb)) * p.extent + std::abs(tc));
-        x.ea[j] = float(ta);
-        x.eb[j] = float(tb);
-        x.held[j] = float_threshold(ta, tb, tc - m, p.extent);
+        x.setup.ea[j] = float(ta);
+        x.setup.eb[j] = float(tb);
+        x.setup.held[j] = float_threshold(ta, tb, tc - m, p.extent);
     }
-    depth_plane(tri, tri_depth, 3, p.first, p.last, p.extent, options_.per_pixel_depth, x.depth);
+    depth_plane(tri, tri_depth, 3, p.first, p.last, p.extent, options_.per_pixel_depth, x.setup.depth);
     x.state = 1;
     return true;
 }
 
-namespace {
-
-// A run of sample columns [lo, hi] of one sample row; empty where lo > hi.
-struct Run {
-    int lo, hi;
-};
-
-inline Run meet(Run a, Run b) { return {std::max(a.lo, b.lo), std::min(a.hi, b.hi)}; }
-
-// The samples of run r within depth pixel `x` (sample columns x k .. x k +
-// k - 1), as bits 0 .. k - 1 of a k-bit mask, shifted to `shift`: Masked
-// Occlusion Culling's coverage of a span from its edges' crossing points,
-// a mask shifted rather than samples tested (Hasselgren, Andersson and
-// Akenine-Moeller 2016, its triangle rasterization).
-inline std::uint64_t run_bits(Run r, int x, int k, int shift)
-{
-    const int lo = std::max(r.lo - x * k, 0), hi = std::min(r.hi - x * k, k - 1);
-    if (lo > hi)
-        return 0;
-    return ((std::uint64_t(2) << (hi - lo)) - 1) << (lo + shift);
-}
-
-}  // namespace
 
 void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth, int n, const raster::PolygonSetup &s,
                                     const glm::vec3 *across, TransformError error)
@@ -787,181 +772,123 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // Sample column c of a row (c / k its depth pixel) lies at u = (c +
     // 0.5) / k. Along a sample row v an edge a u + b v + c holds the
     // samples on one side of its crossing point: one run of columns, found
-    // from that point, shifted into each pixel's mask (run_bits) and met
-    // with the other edges' runs, rather than the samples tested one by
-    // one (Hasselgren et al. 2016: a tile row's coverage from its edges'
-    // crossings). The crossing, in double, is moved inwards by a
-    // bound of its rounding, so a sample in the run has the exact edge
-    // function at least the margin there.
-    const int c_lo = p.x0 * k, c_hi = p.x1 * k - 1;
-    const Run none{c_lo, c_lo - 1};
+    // from that point, met with the other edges' runs and turned into
+    // each pixel's mask, rather than the samples tested one by one
+    // (Hasselgren et al. 2016: a tile row's coverage from its edges'
+    // crossings). The crossing, in double, is moved inwards by a bound of
+    // its rounding, so a sample in the run has the exact edge function at
+    // least the margin there.
+    raster::Crossings c;
+    c.c_lo = p.x0 * k;
+    c.c_hi = p.x1 * k - 1;
+    c.k = k;
+    c.edges = n;
+    c.candidates = p.candidates;
+    c.rising_edges = 0;
+    c.lanes = 0;
     // The lines' crossings (raster::Crossings): edge e's held constant at
     // sample row j in lane e k + j, the reach of the r-th edge with a
-    // triangle across in lane (n + r) k + j. An edge along a row (a = 0)
-    // holds the whole row or nothing: its lanes are set aside and
-    // tested here.
-    constexpr double eps = std::numeric_limits<double>::epsilon();
-    raster::Crossings c;
-    c.c_lo = c_lo;
-    c.c_hi = c_hi;
-    c.k = k;
-    int reach_lane[3] = {};
-    bool level[raster::max_edges];
+    // triangle across in lane (n + r) k + j.
     const auto add_line = [&](int e, double constant) {
         const int base = c.lanes;
-        const double start = -constant / p.ea[e], slope = -p.eb[e] / p.ea[e];
-        const std::int64_t rising = p.ea[e] > 0.0 ? -1 : 0;
+        const bool level = p.ea[e] == 0.0;
+        const double start = level ? constant : -constant / p.ea[e], slope = level ? p.eb[e] : -p.eb[e] / p.ea[e];
+        const std::int64_t rising = p.ea[e] >= 0.0 ? -1 : 0;
         for (int j = 0; j < k; ++j) {
-            c.offset[base + j] = (j + 0.5) / k;
             c.start[base + j] = start;
             c.slope[base + j] = slope;
             c.rising[base + j] = rising;
+            c.level[base + j] = level ? -1 : 0;
         }
         c.lanes += k;
         return base;
     };
-    c.lanes = 0;
     for (int e = 0; e < n; ++e) {
-        level[e] = p.ea[e] == 0.0;
         add_line(e, p.held_c[e]);
+        if (p.ea[e] >= 0.0)
+            c.rising_edges |= 1u << e;
     }
     for (int e = 0; e < 3; ++e)
         if (p.candidates >> e & 1)
-            reach_lane[e] = add_line(e, p.reach_c[e]);
+            c.reach_lane[e] = add_line(e, p.reach_c[e]);
     // The AVX2 loop reads lanes four at a time.
     for (int l = c.lanes; l % 4 != 0; ++l)
-        c.offset[l] = c.start[l] = c.slope[l] = 0.0, c.rising[l] = 0;
-    std::int32_t columns[raster::max_crossings];
-    const auto run = [&](int lane, int e, int j, int y, double constant) -> Run {
-        if (level[e]) {   // b v + c >= 0: within 4 eps (v, b v, the sum), twice
-            const double v = double(y) + (j + 0.5) / k, bv = p.eb[e] * v;
-            return bv + constant - 8.0 * eps * (std::abs(bv) + std::abs(constant)) >= 0.0 ? Run{c_lo, c_hi} : none;
-        }
-        return c.rising[lane] ? Run{columns[lane], c_hi} : Run{c_lo, columns[lane]};
-    };
-    bool wrote = false;
+        c.start[l] = c.slope[l] = 0.0, c.rising[l] = c.level[l] = 0;
+    c.offset = lane_offset_.data();
     float nearest = depth[0];
     for (int i = 1; i < n; ++i)
         nearest = std::min(nearest, depth[i]);
     const float behind = float(double(nearest) - depth_margin);
-    const int candidates = p.candidates;
-    // Per sample row j: the samples every edge holds, and for each edge e
-    // with a triangle across, those outside it alone but within its reach
-    // (inside every other edge).
-    Run held_run[8], maybe_run[3][8];
+    const bool avx2 = isa_ == Isa::avx2;
+    const auto row_runs = avx2 ? raster::partial_row_runs_avx2 : raster::partial_row_runs_scalar;
+    const auto run_masks = avx2 ? raster::run_masks_avx2 : raster::run_masks_scalar;
+    const auto row_depth = avx2 ? raster::partial_row_depth_avx2 : raster::partial_row_depth_scalar;
+    const auto merge_row = avx2 ? raster::merge_partial_row_avx2 : raster::merge_partial_row_scalar;
+    raster::RowRuns runs;
+    raster::PartialRow row;
+    row.k = k;
+    std::copy(p.offset, p.offset + k, row.offset);
+    row.full_lo = std::uint32_t(full_mask_);
+    row.full_hi = std::uint32_t(full_mask_ >> 32);
+    row.za = s.za;
+    row.zcap = s.zcap;
+    // The fill's depth: the farthest over all the pixel's samples, so over
+    // those the polygon holds, widened by the transform's error and
+    // rounded up.
+    row.depth_error = error.depth;
+    bool wrote = false;
     for (int y = p.y0; y < p.y1; ++y) {
-        int first = c_hi + 1, last = c_lo - 1;           // the columns some run holds
-        int whole_first = c_lo, whole_last = c_hi;       // the columns every sample row holds
-        int maybe_edges = 0;                             // edges with a sample within their reach
-        if (isa_ == Isa::avx2)
-            raster::crossing_columns_avx2(c, y, columns);
-        else
-            raster::crossing_columns_scalar(c, y, columns);
-        for (int j = 0; j < k; ++j) {
-            Run own[raster::max_edges], all{c_lo, c_hi};
-            for (int e = 0; e < n; ++e) {
-                own[e] = run(e * k + j, e, j, y, p.held_c[e]);
-                all = meet(all, own[e]);
-            }
-            held_run[j] = all;
-            whole_first = std::max(whole_first, all.lo);
-            whole_last = std::min(whole_last, all.hi);
-            if (all.lo <= all.hi) {
-                first = std::min(first, all.lo);
-                last = std::max(last, all.hi);
-            }
-            for (int e = 0; e < 3; ++e) {
-                if (!(candidates >> e & 1))
-                    continue;
-                // The reach less the held run (the reach holds it, both
-                // ending on the same side), inside the other edges.
-                Run band = run(reach_lane[e] + j, e, j, y, p.reach_c[e]);
-                if (own[e].lo <= own[e].hi) {
-                    if (p.ea[e] > 0.0)
-                        band.hi = own[e].lo - 1;
-                    else if (p.ea[e] < 0.0)
-                        band.lo = own[e].hi + 1;
-                    else
-                        band.hi = band.lo - 1;
-                }
-                for (int o = 0; o < n; ++o)
-                    if (o != e)
-                        band = meet(band, own[o]);
-                maybe_run[e][j] = band;
-                if (band.lo <= band.hi) {
-                    first = std::min(first, band.lo);
-                    last = std::max(last, band.hi);
-                    maybe_edges |= 1 << e;
-                }
-            }
-        }
-        if (first > last)
+        if (!row_runs(c, y, runs))
             continue;
-        // Pixels every sample of which is held, between two such pixels:
-        // the fill has taken them (its margins are no wider than these).
-        const int skip0 = (whole_first + k - 1) / k + 1, skip1 = (whole_last + 1) / k - 2;
-        const float depth_term = s.zb * float(y) + s.zc;
+        row.y = y;
+        row.depth_term = s.zb * float(y) + s.zc;
         const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
         const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
-        for (int x = first / k; x <= last / k; ++x) {
-            if (x >= skip0 && x <= skip1) {
-                x = skip1;
+        // Pixels every sample of which is held, between two such pixels:
+        // the fill has taken them (its margins are no wider than these).
+        const int skip0 = (runs.whole_first + k - 1) / k + 1, skip1 = (runs.whole_last + 1) / k - 2;
+        // A tile row at a time (raster::merge_partial_row): the masks of
+        // its eight pixels from the runs, met with the triangles across,
+        // merged lane by lane.
+        for (int x8 = runs.first / k / tile_size * tile_size; x8 <= runs.last / k; x8 += tile_size) {
+            if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
                 continue;
-            }
             // A tile nearer everywhere than the polygon's nearest corner
             // takes nothing from it (behind_everything, tile by tile), by
             // its maximum where up to date (the partial layer writes tiles
             // often, and taking a maximum costs more than the test saves),
             // or else by the bound the fill keeps of it.
-            const std::size_t tile = row_tiles + std::size_t(x / tile_size);
-            if ((!dirty_[tile] && tile_max_[tile] < behind) || farthest_bound_[tile] < behind) {
-                x = x / tile_size * tile_size + tile_size - 1;
+            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
+            if ((!dirty_[tile] && tile_max_[tile] < behind) || farthest_bound_[tile] < behind)
                 continue;
-            }
-            const std::size_t index = tile * tile_pixels + row_offset + std::size_t(x % tile_size);
-            // The fill's depth: the farthest over all the pixel's samples,
-            // so over those the polygon holds, widened by the transform's
-            // error and rounded up.
-            float pixel_z = raster::partial_next_up(
-                float(double(std::min(s.za * float(x) + depth_term, s.zcap)) + error.depth));
-            if (!(pixel_z < tiles_[index]))
+            row.x8 = x8;
+            const std::size_t index = tile * tile_pixels + row_offset;
+            // The pixels nearer than the polygon take nothing from it.
+            const unsigned farther = row_depth(row, &tiles_[index]);
+            if (!farther)
                 continue;
-            std::uint64_t mask = 0, maybe[3] = {};
-            for (int j = 0; j < k; ++j)
-                mask |= run_bits(held_run[j], x, k, j * k);
-            for (int e = 0; e < 3; ++e)
-                if (maybe_edges >> e & 1)
-                    for (int j = 0; j < k; ++j)
-                        maybe[e] |= run_bits(maybe_run[e][j], x, k, j * k);
+            unsigned taking = run_masks(runs.held, k, x8, row.held) & farther;
+            row.across_count = 0;
             for (int e = 0; e < 3; ++e) {
-                if (!maybe[e] || !set_up_across(p, e))
+                if (!(runs.band_edges >> e & 1))
                     continue;
-                // Within the margin beyond a shared edge only, and
-                // inside the triangle across: held, at the farther
-                // of the two triangles' depths.
-                const PartialEdges::Across &other = p.neighbour[e];
-                std::uint64_t across_held = 0;
-                for (std::uint64_t bits = maybe[e]; bits; bits &= bits - 1) {
-                    const int bit = __builtin_ctzll(bits);
-                    const float u = float(x) + p.offset[bit % k], v = float(y) + p.offset[bit / k];
-                    if (other.ea[0] * u + other.eb[0] * v >= other.held[0] &&
-                        other.ea[1] * u + other.eb[1] * v >= other.held[1])
-                        across_held |= std::uint64_t(1) << bit;
+                const unsigned lanes = run_masks(runs.band[e], k, x8, row.band[row.across_count]) & farther;
+                if (lanes && set_up_across(p, e)) {
+                    row.across[row.across_count++] = &p.neighbour[e].setup;
+                    taking |= lanes;
                 }
-                if (!across_held)
-                    continue;
-                mask |= across_held;
-                const raster::PolygonSetup &d = other.depth;
-                pixel_z = std::max(pixel_z, raster::partial_next_up(float(
-                                                double(std::min(d.za * float(x) + (d.zb * float(y) + d.zc), d.zcap)) +
-                                                other.depth_error)));
             }
-            if (!mask || !(pixel_z < tiles_[index]))
+            if (!taking)
                 continue;
-            if (add_partial(index, mask, pixel_z)) {
+            const raster::PartialTileRow t{&tiles_[index], &partial_depth_[index], &partial_mask_lo_[index],
+                                           &partial_mask_hi_[index]};
+            const unsigned changed = merge_row(row, t);
+            if (changed & 1) {
                 dirty_[tile] = 1;
                 wrote = true;
             }
+            if (changed & 2)
+                partial_written_[tile] = 1;
         }
     }
     any_dirty_ = any_dirty_ || wrote;
@@ -969,18 +896,19 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
 
 bool DepthRasterizer::add_partial(std::size_t index, std::uint64_t mask, float z)
 {
-    const bool open = partial_mask_[index] != 0;
-    const std::uint64_t joined = partial_mask_[index] | mask;
-    const float farthest = open ? std::max(partial_depth_[index], z) : z;
+    const std::uint64_t old = partial_mask(index);
+    const std::uint64_t joined = old | mask;
+    const float farthest = old != 0 ? std::max(partial_depth_[index], z) : z;
     if (joined != full_mask_) {
-        partial_mask_[index] = joined;
+        partial_mask_lo_[index] = std::uint32_t(joined);
+        partial_mask_hi_[index] = std::uint32_t(joined >> 32);
         partial_depth_[index] = farthest;
         partial_written_[index / tile_pixels] = 1;
         return false;
     }
     // Every sample is held no farther than `farthest`; the layer starts
     // again empty, whether or not it was nearer.
-    partial_mask_[index] = 0;
+    partial_mask_lo_[index] = partial_mask_hi_[index] = 0;
     if (!(farthest < tiles_[index]))
         return false;
     tiles_[index] = farthest;
@@ -1018,7 +946,8 @@ void DepthRasterizer::merge_nearest(const DepthRasterizer &other)
         // farther of the two layers' depths.
         for (int i = 0; i < tile_pixels; ++i) {
             const std::size_t index = t * tile_pixels + std::size_t(i);
-            if (other.partial_mask_[index] && add_partial(index, other.partial_mask_[index], other.partial_depth_[index])) {
+            const std::uint64_t mask = other.partial_mask(index);
+            if (mask && add_partial(index, mask, other.partial_depth_[index])) {
                 dirty_[t] = 1;
                 any_dirty_ = true;
             }

@@ -64,8 +64,10 @@
 // found as Masked Occlusion Culling finds a span's: each edge's crossing
 // point along each row of samples bounds the run of samples it holds, and
 // the runs, met across the edges and shifted into each pixel's mask, give
-// the samples held (merge_partial), with no sample tested alone; both
-// paths share it, so their buffers stay equal.
+// the samples held (merge_partial), with no sample tested alone; the
+// eight depth pixels of a tile row then take their masks, the triangles
+// across and the merge rule at once, in lanes, with no branch per pixel
+// (raster::merge_partial_row, scalar and AVX2 twins equal bit for bit).
 //
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
 // the caller); both evaluate the same float expressions in the same order,
@@ -216,7 +218,9 @@ private:
                                TransformError error) const;
     bool set_up_across(PartialEdges &edges, int e) const;
     // Adds sample mask `mask` held no farther than z to the pixel at
-    // `index` (tile layout); returns whether its depth changed.
+    // `index` (tile layout), as raster::merge_partial_row's rule does
+    // (merge_nearest: another buffer's layer); returns whether its depth
+    // changed.
     bool add_partial(std::size_t index, std::uint64_t mask, float z);
     void update_tile_maxima() const;
     void refresh_tile_maximum(std::size_t tile) const;   // tile_max_ from its pixels; no longer dirty
@@ -249,10 +253,16 @@ private:
     // merge_partial_coverage: per depth pixel (the tiles' layout), the
     // samples held by polygons not covering it wholly, and their farthest
     // depth; empty otherwise.
-    std::vector<std::uint64_t> partial_mask_;
+    // The masks in two planes, bits 0-31 and 32-63 (raster::MaskRow).
+    std::vector<std::uint32_t> partial_mask_lo_, partial_mask_hi_;
+    std::uint64_t partial_mask(std::size_t index) const
+    {
+        return std::uint64_t(partial_mask_hi_[index]) << 32 | partial_mask_lo_[index];
+    }
     std::vector<float> partial_depth_;
     std::vector<std::uint8_t> partial_written_;   // per tile: a mask set since begin
     std::uint64_t full_mask_ = 0;
+    std::vector<double> lane_offset_;   // raster::Crossings::offset for the divisor
     Stats stats_;
 };
 

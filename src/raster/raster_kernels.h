@@ -70,6 +70,14 @@ struct TriangleScreen {
     bool keep_partial;
     double product_error;
     double error_scale_x, error_scale_y;   // half the buffer's size, in double
+    // keep_partial: the buffer's tiles, for DepthRasterizer::
+    // behind_everything's test before a triangle's setup (a triangle it
+    // drops would change no pixel); each dirty tile's maximum is taken
+    // as that test takes it.
+    const float *tiles;
+    float *tile_max;
+    std::uint8_t *dirty;
+    int tiles_x;
 };
 
 struct ScreenedTriangle {
@@ -176,6 +184,23 @@ inline float tile_farthest_depth(const PolygonSetup &s, const Band &band, int x8
 void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer);
 void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer);
 
+// A tile row of merged partial coverage at once, as Masked Occlusion
+// Culling updates a tile row (Hasselgren, Andersson and Akenine-Moeller
+// 2016, its triangle rasterization): the eight depth pixels x8 .. x8 + 7 of one row, each
+// a lane, with no branch per pixel. A pixel's k x k sample mask (bit j k +
+// i: sample column i of sample row j) is held in two planes of 32 bits,
+// bits 0-31 and 32-63, so that masks, depths and compares are all eight
+// 32-bit lanes.
+struct MaskRow {
+    std::uint32_t lo[tile_size], hi[tile_size];
+};
+
+// Per sample row j < k, a run of sample columns [lo[j], hi[j]] (empty
+// where lo > hi; column c of depth pixel c / k).
+struct SampleRuns {
+    std::int32_t lo[8], hi[8];
+};
+
 // Merged partial coverage (DepthRasterizer::merge_partial): where each
 // edge of a polygon crosses each row of samples of a row of depth pixels,
 // as the run of sample columns it holds. Sample column c (of depth pixel
@@ -194,20 +219,97 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer);
 // |crossing|, taken twice; the column's own, (crossing +- slack) k - 0.5,
 // within 4 eps of it and 1. Every step is one IEEE operation in the same
 // order in both loops (no fused multiply-add), so their columns are equal.
+//
+// An edge along a row (a = 0) holds the whole row or nothing: its lanes
+// are level, with start its constant c and slope its b, and hold the row
+// where fl(c + fl(b v)) - 8 eps (|c| + |b v|) >= 0 (v, b v and the sum
+// round within 4 eps of those terms, taken twice); they count as rising,
+// from column c_lo or c_hi + 1.
 constexpr int max_crossings = (max_edges + 3) * 8;
 struct Crossings {
     int lanes;
     int c_lo, c_hi;   // the sample columns of the polygon's box
-    double k;
-    double offset[max_crossings], start[max_crossings], slope[max_crossings];
-    std::int64_t rising[max_crossings];   // -1: rising, 0: not
+    int k;
+    const double *offset;   // lane l's sample row offset, ((l mod k) + 0.5) / k
+    double start[max_crossings], slope[max_crossings];
+    std::int64_t rising[max_crossings];   // -1: rising (or level), 0: not
+    std::int64_t level[max_crossings];    // -1: level, 0: not
+    // The polygon's edges: edge e's held line at sample row j in lane e k
+    // + j; for bit e of `candidates` (a triangle across edge e), its reach
+    // in lane reach_lane[e] + j. Bit e of rising_edges: edge e rises.
+    int edges, candidates, reach_lane[3];
+    unsigned rising_edges;
 };
 
-// For row y, per lane: where rising, the first column held, clamped to
+// A row of depth pixels' runs, from its lines' crossings: per sample row
+// j, the columns every edge holds (`held`), and for each edge e with a
+// triangle across, those within its reach but outside it (its reach less
+// its held run: both end on the same side), inside every other edge
+// (band[e]); the columns some run holds, [first, last], and those every
+// sample row's held run holds, [whole_first, whole_last]; bit e of
+// band_edges, a sample in band[e].
+struct RowRuns {
+    SampleRuns held, band[3];
+    int first, last, whole_first, whole_last;
+    unsigned band_edges;
+};
+
+// For row y: per lane, where rising, the first column held, clamped to
 // [c_lo, c_hi + 1] (c_hi + 1: none); else the last, clamped to [c_lo - 1,
-// c_hi] (c_lo - 1: none). A NaN crossing holds none.
-void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column);
-void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column);
+// c_hi] (c_lo - 1: none), a NaN crossing holding none; then the runs they
+// bound. Returns whether some run holds a column (first <= last).
+bool partial_row_runs_scalar(const Crossings &c, int y, RowRuns &runs);
+bool partial_row_runs_avx2(const Crossings &c, int y, RowRuns &runs);
+
+// The runs' samples in depth pixels x8 .. x8 + 7, as their masks; returns
+// the lanes with a bit set (bit l: lane l).
+unsigned run_masks_scalar(const SampleRuns &runs, int k, int x8, MaskRow &out);
+unsigned run_masks_avx2(const SampleRuns &runs, int k, int x8, MaskRow &out);
+
+// The triangle across a shared edge (DepthRasterizer::set_up_across): a
+// sample (u, v) is inside it where fl(fl(ea u) + fl(eb v)) >= held for its
+// two other edges, and its depth over a depth pixel is depth's (as
+// PolygonSetup's), widened by depth_error and rounded up.
+struct PartialAcross {
+    float ea[2], eb[2], held[2];
+    double depth_error;
+    PolygonSetup depth;
+};
+
+// One tile row's update, in two steps. First each pixel's depth bound:
+// min(za X + depth_term, zcap) widened by depth_error and rounded up
+// (partial_next_up); a pixel whose depth is no farther than that takes
+// nothing (the bound only rises). Then each pixel's mask is `held` and, for
+// each triangle across, the samples of its band inside that triangle, and
+// its depth bound rises to each triangle across's that holds one of its
+// samples. A pixel with no sample or whose depth is no farther than the
+// bound takes nothing; else its mask joins the pixel's partial mask and
+// its partial depth becomes the farther of the two (its own where the mask
+// was empty), and where the joint mask fills, the pixel takes that depth
+// if nearer and the partial mask empties.
+struct PartialRow {
+    int x8, y, k;
+    float offset[8];            // sample offsets within a depth pixel
+    std::uint32_t full_lo, full_hi;
+    float za, depth_term, zcap;
+    double depth_error;
+    float z[tile_size];         // the first step's bounds
+    MaskRow held;
+    int across_count;
+    const PartialAcross *across[3];
+    MaskRow band[3];
+};
+struct PartialTileRow {
+    float *depth, *partial_depth;
+    std::uint32_t *mask_lo, *mask_hi;
+};
+// The first step: sets row.z, returns the lanes whose depth is farther.
+unsigned partial_row_depth_scalar(PartialRow &row, const float *depth);
+unsigned partial_row_depth_avx2(PartialRow &row, const float *depth);
+// The second: bit 0 of the result, a depth changed; bit 1, a partial mask
+// was stored.
+unsigned merge_partial_row_scalar(const PartialRow &row, const PartialTileRow &tile);
+unsigned merge_partial_row_avx2(const PartialRow &row, const PartialTileRow &tile);
 
 // std::nextafter(z, 2.0f), for merged coverage's depth bounds: the next float up (a NaN
 // or infinity stays; -0 becomes the least positive float, as 0 does).

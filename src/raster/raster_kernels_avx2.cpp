@@ -7,6 +7,9 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace occu::raster {
 
 namespace {
@@ -140,14 +143,33 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
         fill_polygon<0>(s, buffer);
 }
 
-void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
+namespace {
+
+// Lane by lane, the least (or greatest) of eight 32-bit integers.
+inline int lanes_min(__m256i v)
 {
-    // Four lanes at a time, crossing_columns_scalar's expressions; the
-    // lanes past c.lanes are computed from whatever the arrays hold there
-    // and not stored.
+    v = _mm256_min_epi32(v, _mm256_permute2x128_si256(v, v, 1));
+    v = _mm256_min_epi32(v, _mm256_shuffle_epi32(v, 0x4e));
+    return _mm256_cvtsi256_si32(_mm256_min_epi32(v, _mm256_shuffle_epi32(v, 0xb1)));
+}
+inline int lanes_max(__m256i v)
+{
+    v = _mm256_max_epi32(v, _mm256_permute2x128_si256(v, v, 1));
+    v = _mm256_max_epi32(v, _mm256_shuffle_epi32(v, 0x4e));
+    return _mm256_cvtsi256_si32(_mm256_max_epi32(v, _mm256_shuffle_epi32(v, 0xb1)));
+}
+
+}  // namespace
+
+bool partial_row_runs_avx2(const Crossings &c, int y, RowRuns &out)
+{
+    // The crossings four lanes at a time, partial_row_runs_scalar's
+    // expressions; the lanes past c.lanes are computed from whatever the
+    // arrays hold there and not read.
+    alignas(32) std::int32_t column[max_crossings + 8];
     const __m256d eight_eps = _mm256_set1_pd(8.0 * 0x1p-52);
-    const __m256d four_eps = _mm256_set1_pd(4.0 * 0x1p-52), one = _mm256_set1_pd(1.0);
-    const __m256d half = _mm256_set1_pd(0.5), k = _mm256_set1_pd(c.k), row = _mm256_set1_pd(double(y));
+    const __m256d four_eps = _mm256_set1_pd(4.0 * 0x1p-52), one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+    const __m256d half = _mm256_set1_pd(0.5), k = _mm256_set1_pd(double(c.k)), row = _mm256_set1_pd(double(y));
     const __m256d sign = _mm256_set1_pd(-0.0);
     const __m256d lo = _mm256_set1_pd(double(c.c_lo)), hi = _mm256_set1_pd(double(c.c_hi));
     const __m256d none_rising = _mm256_set1_pd(double(c.c_hi + 1)), none_falling = _mm256_set1_pd(double(c.c_lo - 1));
@@ -156,10 +178,10 @@ void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
         const __m256d start = _mm256_loadu_pd(c.start + l);
         const __m256d bv = _mm256_mul_pd(_mm256_loadu_pd(c.slope + l), v);
         const __m256d crossing = _mm256_add_pd(start, bv);
-        const __m256d slack = _mm256_mul_pd(
-            eight_eps, _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, start), _mm256_andnot_pd(sign, bv)),
-                                     _mm256_andnot_pd(sign, crossing)));
+        const __m256d terms = _mm256_add_pd(_mm256_andnot_pd(sign, start), _mm256_andnot_pd(sign, bv));
+        const __m256d slack = _mm256_mul_pd(eight_eps, _mm256_add_pd(terms, _mm256_andnot_pd(sign, crossing)));
         const __m256d rising = _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i *>(c.rising + l)));
+        const __m256d level = _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i *>(c.level + l)));
         // Rising: the first column from (crossing + slack) k - 0.5 up.
         const __m256d x_up = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(crossing, slack), k), half);
         const __m256d first = _mm256_round_pd(
@@ -178,12 +200,204 @@ void crossing_columns_avx2(const Crossings &c, int y, std::int32_t *column)
         const __m256d last_in = _mm256_cmp_pd(last, lo, _CMP_GE_OQ);
         const __m256d last_clamped = _mm256_blendv_pd(last, hi, _mm256_cmp_pd(last, hi, _CMP_GT_OQ));
         const __m256d down = _mm256_blendv_pd(none_falling, last_clamped, last_in);
-        const __m128i columns = _mm256_cvtpd_epi32(_mm256_blendv_pd(down, up, rising));
-        alignas(16) std::int32_t out[4];
-        _mm_store_si128(reinterpret_cast<__m128i *>(out), columns);
-        for (int i = 0; i < 4 && l + i < c.lanes; ++i)
-            column[l + i] = out[i];
+        // Level: the whole row or none.
+        const __m256d holds = _mm256_cmp_pd(_mm256_sub_pd(crossing, _mm256_mul_pd(eight_eps, terms)), zero, _CMP_GE_OQ);
+        const __m256d flat = _mm256_blendv_pd(none_rising, lo, holds);
+        const __m256d columns = _mm256_blendv_pd(_mm256_blendv_pd(down, up, rising), flat, level);
+        _mm_store_si128(reinterpret_cast<__m128i *>(column + l), _mm256_cvtpd_epi32(columns));
     }
+    // Lane j: sample row j (lanes j >= k read the next lines' columns and
+    // are left out). Edge e's bound: from its column on where it rises,
+    // else up to it.
+    const int kk = c.k;
+    const __m256i c_lo = _mm256_set1_epi32(c.c_lo), c_hi = _mm256_set1_epi32(c.c_hi);
+    const __m256i ones = _mm256_set1_epi32(1);
+    const __m256i rows = _mm256_cmpgt_epi32(_mm256_set1_epi32(kk), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    // Edge e's bound at sample row j: from its column on where it rises
+    // (lower), else up to it (upper).
+    __m256i lower[max_edges], upper[max_edges];
+    __m256i held_lo = c_lo, held_hi = c_hi;
+    for (int e = 0; e < c.edges; ++e) {
+        const __m256i column_e = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + e * kk));
+        const __m256i rises = _mm256_set1_epi32(-int(c.rising_edges >> e & 1));
+        lower[e] = _mm256_blendv_epi8(c_lo, column_e, rises);
+        upper[e] = _mm256_blendv_epi8(column_e, c_hi, rises);
+        held_lo = _mm256_max_epi32(held_lo, lower[e]);
+        held_hi = _mm256_min_epi32(held_hi, upper[e]);
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.held.lo), held_lo);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.held.hi), held_hi);
+    // Columns of the nonempty runs: the least first and greatest last.
+    const auto nonempty = [&](__m256i run_lo, __m256i run_hi) {
+        return _mm256_andnot_si256(_mm256_cmpgt_epi32(run_lo, run_hi), rows);
+    };
+    const __m256i past = _mm256_set1_epi32(c.c_hi + 1), before = _mm256_set1_epi32(c.c_lo - 1);
+    const __m256i some = nonempty(held_lo, held_hi);
+    __m256i first = _mm256_blendv_epi8(past, held_lo, some), last = _mm256_blendv_epi8(before, held_hi, some);
+    out.band_edges = 0;
+    // Triangles only (c.edges == 3) have edges with a triangle across.
+    for (int e = 0; e < 3; ++e) {
+        if (!(c.candidates >> e & 1))
+            continue;
+        const __m256i reach = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + c.reach_lane[e]));
+        const __m256i own = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + e * kk));
+        const __m256i rises = _mm256_set1_epi32(-int(c.rising_edges >> e & 1));
+        const int o1 = e == 2 ? 0 : e + 1, o2 = e == 0 ? 2 : e - 1;
+        const __m256i band_lo = _mm256_max_epi32(
+            _mm256_max_epi32(_mm256_blendv_epi8(_mm256_add_epi32(own, ones), reach, rises), lower[o1]), lower[o2]);
+        const __m256i band_hi = _mm256_min_epi32(
+            _mm256_min_epi32(_mm256_blendv_epi8(reach, _mm256_sub_epi32(own, ones), rises), upper[o1]), upper[o2]);
+        _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.band[e].lo), band_lo);
+        _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.band[e].hi), band_hi);
+        const __m256i in_band = nonempty(band_lo, band_hi);
+        out.band_edges |= unsigned(!_mm256_testz_si256(in_band, in_band)) << e;
+        first = _mm256_blendv_epi8(first, _mm256_min_epi32(first, band_lo), in_band);
+        last = _mm256_blendv_epi8(last, _mm256_max_epi32(last, band_hi), in_band);
+    }
+    out.whole_first = lanes_max(_mm256_blendv_epi8(c_lo, held_lo, rows));
+    out.whole_last = lanes_min(_mm256_blendv_epi8(c_hi, held_hi, rows));
+    out.first = lanes_min(first);
+    out.last = lanes_max(last);
+    return out.first <= out.last;
+}
+
+namespace {
+
+// partial_next_up lane by lane: the next float up, a NaN or +infinity kept.
+inline __m256 next_up(__m256 z)
+{
+    z = _mm256_add_ps(z, _mm256_setzero_ps());
+    const __m256i bits = _mm256_castps_si256(z);
+    // -1 below zero, else +1.
+    const __m256i step =
+        _mm256_or_si256(_mm256_castps_si256(_mm256_cmp_ps(z, _mm256_setzero_ps(), _CMP_LT_OQ)), _mm256_set1_epi32(1));
+    const __m256 keep = _mm256_or_ps(_mm256_cmp_ps(z, z, _CMP_UNORD_Q),
+                                     _mm256_cmp_ps(z, _mm256_set1_ps(__builtin_inff()), _CMP_EQ_OQ));
+    return _mm256_blendv_ps(_mm256_castsi256_ps(_mm256_add_epi32(bits, step)), z, keep);
+}
+
+// partial_next_up(float(double(z) + error)) lane by lane.
+inline __m256 widened(__m256 z, double error)
+{
+    const __m256d e = _mm256_set1_pd(error);
+    const __m128 low = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(z)), e));
+    const __m128 high = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(z, 1)), e));
+    return next_up(_mm256_insertf128_ps(_mm256_castps128_ps256(low), high, 1));
+}
+
+inline __m128i shift_count(int n) { return _mm_cvtsi32_si128(n); }
+
+}  // namespace
+
+unsigned run_masks_avx2(const SampleRuns &runs, int k, int x8, MaskRow &out)
+{
+    // Lane l: pixel x8 + l's first sample column; the scalar loop's
+    // expressions (shifts by 32 or more give 0 in both).
+    const __m256i first = _mm256_add_epi32(_mm256_set1_epi32(x8 * k),
+                                           _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+                                                              _mm256_set1_epi32(k)));
+    const __m256i zero = _mm256_setzero_si256(), kk = _mm256_set1_epi32(k), one = _mm256_set1_epi32(1);
+    __m256i lo = zero, hi = zero;
+    for (int j = 0; j < k; ++j) {
+        const __m256i s = _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(runs.lo[j]), first), zero), kk);
+        const __m256i t =
+            _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(runs.hi[j] + 1), first), s), kk);
+        const __m256i bits = _mm256_sub_epi32(_mm256_sllv_epi32(one, t), _mm256_sllv_epi32(one, s));
+        const int b = j * k;
+        lo = _mm256_or_si256(lo, _mm256_sll_epi32(bits, shift_count(b)));
+        hi = _mm256_or_si256(hi, _mm256_or_si256(_mm256_sll_epi32(bits, shift_count(b >= 32 ? b - 32 : 32)),
+                                                 _mm256_srl_epi32(bits, shift_count(b < 32 ? 32 - b : 32))));
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.lo), lo);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.hi), hi);
+    return unsigned(~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero)))) & 0xffu;
+}
+
+unsigned partial_row_depth_avx2(PartialRow &r, const float *depth)
+{
+    // float(x8 + lane), exactly, as the scalar loop converts it; std::min(z,
+    // zcap) is min_ps(zcap, z).
+    const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(r.x8)), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
+    const __m256 z = widened(_mm256_min_ps(_mm256_set1_ps(r.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(r.za), fx),
+                                                                                _mm256_set1_ps(r.depth_term))),
+                             r.depth_error);
+    _mm256_storeu_ps(r.z, z);
+    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, _mm256_loadu_ps(depth), _CMP_LT_OQ)));
+}
+
+unsigned merge_partial_row_avx2(const PartialRow &r, const PartialTileRow &t)
+{
+    const int k = r.k;
+    const float fy = float(r.y);
+    const __m256i zero = _mm256_setzero_si256();
+    // float(x8 + lane), exactly, as the scalar loop converts it.
+    const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(r.x8)), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
+    __m256i lo = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.held.lo));
+    __m256i hi = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.held.hi));
+    // std::min(z, zcap) is min_ps(zcap, z); std::max(a, b) is max_ps(b, a).
+    __m256 z = _mm256_loadu_ps(r.z);
+    for (int a = 0; a < r.across_count; ++a) {
+        const PartialAcross &n = *r.across[a];
+        const __m256 ea0 = _mm256_set1_ps(n.ea[0]), ea1 = _mm256_set1_ps(n.ea[1]);
+        const __m256 held0 = _mm256_set1_ps(n.held[0]), held1 = _mm256_set1_ps(n.held[1]);
+        __m256i in_lo = zero, in_hi = zero;
+        for (int j = 0; j < k; ++j) {
+            const float v = fy + r.offset[j];
+            const __m256 bv0 = _mm256_set1_ps(n.eb[0] * v), bv1 = _mm256_set1_ps(n.eb[1] * v);
+            for (int i = 0; i < k; ++i) {
+                const __m256 u = _mm256_add_ps(fx, _mm256_set1_ps(r.offset[i]));
+                const __m256 in = _mm256_and_ps(
+                    _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea0, u), bv0), held0, _CMP_GE_OQ),
+                    _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea1, u), bv1), held1, _CMP_GE_OQ));
+                const int b = j * k + i;
+                const __m256i bit = b < 32 ? _mm256_set1_epi32(int(1u << b)) : zero;
+                const __m256i bit_hi = b >= 32 ? _mm256_set1_epi32(int(1u << (b - 32))) : zero;
+                in_lo = _mm256_or_si256(in_lo, _mm256_and_si256(_mm256_castps_si256(in), bit));
+                in_hi = _mm256_or_si256(in_hi, _mm256_and_si256(_mm256_castps_si256(in), bit_hi));
+            }
+        }
+        in_lo = _mm256_and_si256(in_lo, _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.band[a].lo)));
+        in_hi = _mm256_and_si256(in_hi, _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.band[a].hi)));
+        lo = _mm256_or_si256(lo, in_lo);
+        hi = _mm256_or_si256(hi, in_hi);
+        const PolygonSetup &d = n.depth;
+        const __m256 across_z = widened(
+            _mm256_min_ps(_mm256_set1_ps(d.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(d.za), fx),
+                                                                _mm256_set1_ps(d.zb * fy + d.zc))),
+            n.depth_error);
+        const __m256 some = _mm256_castsi256_ps(
+            _mm256_xor_si256(_mm256_cmpeq_epi32(_mm256_or_si256(in_lo, in_hi), zero), _mm256_set1_epi32(-1)));
+        z = _mm256_blendv_ps(z, _mm256_max_ps(across_z, z), some);
+    }
+    const __m256 depth = _mm256_loadu_ps(t.depth);
+    const __m256i held_none = _mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero);
+    const __m256 take = _mm256_andnot_ps(_mm256_castsi256_ps(held_none), _mm256_cmp_ps(z, depth, _CMP_LT_OQ));
+    const int take_bits = _mm256_movemask_ps(take);
+    if (take_bits == 0)
+        return 0;
+    const __m256i old_lo = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(t.mask_lo));
+    const __m256i old_hi = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(t.mask_hi));
+    const __m256 old_depth = _mm256_loadu_ps(t.partial_depth);
+    const __m256 open = _mm256_castsi256_ps(
+        _mm256_xor_si256(_mm256_cmpeq_epi32(_mm256_or_si256(old_lo, old_hi), zero), _mm256_set1_epi32(-1)));
+    const __m256 farthest = _mm256_blendv_ps(z, _mm256_max_ps(z, old_depth), open);
+    lo = _mm256_or_si256(lo, old_lo);
+    hi = _mm256_or_si256(hi, old_hi);
+    const __m256 full = _mm256_castsi256_ps(_mm256_and_si256(_mm256_cmpeq_epi32(lo, _mm256_set1_epi32(int(r.full_lo))),
+                                                             _mm256_cmpeq_epi32(hi, _mm256_set1_epi32(int(r.full_hi)))));
+    // Taken and not full: the joint mask and the farther depth stored.
+    // Taken and full: the mask empties, and the depth is kept where nearer.
+    const __m256 store = _mm256_andnot_ps(full, take), fills = _mm256_and_ps(full, take);
+    const __m256 nearer = _mm256_and_ps(fills, _mm256_cmp_ps(farthest, depth, _CMP_LT_OQ));
+    const __m256i stored_lo = _mm256_andnot_si256(_mm256_castps_si256(full), lo);
+    const __m256i stored_hi = _mm256_andnot_si256(_mm256_castps_si256(full), hi);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(t.mask_lo),
+                        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_lo), _mm256_castsi256_ps(stored_lo), take)));
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(t.mask_hi),
+                        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_hi), _mm256_castsi256_ps(stored_hi), take)));
+    _mm256_storeu_ps(t.partial_depth, _mm256_blendv_ps(old_depth, farthest, store));
+    _mm256_storeu_ps(t.depth, _mm256_blendv_ps(depth, farthest, nearer));
+    return (_mm256_movemask_ps(nearer) != 0 ? 1u : 0u) | (_mm256_movemask_ps(store) != 0 ? 2u : 0u);
 }
 
 bool tile_behind_avx2(const float *tile, int c0, int c1, int r0, int r1, float z)
@@ -419,6 +633,40 @@ int set_up_four(const TriangleScreen &screen, const __m128 *wx, const __m128 *wy
     return front;
 }
 
+// DepthRasterizer::behind_everything for a triangle's window box and
+// nearest corner: whether every tile its depth pixels (and a pixel more
+// each way) lie in is nearer everywhere than its nearest corner, by the
+// tiles' maxima, a dirty tile's taken first (DepthRasterizer::
+// refresh_tile_maximum: the largest of its pixels, which hold no NaN).
+bool behind_tiles(const TriangleScreen &screen, float lo_x, float lo_y, float hi_x, float hi_y, float nearest)
+{
+    const int x0 = std::max(0, int(std::floor(double(lo_x))) - 1);
+    const int y0 = std::max(0, int(std::floor(double(lo_y))) - 1);
+    const int x1 = std::min(screen.width, int(std::floor(double(hi_x))) + 2);
+    const int y1 = std::min(screen.height, int(std::floor(double(hi_y))) + 2);
+    if (x0 >= x1 || y0 >= y1)
+        return true;
+    const float z = float(double(nearest) - screen.depth_margin);
+    for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
+        for (int tx = x0 / tile_size; tx <= (x1 - 1) / tile_size; ++tx) {
+            const std::size_t t = std::size_t(ty) * std::size_t(screen.tiles_x) + std::size_t(tx);
+            if (screen.dirty[t]) {
+                const float *tile = screen.tiles + t * tile_pixels;
+                __m256 m = _mm256_loadu_ps(tile);
+                for (int y = 1; y < tile_size; ++y)
+                    m = _mm256_max_ps(m, _mm256_loadu_ps(tile + y * tile_size));
+                __m128 h = _mm_max_ps(_mm256_castps256_ps128(m), _mm256_extractf128_ps(m, 1));
+                h = _mm_max_ps(h, _mm_movehl_ps(h, h));
+                h = _mm_max_ss(h, _mm_shuffle_ps(h, h, 1));
+                screen.tile_max[t] = _mm_cvtss_f32(h);
+                screen.dirty[t] = 0;
+            }
+            if (!(screen.tile_max[t] < z))
+                return false;
+        }
+    return true;
+}
+
 }  // namespace
 
 std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *positions, const std::uint32_t *indices,
@@ -498,6 +746,21 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
                 const __m256 empty = _mm256_or_ps(span_empty(lo_x, hi_x, screen.first, screen.last, screen.width),
                                                   span_empty(lo_y, hi_y, screen.first, screen.last, screen.height));
                 projected &= ~_mm256_movemask_ps(empty);
+            } else {
+                // Drawn nearest first, most of a mesh's later triangles
+                // lie behind what is there already: dropped before their
+                // setup and transform error.
+                alignas(32) float box[4][8], nearest[8];
+                _mm256_store_ps(box[0], lo_x);
+                _mm256_store_ps(box[1], lo_y);
+                _mm256_store_ps(box[2], hi_x);
+                _mm256_store_ps(box[3], hi_y);
+                _mm256_store_ps(nearest, _mm256_min_ps(_mm256_min_ps(depth[0], depth[1]), depth[2]));
+                for (int bits = projected; bits != 0; bits &= bits - 1) {
+                    const int lane = __builtin_ctz(unsigned(bits));
+                    if (behind_tiles(screen, box[0][lane], box[1][lane], box[2][lane], box[3][lane], nearest[lane]))
+                        projected &= ~(1 << lane);
+                }
             }
         }
         // Set up, four lanes at a time; a lane whose area is not positive drops out.

@@ -53,12 +53,18 @@ void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
     }
 }
 
-void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column)
+bool partial_row_runs_scalar(const Crossings &c, int y, RowRuns &out)
 {
     constexpr double eps = 0x1p-52;
+    std::int32_t column[max_crossings];
     for (int l = 0; l < c.lanes; ++l) {
         const double v = double(y) + c.offset[l];
         const double bv = c.slope[l] * v, crossing = c.start[l] + bv;
+        if (c.level[l]) {
+            const bool holds = crossing - 8.0 * eps * (std::fabs(c.start[l]) + std::fabs(bv)) >= 0.0;
+            column[l] = holds ? c.c_lo : c.c_hi + 1;
+            continue;
+        }
         const double slack = 8.0 * eps * ((std::fabs(c.start[l]) + std::fabs(bv)) + std::fabs(crossing));
         if (c.rising[l]) {
             const double x = (crossing + slack) * c.k - 0.5;
@@ -72,6 +78,152 @@ void crossing_columns_scalar(const Crossings &c, int y, std::int32_t *column)
                                                : c.c_lo - 1;
         }
     }
+    // Edge e's bound at sample row j: from column[e k + j] on where it
+    // rises, else up to it.
+    const int k = c.k;
+    const auto lower = [&](int e, int j) { return c.rising_edges >> e & 1 ? column[e * k + j] : c.c_lo; };
+    const auto upper = [&](int e, int j) { return c.rising_edges >> e & 1 ? c.c_hi : column[e * k + j]; };
+    out.first = c.c_hi + 1;
+    out.last = c.c_lo - 1;
+    out.band_edges = 0;
+    out.whole_first = c.c_lo;
+    out.whole_last = c.c_hi;
+    const auto extend = [&](int lo, int hi) {
+        if (lo <= hi) {
+            out.first = std::min(out.first, lo);
+            out.last = std::max(out.last, hi);
+        }
+        return lo <= hi;
+    };
+    for (int j = 0; j < k; ++j) {
+        int lo = c.c_lo, hi = c.c_hi;
+        for (int e = 0; e < c.edges; ++e) {
+            lo = std::max(lo, lower(e, j));
+            hi = std::min(hi, upper(e, j));
+        }
+        out.held.lo[j] = lo;
+        out.held.hi[j] = hi;
+        out.whole_first = std::max(out.whole_first, lo);
+        out.whole_last = std::min(out.whole_last, hi);
+        extend(lo, hi);
+        for (int e = 0; e < 3; ++e) {
+            if (!(c.candidates >> e & 1))
+                continue;
+            const int reach = column[c.reach_lane[e] + j], own = column[e * k + j];
+            int band_lo = c.rising_edges >> e & 1 ? reach : own + 1;
+            int band_hi = c.rising_edges >> e & 1 ? own - 1 : reach;
+            for (int o = 0; o < c.edges; ++o)
+                if (o != e) {
+                    band_lo = std::max(band_lo, lower(o, j));
+                    band_hi = std::min(band_hi, upper(o, j));
+                }
+            out.band[e].lo[j] = band_lo;
+            out.band[e].hi[j] = band_hi;
+            if (extend(band_lo, band_hi))
+                out.band_edges |= 1u << e;
+        }
+    }
+    return out.first <= out.last;
+}
+
+namespace {
+
+// x << n, and 0 for n >= 32 (as AVX2's shifts by a count in a register).
+inline std::uint32_t shift_left(std::uint32_t x, int n) { return n < 32 ? x << n : 0; }
+inline std::uint32_t shift_right(std::uint32_t x, int n) { return n < 32 ? x >> n : 0; }
+
+// z widened by `error` and rounded up (DepthRasterizer::merge_partial's depth bound).
+inline float widened(float z, double error) { return partial_next_up(float(double(z) + error)); }
+
+}  // namespace
+
+unsigned run_masks_scalar(const SampleRuns &runs, int k, int x8, MaskRow &out)
+{
+    unsigned lanes = 0;
+    for (int lane = 0; lane < tile_size; ++lane) {
+        const int first = (x8 + lane) * k;
+        std::uint32_t lo = 0, hi = 0;
+        for (int j = 0; j < k; ++j) {
+            // Columns [s, t) of the pixel's k: bits (1 << t) - (1 << s).
+            const int s = std::min(std::max(runs.lo[j] - first, 0), k);
+            const int t = std::min(std::max(runs.hi[j] + 1 - first, s), k);
+            const std::uint32_t bits = (std::uint32_t(1) << t) - (std::uint32_t(1) << s);
+            const int b = j * k;
+            lo |= shift_left(bits, b);
+            hi |= shift_left(bits, b >= 32 ? b - 32 : 32) | shift_right(bits, b < 32 ? 32 - b : 32);
+        }
+        out.lo[lane] = lo;
+        out.hi[lane] = hi;
+        lanes |= unsigned((lo | hi) != 0) << lane;
+    }
+    return lanes;
+}
+
+unsigned partial_row_depth_scalar(PartialRow &r, const float *depth)
+{
+    unsigned lanes = 0;
+    for (int lane = 0; lane < tile_size; ++lane) {
+        r.z[lane] = widened(std::min(r.za * float(r.x8 + lane) + r.depth_term, r.zcap), r.depth_error);
+        lanes |= unsigned(r.z[lane] < depth[lane]) << lane;
+    }
+    return lanes;
+}
+
+unsigned merge_partial_row_scalar(const PartialRow &r, const PartialTileRow &t)
+{
+    const int k = r.k;
+    const float fy = float(r.y);
+    unsigned wrote = 0;
+    for (int lane = 0; lane < tile_size; ++lane) {
+        const float fx = float(r.x8 + lane);
+        std::uint32_t lo = r.held.lo[lane], hi = r.held.hi[lane];
+        float z = r.z[lane];
+        for (int a = 0; a < r.across_count; ++a) {
+            // Within the band beyond a shared edge, inside the triangle
+            // across: held, at the farther of the two triangles' depths.
+            const PartialAcross &n = *r.across[a];
+            std::uint32_t in_lo = 0, in_hi = 0;
+            for (int j = 0; j < k; ++j) {
+                const float v = fy + r.offset[j];
+                for (int i = 0; i < k; ++i) {
+                    const float u = fx + r.offset[i];
+                    const bool in = n.ea[0] * u + n.eb[0] * v >= n.held[0] && n.ea[1] * u + n.eb[1] * v >= n.held[1];
+                    const int b = j * k + i;
+                    in_lo |= shift_left(std::uint32_t(in), b);
+                    in_hi |= shift_left(std::uint32_t(in), b >= 32 ? b - 32 : 32);
+                }
+            }
+            in_lo &= r.band[a].lo[lane];
+            in_hi &= r.band[a].hi[lane];
+            lo |= in_lo;
+            hi |= in_hi;
+            const PolygonSetup &d = n.depth;
+            const float across_z = widened(std::min(d.za * fx + (d.zb * fy + d.zc), d.zcap), n.depth_error);
+            z = (in_lo | in_hi) != 0 ? std::max(z, across_z) : z;
+        }
+        const float depth = t.depth[lane];
+        if (!((lo | hi) != 0 && z < depth))
+            continue;
+        const std::uint32_t old_lo = t.mask_lo[lane], old_hi = t.mask_hi[lane];
+        const float farthest = (old_lo | old_hi) != 0 ? std::max(t.partial_depth[lane], z) : z;
+        lo |= old_lo;
+        hi |= old_hi;
+        if (lo != r.full_lo || hi != r.full_hi) {
+            t.mask_lo[lane] = lo;
+            t.mask_hi[lane] = hi;
+            t.partial_depth[lane] = farthest;
+            wrote |= 2;
+            continue;
+        }
+        // Every sample is held no farther than `farthest`; the layer
+        // starts again empty, whether or not it was nearer.
+        t.mask_lo[lane] = t.mask_hi[lane] = 0;
+        if (farthest < depth) {
+            t.depth[lane] = farthest;
+            wrote |= 1;
+        }
+    }
+    return wrote;
 }
 
 bool tile_behind_scalar(const float *tile, int c0, int c1, int r0, int r1, float z)

@@ -727,7 +727,8 @@ TEST(DepthRasterizer, ScalarAndAvx2AgreeWithMergedCoverage)
     for (int trial = 0; trial < 20; ++trial) {
         const Polygons grid = rumpled_grid(rng, 6 + trial * 2, trial % 2 ? 8.0f : 1.0f, trial % 4 != 3);
         const std::vector<glm::vec3> opposites = shared_edge_opposites(triangle_corners(grid));
-        const DepthRasterizer::Options o{1 + trial % 4, trial % 3 != 0, true};
+        // Divisors 1-8: masks of up to 64 samples, their bits 32-63 too.
+        const DepthRasterizer::Options o{1 + trial % 8, trial % 3 != 0, true};
         for (DepthRasterizer *r : {&scalar, &avx2}) {
             r->begin(vp, frame_size, frame_size, o);
             r->render_triangles(grid.positions.data(), grid.triangles.data(), grid.triangles.size() / 3,
