@@ -1099,39 +1099,24 @@ bool DepthRasterizer::occluded(const Aabb &box, const PixelRect &frame_rect, flo
 
 bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
 {
-    return z_near == z_near && faces_behind(box, z_near);
-}
-
-bool DepthRasterizer::box_occluded(const Aabb &box) const
-{
-    return faces_behind(box, std::numeric_limits<double>::quiet_NaN());
-}
-
-bool DepthRasterizer::faces_behind(const Aabb &box, double z_near) const
-{
+    if (!(z_near == z_near))
+        return false;
     // The corners in window coordinates of the buffer (depth pixels) and
     // window depth, in double: this test decides what is not drawn.
     const double k = options_.divisor;
     const double sx = 0.5 * double(frame_width_) / k, sy = 0.5 * double(frame_height_) / k;
     glm::dvec2 window[8];
     double corner_depth[8];
-    double nearest = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 8; ++i) {
-        const glm::dvec4 c = view_projection_double_ * glm::dvec4(glm::dvec3(box.corner(i)), 1.0);
+        const glm::dvec4 c = glm::dmat4(view_projection_) * glm::dvec4(glm::dvec3(box.corner(i)), 1.0);
         if (!(c.w > 0.0) || c.z < -c.w)
             return false;   // in front of the near plane, or around the eye
         window[i] = {(c.x / c.w + 1.0) * sx, (c.y / c.w + 1.0) * sy};
         corner_depth[i] = c.z / c.w * 0.5 + 0.5;
-        nearest = std::min(nearest, corner_depth[i]);
     }
-    // Without a nearest depth from the caller, the nearest corner's, less
-    // the margin the callers' float depth takes (the box's nearest window
-    // depth is at a corner: it grows with the distance along the view).
-    if (!(z_near == z_near))
-        z_near = nearest - 1e-6;
     // The box's content can be nearer than its faces nowhere, and nearer
     // than its nearest corner nowhere: both bounds less the depth margin.
-    const double floor_z = z_near - depth_margin;
+    const double floor_z = double(z_near) - depth_margin;
     if (any_dirty_)
         update_tile_maxima();
     for (const auto &face : aabb_faces) {

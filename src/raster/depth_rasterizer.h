@@ -153,10 +153,6 @@ public:
     // The second step alone, for a caller that has tested the rectangle
     // already (or an equivalent, such as a Z-pyramid of this buffer).
     bool faces_occluded(const Aabb &box, float z_near) const;
-    // The second step at the box's own nearest corner depth, for a box
-    // whose rectangle nobody has tested (a part of a leaf's contents):
-    // its corners are transformed once, for both.
-    bool box_occluded(const Aabb &box) const;
     // Whether every triangle (three indices into `positions` each) that
     // may face the eye is hidden as faces_occluded hides a box's faces:
     // every depth pixel whose square it reaches nearer than its nearest
@@ -234,8 +230,6 @@ private:
     // polygon there, and than floor_z; true for a polygon facing away by
     // more than GL's corners may differ from these (the edge margin and
     // grow_more): GL culls it. One that may face either way is tested.
-    // faces_occluded at z_near, or with NaN at the box's nearest corner.
-    bool faces_behind(const Aabb &box, double z_near) const;
     bool polygon_behind(const glm::dvec2 *corners, const double *corner_z, int n, double floor_z,
                         double grow_more = 0.0) const;
 

@@ -77,11 +77,15 @@ public:
             return false;
         if (raster_.faces_occluded(t.box, z))
             return true;
+        const Frame &f = *frame_;
         const HierarchyNode &n = hierarchy_.nodes()[t.node];
         for (std::uint32_t c = first_cluster_[t.node]; c < first_cluster_[t.node + 1]; ++c) {
             const TriangleCluster &cluster = clusters_[c];
-            if (!cluster.box.empty() && raster_.box_occluded(cluster.box))
-                continue;
+            if (!cluster.box.empty()) {
+                const auto footprint = f.footprint(cluster.box);
+                if (footprint && raster_.occluded(cluster.box, footprint->rect, footprint->window_z_near - 1e-6f))
+                    continue;
+            }
             for (std::uint32_t i = n.first_triangle + cluster.first; i < n.first_triangle + cluster.first + cluster.count; ++i)
                 if (order_[i] != shown && !triangle_occluded(order_[i])) {
                     shown = order_[i];
