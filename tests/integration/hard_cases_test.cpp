@@ -588,6 +588,50 @@ HardCase one_leaf_of_a_million_triangles_case()
     return c;
 }
 
+// A wall, and behind it a fence of 32 triangles, hidden, among which a
+// larger triangle, a spike, reaches over the wall: in leaves of up to 40
+// triangles one leaf holds the fence and the spike, and is seen only
+// through the spike. A strategy that tests a leaf by groups of its
+// triangles (the skins family's clusters, each with its box) must keep
+// the spike in its group's box.
+HardCase one_triangle_of_a_hidden_leaf_peeks_out_case()
+{
+    SceneBuilder b;
+    b.box({-5, 0, -6.25}, {5, 3, -6});   // the wall
+    for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 2; ++j) {
+            const double x = 0.5 + 0.5 * i, y = 1.6 + 0.5 * j;
+            b.quad({x, y, -7}, {x + 0.5, y, -7}, {x + 0.5, y + 0.5, -7}, {x, y + 0.5, -7});
+        }
+    // The line of sight over the wall's top (3 m at z = -6) meets z = -7 at
+    // 3.19 m. The octree splits around the centre of its triangles' boxes'
+    // centres (spatial/hierarchy.h), here x = 0, y = 1.5, z = -6.5: the
+    // fence and the spike lie on one side of each.
+    b.triangle({3.8, 1.6, -7}, {4.2, 1.6, -7}, {4.0, 5.0, -7});
+    HardCase c{b.build(), street_camera()};
+    c.hierarchy = leaves_of(40);
+    c.hides_leaves = false;
+    const std::uint32_t spike = std::uint32_t(c.scene.meshes.size() - 1);   // the last mesh
+    c.premise = [spike](const Hierarchy &h, const Frame &frame) -> ::testing::AssertionResult {
+        for (std::uint32_t i = 0; i < h.nodes().size(); ++i) {
+            const HierarchyNode &n = h.nodes()[i];
+            if (!n.leaf())
+                continue;
+            for (std::uint32_t t = n.first_triangle; t < n.first_triangle + n.triangle_count; ++t)
+                if (h.triangles()[t].mesh == spike) {
+                    if (n.triangle_count <= 16)
+                        return ::testing::AssertionFailure()
+                               << "the spike's leaf holds only " << n.triangle_count << " triangles";
+                    if (!std::binary_search(frame.truth->visible.begin(), frame.truth->visible.end(), i))
+                        return ::testing::AssertionFailure() << "the oracle does not see the spike's leaf";
+                    return ::testing::AssertionSuccess();
+                }
+        }
+        return ::testing::AssertionFailure() << "no leaf holds the spike";
+    };
+    return c;
+}
+
 HardCase all_triangles_in_one_point_case()
 {
     // A thousand triangles with every corner at one point: the hierarchy's
@@ -638,6 +682,7 @@ const std::vector<NamedCase> hard_cases = {
     {"Viewport2048x2048", [] { return viewport_case(2048); }},
     {"Viewport4096x4096", [] { return viewport_case(4096); }},
     {"OneLeafOfAMillionTriangles", one_leaf_of_a_million_triangles_case},
+    {"OneTriangleOfAHiddenLeafPeeksOut", one_triangle_of_a_hidden_leaf_peeks_out_case},
     {"EmptyFrustum", empty_frustum_case},
     {"SceneOfOneTriangle", one_triangle_case},
     {"AllTrianglesInOnePoint", all_triangles_in_one_point_case},

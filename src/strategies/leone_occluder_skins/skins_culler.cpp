@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -28,7 +29,7 @@ public:
         if (settings.text("occluders") != "drawn")
             occluders_.emplace(context.scene, settings, &context.hierarchy);
         if (triangle_test_)
-            order_largest_first();
+            build_clusters();
     }
 
     void begin_frame(const Frame &frame) override
@@ -50,53 +51,122 @@ public:
                 continue;
             // Behind every occluder pixel, with a margin for the box's float z.
             const float z = footprint->window_z_near - 1e-6f;
-            if (box_test_ && t.leaf ? raster_.occluded(t.box, footprint->rect, z) : raster_.occluded(footprint->rect, z))
-                t.result = Visibility::occluded;
-            else if (triangle_test_ && t.leaf && triangles_occluded(t.node))
+            if (triangle_test_ && t.leaf ? leaf_triangles_occluded(t, footprint->rect, z)
+                : box_test_ && t.leaf    ? raster_.occluded(t.box, footprint->rect, z)
+                                         : raster_.occluded(footprint->rect, z))
                 t.result = Visibility::occluded;
         }
     }
 
-    // Every triangle of the leaf, see-through ones included (GL draws
-    // them), hidden pixel by pixel: what the leaf draws, tighter than its
-    // box. The test stops at the first that shows, so the likeliest to
-    // show go first: the one that showed when the leaf was last tested
-    // (frames are coherent), then the largest.
-    bool triangles_occluded(std::uint32_t node)
+    // occludee=triangles: every triangle of the leaf, see-through ones
+    // included (GL draws them), hidden pixel by pixel: what the leaf
+    // draws, tighter than its box. A leaf is hidden when its box is, or
+    // else every cluster of its triangles (a few neighbours and their box)
+    // is, by its box or else triangle by triangle: a hidden leaf's box
+    // fails where its triangles leave gaps, which its clusters' boxes
+    // mostly do not, so one box test stands for a cluster's triangles.
+    // The test stops at the first triangle that shows, so the one that
+    // showed when the leaf was last tested goes first (frames are
+    // coherent), before the box's faces; each cluster's largest first.
+    bool leaf_triangles_occluded(const NodeTest &t, const PixelRect &rect, float z)
     {
-        const HierarchyNode &n = hierarchy_.nodes()[node];
-        const auto &triangles = hierarchy_.triangles();
-        const auto first = largest_first_.begin() + n.first_triangle;
-        for (auto j = first; j != first + n.triangle_count; ++j) {
-            const TriangleRef &t = triangles[*j];
-            const Mesh &mesh = scene_.meshes[t.mesh];
-            if (!raster_.triangles_occluded(mesh.positions.data(), mesh.indices.data() + t.first_index, 1)) {
-                std::rotate(first, j, j + 1);
-                return false;
+        if (raster_.occluded(rect, z))
+            return true;
+        std::uint32_t &shown = last_shown_[t.node];
+        if (shown != none && !triangle_occluded(shown))
+            return false;
+        if (raster_.faces_occluded(t.box, z))
+            return true;
+        const Frame &f = *frame_;
+        const HierarchyNode &n = hierarchy_.nodes()[t.node];
+        for (std::uint32_t c = first_cluster_[t.node]; c < first_cluster_[t.node + 1]; ++c) {
+            const TriangleCluster &cluster = clusters_[c];
+            if (!cluster.box.empty()) {
+                const auto footprint = f.footprint(cluster.box);
+                if (footprint && raster_.occluded(cluster.box, footprint->rect, footprint->window_z_near - 1e-6f))
+                    continue;
             }
+            for (std::uint32_t i = n.first_triangle + cluster.first; i < n.first_triangle + cluster.first + cluster.count; ++i)
+                if (order_[i] != shown && !triangle_occluded(order_[i])) {
+                    shown = order_[i];
+                    return false;
+                }
         }
+        shown = none;
         return true;
     }
 
-    // Each leaf's triangles by world area, the largest first.
-    void order_largest_first()
+    bool triangle_occluded(std::uint32_t triangle) const
+    {
+        const TriangleRef &t = hierarchy_.triangles()[triangle];
+        const Mesh &mesh = scene_.meshes[t.mesh];
+        return raster_.triangles_occluded(mesh.positions.data(), mesh.indices.data() + t.first_index, 1);
+    }
+
+    // Each leaf's triangles split into clusters of at most
+    // cluster_triangles neighbours (halved at the median of their centres
+    // along the widest axis), each cluster's largest first; a cluster with
+    // a corner that is not finite has no box (its triangles are tested).
+    void build_clusters()
     {
         const auto &triangles = hierarchy_.triangles();
-        largest_first_.resize(triangles.size());
+        const auto &nodes = hierarchy_.nodes();
+        order_.resize(triangles.size());
+        last_shown_.assign(nodes.size(), none);
+        first_cluster_.assign(nodes.size() + 1, 0);
         std::vector<float> area(triangles.size());
+        std::vector<glm::vec3> centre(triangles.size());
+        std::vector<Aabb> bounds(triangles.size());
         for (std::uint32_t i = 0; i < triangles.size(); ++i) {
             const Mesh &mesh = scene_.meshes[triangles[i].mesh];
             const std::uint32_t *idx = mesh.indices.data() + triangles[i].first_index;
             const glm::vec3 &a = mesh.positions[idx[0]], &b = mesh.positions[idx[1]], &c = mesh.positions[idx[2]];
             const float twice = glm::length(glm::cross(b - a, c - a));
             area[i] = std::isfinite(twice) ? twice : 0.0f;
-            largest_first_[i] = i;
+            // A triangle with a corner that is not finite sorts last, boxless.
+            centre[i] = glm::vec3(std::numeric_limits<float>::infinity());
+            if (std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)) {
+                centre[i] = (a + b + c) / 3.0f;
+                bounds[i] = Aabb::of(a, b);
+                bounds[i].expand(c);
+            }
+            order_[i] = i;
         }
-        for (const HierarchyNode &n : hierarchy_.nodes())
-            if (n.leaf())
-                std::stable_sort(largest_first_.begin() + n.first_triangle,
-                                 largest_first_.begin() + n.first_triangle + n.triangle_count,
-                                 [&](std::uint32_t x, std::uint32_t y) { return area[x] > area[y]; });
+        const auto split = [&](auto &self, std::uint32_t leaf_first, std::uint32_t begin, std::uint32_t end) -> void {
+            const auto b = order_.begin() + begin, e = order_.begin() + end;
+            if (end - begin > cluster_triangles) {
+                Aabb spread;
+                for (auto i = b; i != e; ++i)
+                    if (!bounds[*i].empty())
+                        spread.expand(centre[*i]);
+                const glm::vec3 size = spread.empty() ? glm::vec3(0.0f) : spread.extent();
+                const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+                const std::uint32_t middle = begin + (end - begin) / 2;
+                std::nth_element(b, order_.begin() + middle, e, [&](std::uint32_t x, std::uint32_t y) {
+                    return centre[x][axis] < centre[y][axis];
+                });
+                self(self, leaf_first, begin, middle);
+                self(self, leaf_first, middle, end);
+                return;
+            }
+            std::stable_sort(b, e, [&](std::uint32_t x, std::uint32_t y) { return area[x] > area[y]; });
+            TriangleCluster cluster{{}, begin - leaf_first, end - begin};
+            bool finite = true;
+            for (auto i = b; i != e; ++i) {
+                finite = finite && !bounds[*i].empty();
+                cluster.box.expand(bounds[*i]);
+            }
+            if (!finite)
+                cluster.box = Aabb{};
+            clusters_.push_back(cluster);
+        };
+        for (std::uint32_t node = 0; node < nodes.size(); ++node) {
+            first_cluster_[node] = std::uint32_t(clusters_.size());
+            const HierarchyNode &n = nodes[node];
+            if (n.leaf() && n.triangle_count > 0)
+                split(split, n.first_triangle, n.first_triangle, n.first_triangle + n.triangle_count);
+        }
+        first_cluster_[nodes.size()] = std::uint32_t(clusters_.size());
     }
 
     void rendered(std::uint32_t node) override
@@ -125,8 +195,21 @@ private:
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
     std::optional<DepthOccluders> occluders_;
-    std::vector<std::uint32_t> largest_first_;   // occludee=triangles: hierarchy triangles, each leaf's by area,
-                                                 // the last one seen to show moved first
+    // occludee=triangles: the hierarchy's triangles, each leaf's by
+    // cluster; each leaf's clusters (first_cluster_[node] to
+    // first_cluster_[node + 1]; none for an inner node), their triangles
+    // at first .. first + count of the leaf's; the triangle that last
+    // showed in each leaf, or none.
+    struct TriangleCluster {
+        Aabb box;   // empty: a corner is not finite
+        std::uint32_t first, count;
+    };
+    static constexpr std::uint32_t cluster_triangles = 16;
+    static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> order_;
+    std::vector<TriangleCluster> clusters_;
+    std::vector<std::uint32_t> first_cluster_;
+    std::vector<std::uint32_t> last_shown_;
     std::optional<Frame> frame_;
     CullerStats stats_;
 };
