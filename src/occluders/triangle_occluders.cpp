@@ -108,10 +108,25 @@ bool TriangleOccluders::score(std::uint32_t t, const glm::mat4 &vp, const Frame 
 
 std::size_t TriangleOccluders::render(const Frame &frame, DepthRasterizer &raster)
 {
+    const std::vector<std::uint32_t> &indices = choose(frame);
+    const std::size_t count = indices.size() / 3;
+    if (count == 0)
+        return 0;
+    drawn_across_.clear();
+    if (!across_.empty())
+        for (std::uint32_t i : indices)
+            drawn_across_.push_back(across_[i]);
+    raster.render_triangles(corners_.data(), indices.data(), count, across_.empty() ? nullptr : drawn_across_.data());
+    return count;
+}
+
+const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
+{
     const std::size_t limit = budget_;
     chosen_.clear();
+    drawn_indices_.clear();
     if (limit == 0 || groups_.empty())
-        return 0;
+        return drawn_indices_;
     const glm::mat4 &vp = frame.view_projection;
     const float near = std::max(frame.camera.near_plane, 1e-6f);
     // The most a triangle of a group may score: twice its world area
@@ -164,8 +179,7 @@ std::size_t TriangleOccluders::render(const Frame &frame, DepthRasterizer &raste
             }
         }
     }
-    // Nearest first (by the nearest vertex's clip w), as a z-buffer fills,
-    // in one batch of the chosen corners.
+    // Nearest first (by the nearest vertex's clip w), as a z-buffer fills.
     for (auto &c : chosen_) {
         float w = std::numeric_limits<float>::max();
         for (int v = 0; v < 3; ++v)
@@ -173,19 +187,10 @@ std::size_t TriangleOccluders::render(const Frame &frame, DepthRasterizer &raste
         c.first = w;
     }
     std::sort(chosen_.begin(), chosen_.end());
-    drawn_corners_.clear();
-    drawn_across_.clear();
-    drawn_indices_.clear();
     for (const auto &c : chosen_)
-        for (std::size_t v = 0; v < 3; ++v) {
-            drawn_indices_.push_back(std::uint32_t(drawn_corners_.size()));
-            drawn_corners_.push_back(corners_[3 * std::size_t(c.second) + v]);
-            if (!across_.empty())
-                drawn_across_.push_back(across_[3 * std::size_t(c.second) + v]);
-        }
-    raster.render_triangles(drawn_corners_.data(), drawn_indices_.data(), chosen_.size(),
-                            across_.empty() ? nullptr : drawn_across_.data());
-    return chosen_.size();
+        for (std::uint32_t v = 0; v < 3; ++v)
+            drawn_indices_.push_back(3 * c.second + v);
+    return drawn_indices_;
 }
 
 }  // namespace occu

@@ -51,6 +51,11 @@ public:
     // triangles that face the eye in `frame`'s frustum, the largest
     // projected area first, drawn nearest first. Returns how many it drew.
     std::size_t render(const Frame &frame, DepthRasterizer &raster);
+    // What render() draws for `frame`: three indices into corners() a
+    // triangle, nearest first. Valid until the next call.
+    const std::vector<std::uint32_t> &choose(const Frame &frame);
+    // The occluder triangles' corners, three a triangle.
+    const std::vector<glm::vec3> &corners() const { return corners_; }
     std::size_t budget() const { return budget_; }
 
 private:
@@ -71,11 +76,12 @@ private:
     std::vector<std::uint32_t> leaf_group_;   // per hierarchy node: its group, or none (~0)
     std::vector<glm::vec3> across_;   // coverage=merged: 3 per triangle (shared_edge_opposites)
     // Per frame: (score, triangle) of the best so far, a min-heap; then
-    // (nearest w, triangle); the corners and triangles across drawn.
+    // (nearest w, triangle); their corners' indices and the triangles
+    // across them.
     std::vector<std::pair<float, std::uint32_t>> chosen_;
     std::vector<std::pair<float, std::uint32_t>> groups_by_bound_;
-    std::vector<glm::vec3> drawn_corners_, drawn_across_;
     std::vector<std::uint32_t> drawn_indices_;
+    std::vector<glm::vec3> drawn_across_;
 };
 
 }  // namespace occu
