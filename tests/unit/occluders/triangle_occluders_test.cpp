@@ -357,7 +357,7 @@ namespace {
 // its projected area in normalized device coordinates where all its
 // corners lie beyond the near plane, else twice its world area over its
 // nearest corner's squared clip w (at least the near distance); nothing
-// when it faces away or lies wholly outside one clip plane.
+// when it has no area, faces away or lies wholly outside one clip plane.
 std::optional<double> brute_force_score(const Frame &frame, const std::array<glm::vec3, 3> &p)
 {
     const glm::dmat4 vp(frame.view_projection);
@@ -378,7 +378,7 @@ std::optional<double> brute_force_score(const Frame &frame, const std::array<glm
     if (!(glm::dot(n, glm::dvec3(frame.camera.position) - glm::dvec3(p[0])) > 0.0))
         return std::nullopt;
     const double w = std::max(near, std::min({c[0].w, c[1].w, c[2].w}));
-    return glm::length(n) / (w * w);
+    return glm::length(n) > 0.0 ? std::optional<double>(glm::length(n) / (w * w)) : std::nullopt;
 }
 
 }  // namespace
