@@ -21,44 +21,56 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
     // first), or every occluder mesh's in one. A see-through mesh hides
     // nothing (Mesh::occluder).
     std::vector<std::pair<std::uint32_t, std::uint32_t>> refs;   // mesh, first index
-    const auto add_group = [&](const Aabb &bounds) {
+    // Returns the group's largest twice world area (0: no group).
+    const auto add_group = [&]() {
         Group g;
-        g.bounds = bounds;
         g.first = std::uint32_t(corners_.size() / 3);
         std::vector<std::pair<float, std::size_t>> order;
         for (std::size_t i = 0; i < refs.size(); ++i) {
             const Mesh &mesh = scene.meshes[refs[i].first];
             const std::uint32_t *idx = mesh.indices.data() + refs[i].second;
             const glm::vec3 &a = mesh.positions[idx[0]], &b = mesh.positions[idx[1]], &c = mesh.positions[idx[2]];
+            // One with no area (or a coordinate not finite) hides nothing.
             const float twice = glm::length(glm::cross(b - a, c - a));
-            order.emplace_back(std::isfinite(twice) ? twice : 0.0f, i);
+            if (twice > 0.0f && std::isfinite(twice))
+                order.emplace_back(twice, i);
         }
         std::stable_sort(order.begin(), order.end(), std::greater<>());
         for (const auto &[twice, i] : order) {
             const Mesh &mesh = scene.meshes[refs[i].first];
             const std::uint32_t *idx = mesh.indices.data() + refs[i].second;
-            for (int v = 0; v < 3; ++v)
+            for (int v = 0; v < 3; ++v) {
                 corners_.push_back(mesh.positions[idx[v]]);
+                bounds_.expand(corners_.back());
+            }
+            const glm::vec3 *p = &corners_[corners_.size() - 3];
+            normals_.push_back(glm::cross(p[1] - p[0], p[2] - p[0]));
             twice_area_.push_back(twice);
         }
         g.count = std::uint32_t(order.size());
-        g.largest = order.empty() ? 0.0f : order.front().first;
         if (g.count > 0)
             groups_.push_back(g);
         refs.clear();
-        return g.count > 0;
+        return order.empty() ? 0.0f : order.front().first;
     };
     if (hierarchy) {
-        leaf_group_.assign(hierarchy->nodes().size(), ~0u);
-        for (std::size_t n = 0; n < hierarchy->nodes().size(); ++n) {
-            const HierarchyNode &node = hierarchy->nodes()[n];
+        const auto &nodes = hierarchy->nodes();
+        leaf_group_.assign(nodes.size(), ~0u);
+        node_largest_.assign(nodes.size(), 0.0f);
+        for (std::size_t n = 0; n < nodes.size(); ++n) {
+            const HierarchyNode &node = nodes[n];
             if (!node.leaf())
                 continue;
             for (std::uint32_t i = node.first_triangle; i < node.first_triangle + node.occluder_triangles; ++i)
                 refs.emplace_back(hierarchy->triangles()[i].mesh, hierarchy->triangles()[i].first_index);
-            if (add_group(node.bounds))
+            node_largest_[n] = add_group();
+            if (node_largest_[n] > 0.0f)
                 leaf_group_[n] = std::uint32_t(groups_.size() - 1);
         }
+        // Children follow their parents in the node array.
+        for (std::size_t n = nodes.size(); n-- > 0;)
+            for (std::uint32_t c = 0; c < nodes[n].child_count; ++c)
+                node_largest_[n] = std::max(node_largest_[n], node_largest_[nodes[n].first_child + c]);
     } else {
         for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
             if (!scene.meshes[m].occluder)
@@ -66,8 +78,9 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
             for (std::size_t t = 0; t + 2 < scene.meshes[m].indices.size(); t += 3)
                 refs.emplace_back(std::uint32_t(m), std::uint32_t(t));
         }
-        add_group(scene.bounds);
+        add_group();
     }
+    taken_again_.assign(twice_area_.size(), 0);
     // With merged coverage, the triangle across each edge (GL draws a
     // sample on a shared edge with one of the two), among the occluder
     // triangles of every mesh: equal positions are transformed alike.
@@ -75,117 +88,171 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
         across_ = shared_edge_opposites(corners_);
 }
 
-bool TriangleOccluders::score(std::uint32_t t, const glm::mat4 &vp, const Frame &frame, float &out) const
-{
-    // The projected area in normalized device coordinates, signed (front
-    // faces counter-clockwise, positive): back faces and triangles wholly
-    // outside one clip plane are never chosen. A triangle across the near
-    // plane has no such area; it is scored by its world area over its
-    // nearest vertex's squared depth (at least the near distance), the
-    // solid angle it would subtend, and the rasterizer clips it.
-    const float near = std::max(frame.camera.near_plane, 1e-6f);
-    const glm::vec3 *p = corners_.data() + 3 * std::size_t(t);
-    glm::vec4 c[3];
-    for (int v = 0; v < 3; ++v)
-        c[v] = vp * glm::vec4(p[v], 1.0f);
-    for (int axis = 0; axis < 3; ++axis)
-        if ((c[0][axis] > c[0].w && c[1][axis] > c[1].w && c[2][axis] > c[2].w) ||
-            (c[0][axis] < -c[0].w && c[1][axis] < -c[1].w && c[2][axis] < -c[2].w))
-            return false;
-    if (c[0].w > near && c[1].w > near && c[2].w > near) {
-        const glm::vec2 a(c[0] / c[0].w), b(c[1] / c[1].w), d(c[2] / c[2].w);
-        const glm::vec2 e = b - a, f = d - a;
-        out = e.x * f.y - e.y * f.x;
-        return out > 0.0f;   // false: back-facing, degenerate, or NaN
-    }
-    const glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
-    if (!(glm::dot(n, frame.camera.position - p[0]) > 0.0f))
-        return false;   // seen from behind: GL culls it
-    const float w = std::max(near, std::min({c[0].w, c[1].w, c[2].w}));
-    out = glm::length(n) / (w * w);
-    return std::isfinite(out);
-}
-
 std::size_t TriangleOccluders::render(const Frame &frame, DepthRasterizer &raster)
 {
-    const std::size_t limit = budget_;
-    chosen_.clear();
-    if (limit == 0 || groups_.empty())
+    const std::vector<std::uint32_t> &indices = choose(frame);
+    const std::size_t count = indices.size() / 3;
+    if (count == 0)
         return 0;
-    const glm::mat4 &vp = frame.view_projection;
-    const float near = std::max(frame.camera.near_plane, 1e-6f);
-    // The most a triangle of a group may score: twice its world area
-    // times the projection's scale (P00 P11, bounding how NDC areas grow
-    // with 1 / w^2; twice for the slant of a point off the view axis) over
-    // the group's nearest view depth squared, at least the near distance.
-    // Only the order of visits hangs on it.
-    const float scale = 2.0f * std::max(1.0f, std::abs(vp[0][0] * vp[1][1]));
-    const auto nearest_w = [&](const Aabb &b) {
-        float w = vp[3][3];
-        for (int axis = 0; axis < 3; ++axis)
-            w += std::min(vp[axis][3] * b.min[axis], vp[axis][3] * b.max[axis]);
-        return std::max(near, w);
-    };
-    groups_by_bound_.clear();
-    if (hierarchy_) {
-        for (std::uint32_t leaf : leaves_in_frustum(*hierarchy_, Frustum(vp))) {
-            const std::uint32_t g = leaf_group_[leaf];
-            if (g == ~0u)
-                continue;
-            const float w = nearest_w(groups_[g].bounds);
-            groups_by_bound_.emplace_back(groups_[g].largest * scale / (w * w), g);
-        }
-    } else {
-        groups_by_bound_.emplace_back(std::numeric_limits<float>::infinity(), 0u);
-    }
-    std::sort(groups_by_bound_.begin(), groups_by_bound_.end(), std::greater<>());
-    // The best `limit` scores in a min-heap: its top, once full, is the
-    // score to beat.
-    const auto smaller_first = [](const auto &a, const auto &b) { return a.first > b.first; };
-    for (const auto &[bound, g] : groups_by_bound_) {
-        if (chosen_.size() == limit && !(bound > chosen_.front().first))
-            break;
-        const Group &group = groups_[g];
-        const float w = nearest_w(group.bounds);
-        const float per_area = scale / (w * w);
-        for (std::uint32_t t = group.first; t < group.first + group.count; ++t) {
-            if (chosen_.size() == limit && !(twice_area_[t] * per_area > chosen_.front().first))
-                break;
-            float s;
-            if (!score(t, vp, frame, s))
-                continue;
-            if (chosen_.size() < limit) {
-                chosen_.emplace_back(s, t);
-                std::push_heap(chosen_.begin(), chosen_.end(), smaller_first);
-            } else if (s > chosen_.front().first) {
-                std::pop_heap(chosen_.begin(), chosen_.end(), smaller_first);
-                chosen_.back() = {s, t};
-                std::push_heap(chosen_.begin(), chosen_.end(), smaller_first);
-            }
-        }
-    }
-    // Nearest first (by the nearest vertex's clip w), as a z-buffer fills,
-    // in one batch of the chosen corners.
-    for (auto &c : chosen_) {
-        float w = std::numeric_limits<float>::max();
-        for (int v = 0; v < 3; ++v)
-            w = std::min(w, (vp * glm::vec4(corners_[3 * std::size_t(c.second) + std::size_t(v)], 1.0f)).w);
-        c.first = w;
-    }
-    std::sort(chosen_.begin(), chosen_.end());
-    drawn_corners_.clear();
     drawn_across_.clear();
-    drawn_indices_.clear();
-    for (const auto &c : chosen_)
-        for (std::size_t v = 0; v < 3; ++v) {
-            drawn_indices_.push_back(std::uint32_t(drawn_corners_.size()));
-            drawn_corners_.push_back(corners_[3 * std::size_t(c.second) + v]);
-            if (!across_.empty())
-                drawn_across_.push_back(across_[3 * std::size_t(c.second) + v]);
+    if (!across_.empty())
+        for (std::uint32_t i : indices)
+            drawn_across_.push_back(across_[i]);
+    raster.render_triangles(corners_.data(), indices.data(), count, across_.empty() ? nullptr : drawn_across_.data());
+    return count;
+}
+
+float TriangleOccluders::bound_per_area(const Aabb &box, float &nearest_w) const
+{
+    const View &v = view_;
+    nearest_w = v.w_row.w;
+    for (int axis = 0; axis < 3; ++axis)
+        nearest_w += std::min(v.w_row[axis] * box.min[axis], v.w_row[axis] * box.max[axis]);
+    const float farthest = glm::length(glm::max(glm::abs(v.eye - box.min), glm::abs(box.max - v.eye)));
+    const float scale = std::abs(v.area_scale) * farthest;
+    if (nearest_w > v.near)
+        return scale / (nearest_w * nearest_w * nearest_w);
+    // Across the near plane: a triangle wholly beyond it has every w
+    // above the near distance, one across it the score below.
+    return std::max(scale / (v.near * v.near * v.near), 1.0f / (v.near * v.near));
+}
+
+void TriangleOccluders::consider(std::uint32_t t, unsigned planes)
+{
+    // The projected area in normalized device coordinates, signed (front
+    // faces counter-clockwise, positive; see the header for the formula):
+    // back faces and triangles wholly outside one clip plane are never
+    // chosen. A triangle across the near plane has no such area; it is
+    // scored by its world area over its nearest corner's squared w (at
+    // least the near distance), the solid angle it would subtend, and the
+    // rasterizer clips it.
+    const View &v = view_;
+    const glm::vec3 *p = corners_.data() + 3 * std::size_t(t);
+    float w[3];
+    for (int i = 0; i < 3; ++i)
+        w[i] = v.w_row.x * p[i].x + v.w_row.y * p[i].y + v.w_row.z * p[i].z + v.w_row.w;
+    const float facing = glm::dot(normals_[t], v.eye - p[0]);
+    float score;
+    if (w[0] > v.near && w[1] > v.near && w[2] > v.near) {
+        score = v.area_scale * facing / (w[0] * w[1] * w[2]);
+        if (!(score > 0.0f))
+            return;   // back-facing, degenerate, or NaN
+    } else {
+        if (!(facing > 0.0f))
+            return;   // seen from behind: GL culls it
+        const float nearest = std::max(v.near, std::min({w[0], w[1], w[2]}));
+        score = twice_area_[t] / (nearest * nearest);
+        if (!std::isfinite(score))
+            return;
+    }
+    if (full() && !(score > smallest_chosen()))
+        return;
+    for (unsigned i = 0; i < 6; ++i) {
+        if (!(planes & (1u << i)))
+            continue;
+        const glm::vec4 &plane = v.frustum->planes()[i];
+        const auto behind = [&](const glm::vec3 &q) { return glm::dot(glm::vec3(plane), q) + plane.w < 0.0f; };
+        if (behind(p[0]) && behind(p[1]) && behind(p[2]))
+            return;
+    }
+    // The best `budget_` in a min-heap: its top, once full, is the score
+    // to beat.
+    const auto smaller_first = [](const Chosen &a, const Chosen &b) { return a.score > b.score; };
+    const Chosen c{score, t, std::min({w[0], w[1], w[2]})};
+    if (full()) {
+        std::pop_heap(chosen_.begin(), chosen_.end(), smaller_first);
+        chosen_.back() = c;
+    } else {
+        chosen_.push_back(c);
+    }
+    std::push_heap(chosen_.begin(), chosen_.end(), smaller_first);
+}
+
+void TriangleOccluders::scan(const Group &g, const Aabb &box, unsigned planes)
+{
+    float nearest_w;
+    const float per_area = bound_per_area(box, nearest_w);
+    // Beyond the near plane a triangle's own plane bounds its score:
+    // area_scale (n . (e - p0)) over the box's nearest w cubed.
+    const bool beyond_near = nearest_w > view_.near;
+    const float nearest_cubed = nearest_w * nearest_w * nearest_w;
+    for (std::uint32_t t = g.first; t < g.first + g.count; ++t) {
+        if (full() && !(twice_area_[t] * per_area > smallest_chosen()))
+            break;
+        if (taken_again_[t])
+            continue;
+        if (beyond_near) {
+            const float most = view_.area_scale * glm::dot(normals_[t], view_.eye - corners_[3 * std::size_t(t)]);
+            if (!(most > 0.0f) || (full() && !(most > smallest_chosen() * nearest_cubed)))
+                continue;
         }
-    raster.render_triangles(drawn_corners_.data(), drawn_indices_.data(), chosen_.size(),
-                            across_.empty() ? nullptr : drawn_across_.data());
-    return chosen_.size();
+        consider(t, planes);
+    }
+}
+
+const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
+{
+    chosen_.clear();
+    drawn_indices_.clear();
+    if (budget_ == 0 || groups_.empty())
+        return drawn_indices_;
+    const glm::mat4 &vp = frame.view_projection;
+    view_.eye = frame.camera.position;
+    view_.w_row = glm::vec4(vp[0][3], vp[1][3], vp[2][3], vp[3][3]);
+    const glm::vec3 x_row(vp[0][0], vp[1][0], vp[2][0]), y_row(vp[0][1], vp[1][1], vp[2][1]);
+    view_.area_scale = -glm::dot(x_row, glm::cross(y_row, glm::vec3(view_.w_row)));
+    view_.near = std::max(frame.camera.near_plane, 1e-6f);
+    view_.frustum = &frame.frustum;
+    // Last frame's choice first: the smallest score to beat starts high.
+    for (std::uint32_t t : last_chosen_) {
+        taken_again_[t] = 1;
+        consider(t, Frustum::all_planes);
+    }
+    if (!hierarchy_) {
+        unsigned planes = Frustum::all_planes;
+        if (frame.frustum.classify(bounds_, planes) != Frustum::Side::outside)
+            scan(groups_.front(), bounds_, planes);
+    } else {
+        // The nodes best bound first; a leaf is scanned when it comes up.
+        const auto &nodes = hierarchy_->nodes();
+        const auto smaller_bound = [](const Candidate &a, const Candidate &b) { return a.bound < b.bound; };
+        candidates_.clear();
+        const auto offer = [&](std::uint32_t n, unsigned planes) {
+            if (!(node_largest_[n] > 0.0f) || frame.frustum.classify(nodes[n].bounds, planes) == Frustum::Side::outside)
+                return;
+            float nearest_w;
+            const float bound = node_largest_[n] * bound_per_area(nodes[n].bounds, nearest_w);
+            if (full() && !(bound > smallest_chosen()))
+                return;
+            candidates_.push_back({bound, n, planes});
+            std::push_heap(candidates_.begin(), candidates_.end(), smaller_bound);
+        };
+        offer(0, Frustum::all_planes);
+        while (!candidates_.empty()) {
+            const Candidate c = candidates_.front();
+            if (full() && !(c.bound > smallest_chosen()))
+                break;
+            std::pop_heap(candidates_.begin(), candidates_.end(), smaller_bound);
+            candidates_.pop_back();
+            const HierarchyNode &node = nodes[c.node];
+            if (node.leaf())
+                scan(groups_[leaf_group_[c.node]], node.bounds, c.planes);
+            else
+                for (std::uint32_t k = 0; k < node.child_count; ++k)
+                    offer(node.first_child + k, c.planes);
+        }
+    }
+    for (std::uint32_t t : last_chosen_)
+        taken_again_[t] = 0;
+    last_chosen_.clear();
+    // Nearest first (by the nearest corner's clip w), as a z-buffer fills.
+    std::sort(chosen_.begin(), chosen_.end(), [](const Chosen &a, const Chosen &b) { return a.nearest_w < b.nearest_w; });
+    for (const Chosen &c : chosen_) {
+        last_chosen_.push_back(c.triangle);
+        for (std::uint32_t v = 0; v < 3; ++v)
+            drawn_indices_.push_back(3 * c.triangle + v);
+    }
+    return drawn_indices_;
 }
 
 }  // namespace occu

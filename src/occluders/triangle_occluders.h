@@ -12,14 +12,25 @@
 // buffer). A triangle across the near plane is clipped there by the
 // rasterizer (the part GL draws), never dropped nor taken whole.
 //
-// Choosing does not look at every triangle every frame: the triangles are
+// Choosing does not look at every triangle every frame. A triangle's
+// score is twice its projected area in normalized device coordinates; the
+// corners' clip (x, y, w) are M (p - e) for the eye e and the 3 x 3 matrix
+// M of the view-projection's x, y and w rows, so that area is
+// det M (n . (p0 - e)) / (w0 w1 w2), n the triangle's normal twice its
+// world area long. Over a box beyond the near plane it is therefore at most
+// |det M| times twice the world area times the box's farthest distance
+// from the eye over its nearest w cubed: a bound that holds for every
+// slant, field of view and place on or off the screen. The triangles are
 // grouped by the hierarchy's leaves, each group ranked by world area, and
-// a frame visits the leaves in the frustum in order of the largest
-// projected area any of their triangles may have (its largest world area
-// over the leaf's nearest view depth squared); it stops at the first
-// leaf, and within a leaf at the first triangle, that cannot beat the
-// budget's smallest score so far. Which triangles are chosen decides only
-// how much is culled, never whether it is safe: every one drawn is a
+// every node keeps its subtree's largest; a frame starts from the
+// triangles it chose last time (frames are coherent, so the budget's
+// smallest score is high at once), then opens the hierarchy's nodes in
+// the frustum best bound first, and stops at the first node, and within a
+// leaf at the first triangle, whose bound cannot beat the budget's
+// smallest score; a triangle facing away, or whose own plane bounds it
+// below that score, ends before its corners are transformed. The chosen
+// ones are the budget's best by score. Which triangles are chosen decides
+// only how much is culled, never whether it is safe: every one drawn is a
 // triangle GL draws.
 #pragma once
 
@@ -51,31 +62,71 @@ public:
     // triangles that face the eye in `frame`'s frustum, the largest
     // projected area first, drawn nearest first. Returns how many it drew.
     std::size_t render(const Frame &frame, DepthRasterizer &raster);
+    // What render() draws for `frame`: three indices into corners() a
+    // triangle, nearest first. Valid until the next call.
+    const std::vector<std::uint32_t> &choose(const Frame &frame);
+    // The occluder triangles' corners, three a triangle.
+    const std::vector<glm::vec3> &corners() const { return corners_; }
     std::size_t budget() const { return budget_; }
 
 private:
     struct Group {
-        Aabb bounds;
         std::uint32_t first = 0, count = 0;   // in corners_ / 3, the largest world area first
-        float largest = 0.0f;                 // twice the world area of its first triangle
     };
-    // The score of triangle t (twice its projected area, see render), or
-    // nothing (back-facing, outside the frustum).
-    bool score(std::uint32_t t, const glm::mat4 &vp, const Frame &frame, float &out) const;
+    // A node to open, or a leaf to scan: the most a triangle in it may
+    // score, and the frustum planes its box reaches across.
+    struct Candidate {
+        float bound;
+        std::uint32_t node;
+        unsigned planes;
+    };
+    struct Chosen {
+        float score;
+        std::uint32_t triangle;
+        float nearest_w;   // its corners' smallest clip w
+    };
+    // What a frame's choice reads again and again.
+    struct View {
+        glm::vec3 eye;
+        glm::vec4 w_row;       // the view-projection's w row: clip w = w_row . (p, 1)
+        float area_scale = 0;  // -det M: a front face's projected twice area is area_scale (n . (e - p0)) / (w0 w1 w2)
+        float near = 0;
+        const Frustum *frustum = nullptr;
+    };
+    // The most a triangle in `box` may score, over its twice world area;
+    // `nearest_w` is the box's nearest clip w.
+    float bound_per_area(const Aabb &box, float &nearest_w) const;
+    // Scores triangle t (twice its projected area, see score) and keeps it
+    // if it is among the best so far; `planes` are the frustum planes it
+    // may lie outside of.
+    void consider(std::uint32_t t, unsigned planes);
+    // The triangles of group g, largest first, while they may beat the
+    // budget's smallest score.
+    void scan(const Group &g, const Aabb &box, unsigned planes);
+    bool full() const { return chosen_.size() == budget_; }
+    float smallest_chosen() const { return chosen_.front().score; }
 
     const Hierarchy *hierarchy_ = nullptr;
     std::size_t budget_ = 0;
+    Aabb bounds_;                      // of every occluder triangle
     std::vector<glm::vec3> corners_;   // 3 per triangle, grouped
+    std::vector<glm::vec3> normals_;   // per triangle, twice its world area long
     std::vector<float> twice_area_;    // per triangle, world
     std::vector<Group> groups_;
     std::vector<std::uint32_t> leaf_group_;   // per hierarchy node: its group, or none (~0)
+    std::vector<float> node_largest_;         // per hierarchy node: its subtree's largest twice world area
     std::vector<glm::vec3> across_;   // coverage=merged: 3 per triangle (shared_edge_opposites)
-    // Per frame: (score, triangle) of the best so far, a min-heap; then
-    // (nearest w, triangle); the corners and triangles across drawn.
-    std::vector<std::pair<float, std::uint32_t>> chosen_;
-    std::vector<std::pair<float, std::uint32_t>> groups_by_bound_;
-    std::vector<glm::vec3> drawn_corners_, drawn_across_;
+    // Per frame: the best so far, a min-heap by score, then nearest first;
+    // the nodes to open, a max-heap by bound; the corners' indices drawn
+    // and the triangles across them. Between frames: the triangles chosen
+    // last, and a mark on each while it is being taken again.
+    View view_;
+    std::vector<Chosen> chosen_;
+    std::vector<Candidate> candidates_;
     std::vector<std::uint32_t> drawn_indices_;
+    std::vector<glm::vec3> drawn_across_;
+    std::vector<std::uint32_t> last_chosen_;
+    std::vector<std::uint8_t> taken_again_;
 };
 
 }  // namespace occu

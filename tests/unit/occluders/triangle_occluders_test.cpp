@@ -6,17 +6,23 @@
 // wall with no volume for skins, a triangle across the near plane, a wall
 // seen from behind, a see-through wall, and a heap of random triangles.
 // And the thin wall does hide what stands behind it, which skins alone do not.
+// Which triangles a frame takes is the budget's largest by score, as a
+// scan of every triangle in double finds them.
 #include "occluders/depth_occluders.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <limits>
+#include <map>
 #include <optional>
 #include <random>
 #include <vector>
 
 #include "occluders/sources.h"
 #include "scene/city.h"
+#include "spatial/hierarchy.h"
 
 using namespace occu;
 
@@ -343,4 +349,116 @@ TEST(TriangleOccluders, MergedCoverageRefusesADivisorAboveEight)
         EXPECT_NE(std::string(e.what()).find("map-divisor 9"), std::string::npos) << e.what();
     }
     EXPECT_THROW(settings.set("coverage", "partial"), std::invalid_argument);
+}
+
+namespace {
+
+// A triangle's score as TriangleOccluders documents it, in double: twice
+// its projected area in normalized device coordinates where all its
+// corners lie beyond the near plane, else twice its world area over its
+// nearest corner's squared clip w (at least the near distance); nothing
+// when it has no area, faces away or lies wholly outside one clip plane.
+std::optional<double> brute_force_score(const Frame &frame, const std::array<glm::vec3, 3> &p)
+{
+    const glm::dmat4 vp(frame.view_projection);
+    glm::dvec4 c[3];
+    for (int v = 0; v < 3; ++v)
+        c[v] = vp * glm::dvec4(glm::dvec3(p[v]), 1.0);
+    for (int axis = 0; axis < 3; ++axis)
+        if ((c[0][axis] > c[0].w && c[1][axis] > c[1].w && c[2][axis] > c[2].w) ||
+            (c[0][axis] < -c[0].w && c[1][axis] < -c[1].w && c[2][axis] < -c[2].w))
+            return std::nullopt;
+    const double near = frame.camera.near_plane;
+    if (c[0].w > near && c[1].w > near && c[2].w > near) {
+        const glm::dvec2 a(c[0] / c[0].w), b(c[1] / c[1].w), d(c[2] / c[2].w);
+        const double twice = (b.x - a.x) * (d.y - a.y) - (b.y - a.y) * (d.x - a.x);
+        return twice > 0.0 ? std::optional<double>(twice) : std::nullopt;
+    }
+    const glm::dvec3 n = glm::cross(glm::dvec3(p[1] - p[0]), glm::dvec3(p[2] - p[0]));
+    if (!(glm::dot(n, glm::dvec3(frame.camera.position) - glm::dvec3(p[0])) > 0.0))
+        return std::nullopt;
+    const double w = std::max(near, std::min({c[0].w, c[1].w, c[2].w}));
+    return glm::length(n) > 0.0 ? std::optional<double>(glm::length(n) / (w * w)) : std::nullopt;
+}
+
+}  // namespace
+
+// Random triangles of every size and slant around eyes with narrow and
+// wide fields of view, some across the near plane, some beside or behind
+// the eye: the leaves and triangles a frame skips cannot hold a triangle
+// of the budget's best, so the chosen ones are the best by score (to a
+// rounding of the score, for ties), drawn nearest first.
+TEST(TriangleOccluders, TheChosenAreTheLargestByScore)
+{
+    std::mt19937 rng(41);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), exponent(-2.0f, 1.5f);
+    Mesh m;
+    for (int i = 0; i < 3000; ++i) {
+        const glm::vec3 a(40.0f * unit(rng), 10.0f * unit(rng), 40.0f * unit(rng));
+        const float size = std::pow(10.0f, exponent(rng));
+        add_triangle(m, a, a + size * glm::vec3(unit(rng), unit(rng), unit(rng)),
+                     a + size * glm::vec3(unit(rng), unit(rng), unit(rng)));
+    }
+    const Scene scene = one_mesh(m);
+    HierarchyOptions leaves;
+    leaves.max_leaf_triangles = 16;
+    const Hierarchy hierarchy = Hierarchy::build(scene, leaves);
+    const std::vector<SettingSpec> s = specs();
+    int views = 0;
+    for (const Hierarchy *h : {&hierarchy, static_cast<const Hierarchy *>(nullptr)})
+        for (long budget : {20L, 300L}) {
+            Settings settings("test", &s);
+            settings.set("occluder-triangles", std::to_string(budget));
+            TriangleOccluders occluders(scene, settings, 0, h);
+            for (int view = 0; view < 12; ++view) {
+                Camera camera;
+                camera.position = glm::vec3(20.0f * unit(rng), 5.0f * unit(rng), 20.0f * unit(rng));
+                camera.target = camera.position + glm::vec3(unit(rng), 0.3f * unit(rng), unit(rng));
+                camera.fovy_degrees = std::array<float, 3>{50.0f, 90.0f, 130.0f}[view % 3];
+                camera.aspect = view % 2 ? 1.6f : 1.0f;
+                camera.near_plane = std::array<float, 2>{0.1f, 1.0f}[view / 3 % 2];
+                const Frame frame(camera, 64, 64);
+                // Each scene triangle's score, and the budget-th best.
+                std::map<std::array<float, 9>, double> score;
+                std::vector<double> scores;
+                for (std::size_t i = 0; i < m.indices.size(); i += 3) {
+                    const std::array<glm::vec3, 3> p{m.positions[m.indices[i]], m.positions[m.indices[i + 1]],
+                                                     m.positions[m.indices[i + 2]]};
+                    if (const auto sc = brute_force_score(frame, p)) {
+                        score[{p[0].x, p[0].y, p[0].z, p[1].x, p[1].y, p[1].z, p[2].x, p[2].y, p[2].z}] = *sc;
+                        scores.push_back(*sc);
+                    }
+                }
+                std::sort(scores.begin(), scores.end(), std::greater<>());
+                const std::size_t expected = std::min(std::size_t(budget), scores.size());
+                ASSERT_GT(expected, 0u);
+                const double cut = scores[expected - 1], tolerance = 1e-4;
+                const std::vector<std::uint32_t> &chosen = occluders.choose(frame);
+                ASSERT_EQ(chosen.size(), 3 * expected) << "view " << view << ", budget " << budget;
+                const auto &corners = occluders.corners();
+                double previous_nearest = -std::numeric_limits<double>::infinity();
+                std::size_t above_cut = 0;
+                for (std::size_t t = 0; t < chosen.size(); t += 3) {
+                    const glm::vec3 &a = corners[chosen[t]], &b = corners[chosen[t + 1]], &c = corners[chosen[t + 2]];
+                    const auto found = score.find({a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z});
+                    ASSERT_NE(found, score.end()) << "view " << view << ": a chosen triangle scores nothing";
+                    EXPECT_GE(found->second, cut * (1.0 - tolerance))
+                        << "view " << view << ", budget " << budget << ": a triangle below the " << expected
+                        << "th score chosen";
+                    above_cut += found->second > cut * (1.0 + tolerance);
+                    double nearest = std::numeric_limits<double>::infinity();
+                    for (const glm::vec3 *q : {&a, &b, &c})
+                        nearest = std::min(nearest, (glm::dmat4(frame.view_projection) * glm::dvec4(glm::dvec3(*q), 1.0)).w);
+                    EXPECT_GE(nearest, previous_nearest - 1e-4) << "view " << view << ": not nearest first";
+                    previous_nearest = nearest;
+                }
+                const auto all_above = std::size_t(std::count_if(scores.begin(), scores.end(), [&](double x) {
+                    return x > cut * (1.0 + tolerance);
+                }));
+                EXPECT_EQ(above_cut, all_above) << "view " << view << ", budget " << budget
+                                                << ": a triangle above the cut left out";
+                ++views;
+            }
+        }
+    EXPECT_EQ(views, 48);
 }
