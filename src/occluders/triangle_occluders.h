@@ -96,7 +96,7 @@ private:
     // The most a triangle in `box` may score, over its twice world area;
     // `nearest_w` is the box's nearest clip w.
     float bound_per_area(const Aabb &box, float &nearest_w) const;
-    // Scores triangle t (twice its projected area, see score) and keeps it
+    // Scores triangle t (twice its projected area, the header's formula) and keeps it
     // if it is among the best so far; `planes` are the frustum planes it
     // may lie outside of.
     void consider(std::uint32_t t, unsigned planes);
