@@ -176,9 +176,11 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
         partial_depth_.resize(tiles * tile_pixels);
         const int samples = options.divisor * options.divisor;
         full_mask_ = samples == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << samples) - 1;
-        lane_offset_.resize(raster::max_crossings);
-        for (int l = 0; l < raster::max_crossings; ++l)
-            lane_offset_[std::size_t(l)] = (l % options.divisor + 0.5) / options.divisor;
+        const int k = options.divisor, rows = raster::rows_at_once(k);
+        for (int l = 0; l < 8; ++l) {
+            lane_row_[l] = l < rows * k ? l / k : 0;
+            lane_offset_[l] = (l % k + 0.5) / k;
+        }
     }
     stats_ = {};
 }
@@ -782,26 +784,21 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     c.c_lo = p.x0 * k;
     c.c_hi = p.x1 * k - 1;
     c.k = k;
+    c.lane_row = lane_row_;
+    c.lane_offset = lane_offset_;
     c.edges = n;
     c.candidates = p.candidates;
     c.rising_edges = 0;
-    c.lanes = 0;
-    // The lines' crossings (raster::Crossings): edge e's held constant at
-    // sample row j in lane e k + j, the reach of the r-th edge with a
-    // triangle across in lane (n + r) k + j.
+    // The lines (raster::Crossings): edge e's held constant is line e, the
+    // reach of an edge with a triangle across a line after the edges.
+    int lines = 0;
     const auto add_line = [&](int e, double constant) {
-        const int base = c.lanes;
         const bool level = p.ea[e] == 0.0;
-        const double start = level ? constant : -constant / p.ea[e], slope = level ? p.eb[e] : -p.eb[e] / p.ea[e];
-        const std::int64_t rising = p.ea[e] >= 0.0 ? -1 : 0;
-        for (int j = 0; j < k; ++j) {
-            c.start[base + j] = start;
-            c.slope[base + j] = slope;
-            c.rising[base + j] = rising;
-            c.level[base + j] = level ? -1 : 0;
-        }
-        c.lanes += k;
-        return base;
+        c.start[lines] = level ? constant : -constant / p.ea[e];
+        c.slope[lines] = level ? p.eb[e] : -p.eb[e] / p.ea[e];
+        c.rising[lines] = p.ea[e] >= 0.0;
+        c.level[lines] = level;
+        return lines++;
     };
     for (int e = 0; e < n; ++e) {
         add_line(e, p.held_c[e]);
@@ -810,21 +807,17 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     }
     for (int e = 0; e < 3; ++e)
         if (p.candidates >> e & 1)
-            c.reach_lane[e] = add_line(e, p.reach_c[e]);
-    // The AVX2 loop reads lanes four at a time.
-    for (int l = c.lanes; l % 4 != 0; ++l)
-        c.start[l] = c.slope[l] = 0.0, c.rising[l] = c.level[l] = 0;
-    c.offset = lane_offset_.data();
+            c.reach_line[e] = add_line(e, p.reach_c[e]);
     float nearest = depth[0];
     for (int i = 1; i < n; ++i)
         nearest = std::min(nearest, depth[i]);
     const float behind = float(double(nearest) - depth_margin);
     const bool avx2 = isa_ == Isa::avx2;
-    const auto row_runs = avx2 ? raster::partial_row_runs_avx2 : raster::partial_row_runs_scalar;
+    const auto rows_runs = avx2 ? raster::partial_rows_runs_avx2 : raster::partial_rows_runs_scalar;
     const auto run_masks = avx2 ? raster::run_masks_avx2 : raster::run_masks_scalar;
     const auto row_depth = avx2 ? raster::partial_row_depth_avx2 : raster::partial_row_depth_scalar;
     const auto merge_row = avx2 ? raster::merge_partial_row_avx2 : raster::merge_partial_row_scalar;
-    raster::RowRuns runs;
+    raster::RowsRuns runs;
     raster::PartialRow row;
     row.k = k;
     std::copy(p.offset, p.offset + k, row.offset);
@@ -837,58 +830,71 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // rounded up.
     row.depth_error = error.depth;
     bool wrote = false;
-    for (int y = p.y0; y < p.y1; ++y) {
-        if (!row_runs(c, y, runs))
-            continue;
-        row.y = y;
-        row.depth_term = s.zb * float(y) + s.zc;
-        const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
-        const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
-        // Pixels every sample of which is held, between two such pixels:
-        // the fill has taken them (its margins are no wider than these).
-        const int skip0 = (runs.whole_first + k - 1) / k + 1, skip1 = (runs.whole_last + 1) / k - 2;
-        // A tile row at a time (raster::merge_partial_row): the masks of
-        // its eight pixels from the runs, met with the triangles across,
-        // merged lane by lane.
-        for (int x8 = runs.first / k / tile_size * tile_size; x8 <= runs.last / k; x8 += tile_size) {
-            if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
-                continue;
-            // A tile nearer everywhere than the polygon's nearest corner
-            // takes nothing from it (behind_everything, tile by tile), by
-            // its maximum where up to date (the partial layer writes tiles
-            // often, and taking a maximum costs more than the test saves),
-            // or else by the bound the fill keeps of it.
-            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
-            if ((!dirty_[tile] && tile_max_[tile] < behind) || farthest_bound_[tile] < behind)
-                continue;
-            row.x8 = x8;
-            const std::size_t index = tile * tile_pixels + row_offset;
-            // The pixels nearer than the polygon take nothing from it.
-            const unsigned farther = row_depth(row, &tiles_[index]);
-            if (!farther)
-                continue;
-            unsigned taking = run_masks(runs.held, k, x8, row.held) & farther;
-            row.across_count = 0;
-            for (int e = 0; e < 3; ++e) {
-                if (!(runs.band_edges >> e & 1))
+    // Rows a few at a time (raster::rows_at_once), each in turn.
+    const int rows_at_once = raster::rows_at_once(k);
+    const unsigned row_lanes = (1u << k) - 1;
+    for (int y_first = p.y0; y_first < p.y1; y_first += rows_at_once) {
+        unsigned found = rows_runs(c, y_first, runs);
+        if (p.y1 - y_first < rows_at_once)
+            found &= (1u << (p.y1 - y_first)) - 1;
+        for (; found; found &= found - 1) {
+            const int r = __builtin_ctz(found), y = y_first + r, l = r * k;
+            row.y = y;
+            row.depth_term = s.zb * float(y) + s.zc;
+            const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
+            const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
+            // Pixels every sample of which is held, between two such
+            // pixels: the fill has taken them (its margins are no wider
+            // than these).
+            const int skip0 = (runs.whole_first[l] + k - 1) / k + 1, skip1 = (runs.whole_last[l] + 1) / k - 2;
+            const unsigned band_edges = unsigned((runs.band_lanes[0] >> l & row_lanes) != 0) |
+                                        unsigned((runs.band_lanes[1] >> l & row_lanes) != 0) << 1 |
+                                        unsigned((runs.band_lanes[2] >> l & row_lanes) != 0) << 2;
+            // A tile row at a time (raster::merge_partial_row): the masks
+            // of its eight pixels from the runs, met with the triangles
+            // across, merged lane by lane.
+            for (int x8 = runs.first[l] / k / tile_size * tile_size; x8 <= runs.last[l] / k; x8 += tile_size) {
+                if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
                     continue;
-                const unsigned lanes = run_masks(runs.band[e], k, x8, row.band[row.across_count]) & farther;
-                if (lanes && set_up_across(p, e)) {
-                    row.across[row.across_count++] = &p.neighbour[e].setup;
-                    taking |= lanes;
+                // A tile nearer everywhere than the polygon's nearest
+                // corner takes nothing from it (behind_everything, tile by
+                // tile), by its maximum where up to date (the partial layer
+                // writes tiles often, and taking a maximum costs more than
+                // the test saves), or else by the bound the fill keeps of it.
+                const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
+                if ((!dirty_[tile] && tile_max_[tile] < behind) || farthest_bound_[tile] < behind)
+                    continue;
+                row.x8 = x8;
+                const std::size_t index = tile * tile_pixels + row_offset;
+                // The pixels nearer than the polygon take nothing from it.
+                const unsigned farther = row_depth(row, &tiles_[index]);
+                if (!farther)
+                    continue;
+                unsigned taking = run_masks(runs.held_lo + l, runs.held_hi + l, k, x8, row.held) & farther;
+                row.across_count = 0;
+                for (int e = 0; e < 3; ++e) {
+                    if (!(band_edges >> e & 1))
+                        continue;
+                    const unsigned lanes =
+                        run_masks(runs.band_lo[e] + l, runs.band_hi[e] + l, k, x8, row.band[row.across_count]) &
+                        farther;
+                    if (lanes && set_up_across(p, e)) {
+                        row.across[row.across_count++] = &p.neighbour[e].setup;
+                        taking |= lanes;
+                    }
                 }
+                if (!taking)
+                    continue;
+                const raster::PartialTileRow t{&tiles_[index], &partial_depth_[index], &partial_mask_lo_[index],
+                                               &partial_mask_hi_[index]};
+                const unsigned changed = merge_row(row, t);
+                if (changed & 1) {
+                    dirty_[tile] = 1;
+                    wrote = true;
+                }
+                if (changed & 2)
+                    partial_written_[tile] = 1;
             }
-            if (!taking)
-                continue;
-            const raster::PartialTileRow t{&tiles_[index], &partial_depth_[index], &partial_mask_lo_[index],
-                                           &partial_mask_hi_[index]};
-            const unsigned changed = merge_row(row, t);
-            if (changed & 1) {
-                dirty_[tile] = 1;
-                wrote = true;
-            }
-            if (changed & 2)
-                partial_written_[tile] = 1;
         }
     }
     any_dirty_ = any_dirty_ || wrote;

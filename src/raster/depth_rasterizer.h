@@ -262,7 +262,7 @@ private:
     std::vector<float> partial_depth_;
     std::vector<std::uint8_t> partial_written_;   // per tile: a mask set since begin
     std::uint64_t full_mask_ = 0;
-    std::vector<double> lane_offset_;   // raster::Crossings::offset for the divisor
+    double lane_row_[8] = {}, lane_offset_[8] = {};   // raster::Crossings' for the divisor
     Stats stats_;
 };
 

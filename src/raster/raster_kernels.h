@@ -195,21 +195,15 @@ struct MaskRow {
     std::uint32_t lo[tile_size], hi[tile_size];
 };
 
-// Per sample row j < k, a run of sample columns [lo[j], hi[j]] (empty
-// where lo > hi; column c of depth pixel c / k).
-struct SampleRuns {
-    std::int32_t lo[8], hi[8];
-};
-
 // Merged partial coverage (DepthRasterizer::merge_partial): where each
 // edge of a polygon crosses each row of samples of a row of depth pixels,
 // as the run of sample columns it holds. Sample column c (of depth pixel
 // c / k) lies at u = (c + 0.5) / k, sample row j of depth pixel row y at
-// v = y + (j + 0.5) / k. Lane l is one line (an edge's held constant, or
-// its reach beyond a shared edge) at one sample row: it crosses at u =
-// start + slope v (in double, start = -c / a and slope = -b / a for the
-// edge a u + b v + c >= 0); where rising (a > 0) it holds the columns
-// from the crossing on, else those up to it.
+// v = y + (j + 0.5) / k. A line (an edge's held constant, or its reach
+// beyond a shared edge) crosses sample row v at u = start + slope v (in
+// double, start = -c / a and slope = -b / a for the edge a u + b v + c >=
+// 0); where rising (a > 0) it holds the columns from the crossing on,
+// else those up to it.
 //
 // Each crossing is moved inwards by a bound of its rounding before it
 // becomes a column, so that every column in the run has the exact edge
@@ -220,51 +214,62 @@ struct SampleRuns {
 // within 4 eps of it and 1. Every step is one IEEE operation in the same
 // order in both loops (no fused multiply-add), so their columns are equal.
 //
-// An edge along a row (a = 0) holds the whole row or nothing: its lanes
-// are level, with start its constant c and slope its b, and hold the row
+// An edge along a row (a = 0) holds the whole row or nothing: its line is
+// level, with start its constant c and slope its b, and holds the row
 // where fl(c + fl(b v)) - 8 eps (|c| + |b v|) >= 0 (v, b v and the sum
-// round within 4 eps of those terms, taken twice); they count as rising,
+// round within 4 eps of those terms, taken twice); it counts as rising,
 // from column c_lo or c_hi + 1.
-constexpr int max_crossings = (max_edges + 3) * 8;
+//
+// Several rows of depth pixels at once, as Masked Occlusion Culling takes
+// a tile's rows (Hasselgren, Andersson and Akenine-Moeller 2016): lane l
+// is sample row l mod k of row y + l / k, for the rows_at_once(k) rows
+// whose k sample rows fit in eight lanes (one row for k > 4; for k = 3,
+// lanes 6 and 7 hold nothing).
+inline int rows_at_once(int k) { return 8 / k; }
+constexpr int max_lines = max_edges + 3;
 struct Crossings {
-    int lanes;
     int c_lo, c_hi;   // the sample columns of the polygon's box
     int k;
-    const double *offset;   // lane l's sample row offset, ((l mod k) + 0.5) / k
-    double start[max_crossings], slope[max_crossings];
-    std::int64_t rising[max_crossings];   // -1: rising (or level), 0: not
-    std::int64_t level[max_crossings];    // -1: level, 0: not
-    // The polygon's edges: edge e's held line at sample row j in lane e k
-    // + j; for bit e of `candidates` (a triangle across edge e), its reach
-    // in lane reach_lane[e] + j. Bit e of rising_edges: edge e rises.
-    int edges, candidates, reach_lane[3];
+    // Lane l's row offset from y (l / k) and sample row offset (((l mod
+    // k) + 0.5) / k), as double; any finite value in a lane that holds
+    // nothing.
+    const double *lane_row, *lane_offset;
+    double start[max_lines], slope[max_lines];
+    bool rising[max_lines];   // rising (or level)
+    bool level[max_lines];
+    // The polygon's edges: edge e's held line is line e; for bit e of
+    // `candidates` (a triangle across edge e), its reach is line
+    // reach_line[e]. Bit e of rising_edges: edge e rises.
+    int edges, candidates, reach_line[3];
     unsigned rising_edges;
 };
 
-// A row of depth pixels' runs, from its lines' crossings: per sample row
-// j, the columns every edge holds (`held`), and for each edge e with a
-// triangle across, those within its reach but outside it (its reach less
-// its held run: both end on the same side), inside every other edge
-// (band[e]); the columns some run holds, [first, last], and those every
-// sample row's held run holds, [whole_first, whole_last]; bit e of
-// band_edges, a sample in band[e].
-struct RowRuns {
-    SampleRuns held, band[3];
-    int first, last, whole_first, whole_last;
-    unsigned band_edges;
+// The rows' runs, from their lines' crossings, lane by lane: per sample
+// row, the columns every edge holds (held_lo .. held_hi, empty where lo >
+// hi), and for each edge e with a triangle across, those within its reach
+// but outside it (its reach less its held run: both end on the same
+// side), inside every other edge (band_lo[e] .. band_hi[e]; bit l of
+// band_lanes[e]: lane l's band holds a column); and per row, in the lane
+// of its first sample row, the columns some run holds, [first, last], and
+// those every sample row's held run holds, [whole_first, whole_last].
+struct RowsRuns {
+    alignas(32) std::int32_t held_lo[8], held_hi[8], band_lo[3][8], band_hi[3][8];
+    alignas(32) std::int32_t first[8], last[8], whole_first[8], whole_last[8];
+    unsigned band_lanes[3];
 };
 
-// For row y: per lane, where rising, the first column held, clamped to
-// [c_lo, c_hi + 1] (c_hi + 1: none); else the last, clamped to [c_lo - 1,
-// c_hi] (c_lo - 1: none), a NaN crossing holding none; then the runs they
-// bound. Returns whether some run holds a column (first <= last).
-bool partial_row_runs_scalar(const Crossings &c, int y, RowRuns &runs);
-bool partial_row_runs_avx2(const Crossings &c, int y, RowRuns &runs);
+// For rows y .. y + rows_at_once(k) - 1: per line and lane, where rising,
+// the first column held, clamped to [c_lo, c_hi + 1] (c_hi + 1: none);
+// else the last, clamped to [c_lo - 1, c_hi] (c_lo - 1: none), a NaN
+// crossing holding none; then the runs they bound. Returns bit r where
+// row y + r has a run holding a column (first <= last).
+unsigned partial_rows_runs_scalar(const Crossings &c, int y, RowsRuns &runs);
+unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &runs);
 
-// The runs' samples in depth pixels x8 .. x8 + 7, as their masks; returns
-// the lanes with a bit set (bit l: lane l).
-unsigned run_masks_scalar(const SampleRuns &runs, int k, int x8, MaskRow &out);
-unsigned run_masks_avx2(const SampleRuns &runs, int k, int x8, MaskRow &out);
+// The runs lo[j] .. hi[j] of sample rows j < k, in depth pixels x8 .. x8
+// + 7, as their masks; returns the lanes with a bit set (bit l: lane l).
+unsigned run_masks_scalar(const std::int32_t *lo, const std::int32_t *hi, int k, int x8, MaskRow &out);
+unsigned run_masks_avx2(const std::int32_t *lo, const std::int32_t *hi, int k, int x8, MaskRow &out);
 
 // The triangle across a shared edge (DepthRasterizer::set_up_across): a
 // sample (u, v) is inside it where fl(fl(ea u) + fl(eb v)) >= held for its

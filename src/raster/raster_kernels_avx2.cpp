@@ -145,120 +145,161 @@ void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer)
 
 namespace {
 
-// Lane by lane, the least (or greatest) of eight 32-bit integers.
-inline int lanes_min(__m256i v)
+// Constants of partial_rows_runs_avx2's crossings.
+struct CrossingConstants {
+    __m256d eight_eps, four_eps, one, zero, half, k, sign, lo, hi, none_rising, none_falling;
+};
+
+// One line's columns in four lanes of sample rows v: line_column's
+// expressions (raster_kernels_scalar.cpp) for the line's kind alone.
+inline __m128i line_columns(const Crossings &c, int line, __m256d v, const CrossingConstants &x)
 {
-    v = _mm256_min_epi32(v, _mm256_permute2x128_si256(v, v, 1));
-    v = _mm256_min_epi32(v, _mm256_shuffle_epi32(v, 0x4e));
-    return _mm256_cvtsi256_si32(_mm256_min_epi32(v, _mm256_shuffle_epi32(v, 0xb1)));
+    const __m256d start = _mm256_set1_pd(c.start[line]);
+    const __m256d bv = _mm256_mul_pd(_mm256_set1_pd(c.slope[line]), v);
+    const __m256d crossing = _mm256_add_pd(start, bv);
+    const __m256d terms = _mm256_add_pd(_mm256_andnot_pd(x.sign, start), _mm256_andnot_pd(x.sign, bv));
+    if (c.level[line]) {
+        // The whole row or none.
+        const __m256d holds =
+            _mm256_cmp_pd(_mm256_sub_pd(crossing, _mm256_mul_pd(x.eight_eps, terms)), x.zero, _CMP_GE_OQ);
+        return _mm256_cvtpd_epi32(_mm256_blendv_pd(x.none_rising, x.lo, holds));
+    }
+    const __m256d slack = _mm256_mul_pd(x.eight_eps, _mm256_add_pd(terms, _mm256_andnot_pd(x.sign, crossing)));
+    if (c.rising[line]) {
+        // The first column from (crossing + slack) k - 0.5 up; first <=
+        // c_hi (false for NaN) ? max(first, c_lo) : c_hi + 1, as the
+        // scalar (first < c_lo ? c_lo : first).
+        const __m256d x_up = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(crossing, slack), x.k), x.half);
+        const __m256d first = _mm256_round_pd(
+            _mm256_add_pd(x_up, _mm256_mul_pd(x.four_eps, _mm256_add_pd(_mm256_andnot_pd(x.sign, x_up), x.one))),
+            _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
+        const __m256d clamped = _mm256_blendv_pd(first, x.lo, _mm256_cmp_pd(first, x.lo, _CMP_LT_OQ));
+        return _mm256_cvtpd_epi32(_mm256_blendv_pd(x.none_rising, clamped, _mm256_cmp_pd(first, x.hi, _CMP_LE_OQ)));
+    }
+    // The last column from (crossing - slack) k - 0.5 down.
+    const __m256d x_down = _mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(crossing, slack), x.k), x.half);
+    const __m256d last = _mm256_round_pd(
+        _mm256_sub_pd(x_down, _mm256_mul_pd(x.four_eps, _mm256_add_pd(_mm256_andnot_pd(x.sign, x_down), x.one))),
+        _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    const __m256d clamped = _mm256_blendv_pd(last, x.hi, _mm256_cmp_pd(last, x.hi, _CMP_GT_OQ));
+    return _mm256_cvtpd_epi32(_mm256_blendv_pd(x.none_falling, clamped, _mm256_cmp_pd(last, x.lo, _CMP_GE_OQ)));
 }
-inline int lanes_max(__m256i v)
-{
-    v = _mm256_max_epi32(v, _mm256_permute2x128_si256(v, v, 1));
-    v = _mm256_max_epi32(v, _mm256_shuffle_epi32(v, 0x4e));
-    return _mm256_cvtsi256_si32(_mm256_max_epi32(v, _mm256_shuffle_epi32(v, 0xb1)));
-}
+
+// Per divisor k, the permutations that bring each row's k lanes together:
+// after v = op(v, permute(v, p)) for each of the first steps, the lane of
+// a row's first sample row holds the op over its k lanes (the lanes that
+// hold nothing made neutral first).
+struct RowReduction {
+    int steps;
+    std::int32_t permute[3][8];
+};
+constexpr RowReduction row_reduction[9] = {
+    {0, {}},
+    {0, {}},
+    {1, {{1, 0, 3, 2, 5, 4, 7, 6}}},
+    {2, {{1, 2, 0, 4, 5, 3, 6, 7}, {1, 2, 0, 4, 5, 3, 6, 7}}},
+    {2, {{1, 0, 3, 2, 5, 4, 7, 6}, {2, 3, 0, 1, 6, 7, 4, 5}}},
+    {3, {{1, 0, 3, 2, 5, 4, 7, 6}, {2, 3, 0, 1, 6, 7, 4, 5}, {4, 5, 6, 7, 0, 1, 2, 3}}},
+    {3, {{1, 0, 3, 2, 5, 4, 7, 6}, {2, 3, 0, 1, 6, 7, 4, 5}, {4, 5, 6, 7, 0, 1, 2, 3}}},
+    {3, {{1, 0, 3, 2, 5, 4, 7, 6}, {2, 3, 0, 1, 6, 7, 4, 5}, {4, 5, 6, 7, 0, 1, 2, 3}}},
+    {3, {{1, 0, 3, 2, 5, 4, 7, 6}, {2, 3, 0, 1, 6, 7, 4, 5}, {4, 5, 6, 7, 0, 1, 2, 3}}},
+};
 
 }  // namespace
 
-bool partial_row_runs_avx2(const Crossings &c, int y, RowRuns &out)
+unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &out)
 {
-    // The crossings four lanes at a time, partial_row_runs_scalar's
-    // expressions; the lanes past c.lanes are computed from whatever the
-    // arrays hold there and not read.
-    alignas(32) std::int32_t column[max_crossings + 8];
-    const __m256d eight_eps = _mm256_set1_pd(8.0 * 0x1p-52);
-    const __m256d four_eps = _mm256_set1_pd(4.0 * 0x1p-52), one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
-    const __m256d half = _mm256_set1_pd(0.5), k = _mm256_set1_pd(double(c.k)), row = _mm256_set1_pd(double(y));
-    const __m256d sign = _mm256_set1_pd(-0.0);
-    const __m256d lo = _mm256_set1_pd(double(c.c_lo)), hi = _mm256_set1_pd(double(c.c_hi));
-    const __m256d none_rising = _mm256_set1_pd(double(c.c_hi + 1)), none_falling = _mm256_set1_pd(double(c.c_lo - 1));
-    for (int l = 0; l < c.lanes; l += 4) {
-        const __m256d v = _mm256_add_pd(row, _mm256_loadu_pd(c.offset + l));
-        const __m256d start = _mm256_loadu_pd(c.start + l);
-        const __m256d bv = _mm256_mul_pd(_mm256_loadu_pd(c.slope + l), v);
-        const __m256d crossing = _mm256_add_pd(start, bv);
-        const __m256d terms = _mm256_add_pd(_mm256_andnot_pd(sign, start), _mm256_andnot_pd(sign, bv));
-        const __m256d slack = _mm256_mul_pd(eight_eps, _mm256_add_pd(terms, _mm256_andnot_pd(sign, crossing)));
-        const __m256d rising = _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i *>(c.rising + l)));
-        const __m256d level = _mm256_castsi256_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i *>(c.level + l)));
-        // Rising: the first column from (crossing + slack) k - 0.5 up.
-        const __m256d x_up = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(crossing, slack), k), half);
-        const __m256d first = _mm256_round_pd(
-            _mm256_add_pd(x_up, _mm256_mul_pd(four_eps, _mm256_add_pd(_mm256_andnot_pd(sign, x_up), one))),
-            _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
-        // first <= c_hi (false for NaN) ? max(first, c_lo) : c_hi + 1, as
-        // the scalar (first < c_lo ? c_lo : first).
-        const __m256d first_in = _mm256_cmp_pd(first, hi, _CMP_LE_OQ);
-        const __m256d first_clamped = _mm256_blendv_pd(first, lo, _mm256_cmp_pd(first, lo, _CMP_LT_OQ));
-        const __m256d up = _mm256_blendv_pd(none_rising, first_clamped, first_in);
-        // Falling: the last column from (crossing - slack) k - 0.5 down.
-        const __m256d x_down = _mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(crossing, slack), k), half);
-        const __m256d last = _mm256_round_pd(
-            _mm256_sub_pd(x_down, _mm256_mul_pd(four_eps, _mm256_add_pd(_mm256_andnot_pd(sign, x_down), one))),
-            _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-        const __m256d last_in = _mm256_cmp_pd(last, lo, _CMP_GE_OQ);
-        const __m256d last_clamped = _mm256_blendv_pd(last, hi, _mm256_cmp_pd(last, hi, _CMP_GT_OQ));
-        const __m256d down = _mm256_blendv_pd(none_falling, last_clamped, last_in);
-        // Level: the whole row or none.
-        const __m256d holds = _mm256_cmp_pd(_mm256_sub_pd(crossing, _mm256_mul_pd(eight_eps, terms)), zero, _CMP_GE_OQ);
-        const __m256d flat = _mm256_blendv_pd(none_rising, lo, holds);
-        const __m256d columns = _mm256_blendv_pd(_mm256_blendv_pd(down, up, rising), flat, level);
-        _mm_store_si128(reinterpret_cast<__m128i *>(column + l), _mm256_cvtpd_epi32(columns));
-    }
-    // Lane j: sample row j (lanes j >= k read the next lines' columns and
-    // are left out). Edge e's bound: from its column on where it rises,
-    // else up to it.
+    // Each line's crossings in two steps of four double lanes, the
+    // scalar's expressions lane by lane, kept in registers (no store of
+    // four columns read back as eight).
     const int kk = c.k;
+    CrossingConstants x;
+    x.eight_eps = _mm256_set1_pd(8.0 * 0x1p-52);
+    x.four_eps = _mm256_set1_pd(4.0 * 0x1p-52);
+    x.one = _mm256_set1_pd(1.0);
+    x.zero = _mm256_setzero_pd();
+    x.half = _mm256_set1_pd(0.5);
+    x.k = _mm256_set1_pd(double(kk));
+    x.sign = _mm256_set1_pd(-0.0);
+    x.lo = _mm256_set1_pd(double(c.c_lo));
+    x.hi = _mm256_set1_pd(double(c.c_hi));
+    x.none_rising = _mm256_set1_pd(double(c.c_hi + 1));
+    x.none_falling = _mm256_set1_pd(double(c.c_lo - 1));
+    // v = (y + l / k) + ((l mod k) + 0.5) / k: the row's y is exact in double.
+    const __m256d row = _mm256_set1_pd(double(y));
+    const __m256d v_low = _mm256_add_pd(_mm256_add_pd(row, _mm256_loadu_pd(c.lane_row)), _mm256_loadu_pd(c.lane_offset));
+    const __m256d v_high =
+        _mm256_add_pd(_mm256_add_pd(row, _mm256_loadu_pd(c.lane_row + 4)), _mm256_loadu_pd(c.lane_offset + 4));
+    const auto columns = [&](int line) {
+        return _mm256_set_m128i(line_columns(c, line, v_high, x), line_columns(c, line, v_low, x));
+    };
     const __m256i c_lo = _mm256_set1_epi32(c.c_lo), c_hi = _mm256_set1_epi32(c.c_hi);
     const __m256i ones = _mm256_set1_epi32(1);
-    const __m256i rows = _mm256_cmpgt_epi32(_mm256_set1_epi32(kk), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    // Edge e's bound at sample row j: from its column on where it rises
-    // (lower), else up to it (upper).
-    __m256i lower[max_edges], upper[max_edges];
+    const int rows = rows_at_once(kk);
+    // The lanes that hold a sample row.
+    const __m256i valid =
+        _mm256_cmpgt_epi32(_mm256_set1_epi32(rows * kk), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    // Edge e's bound: from its column on where it rises (lower), else up
+    // to it (upper).
+    __m256i own[max_edges], lower[max_edges], upper[max_edges];
     __m256i held_lo = c_lo, held_hi = c_hi;
     for (int e = 0; e < c.edges; ++e) {
-        const __m256i column_e = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + e * kk));
-        const __m256i rises = _mm256_set1_epi32(-int(c.rising_edges >> e & 1));
-        lower[e] = _mm256_blendv_epi8(c_lo, column_e, rises);
-        upper[e] = _mm256_blendv_epi8(column_e, c_hi, rises);
+        own[e] = columns(e);
+        const bool rises = c.rising_edges >> e & 1;
+        lower[e] = rises ? own[e] : c_lo;
+        upper[e] = rises ? c_hi : own[e];
         held_lo = _mm256_max_epi32(held_lo, lower[e]);
         held_hi = _mm256_min_epi32(held_hi, upper[e]);
     }
-    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.held.lo), held_lo);
-    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.held.hi), held_hi);
+    _mm256_store_si256(reinterpret_cast<__m256i *>(out.held_lo), held_lo);
+    _mm256_store_si256(reinterpret_cast<__m256i *>(out.held_hi), held_hi);
     // Columns of the nonempty runs: the least first and greatest last.
     const auto nonempty = [&](__m256i run_lo, __m256i run_hi) {
-        return _mm256_andnot_si256(_mm256_cmpgt_epi32(run_lo, run_hi), rows);
+        return _mm256_andnot_si256(_mm256_cmpgt_epi32(run_lo, run_hi), valid);
     };
     const __m256i past = _mm256_set1_epi32(c.c_hi + 1), before = _mm256_set1_epi32(c.c_lo - 1);
     const __m256i some = nonempty(held_lo, held_hi);
     __m256i first = _mm256_blendv_epi8(past, held_lo, some), last = _mm256_blendv_epi8(before, held_hi, some);
-    out.band_edges = 0;
     // Triangles only (c.edges == 3) have edges with a triangle across.
     for (int e = 0; e < 3; ++e) {
+        out.band_lanes[e] = 0;
         if (!(c.candidates >> e & 1))
             continue;
-        const __m256i reach = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + c.reach_lane[e]));
-        const __m256i own = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(column + e * kk));
-        const __m256i rises = _mm256_set1_epi32(-int(c.rising_edges >> e & 1));
+        const __m256i reach = columns(c.reach_line[e]);
+        const bool rises = c.rising_edges >> e & 1;
         const int o1 = e == 2 ? 0 : e + 1, o2 = e == 0 ? 2 : e - 1;
-        const __m256i band_lo = _mm256_max_epi32(
-            _mm256_max_epi32(_mm256_blendv_epi8(_mm256_add_epi32(own, ones), reach, rises), lower[o1]), lower[o2]);
-        const __m256i band_hi = _mm256_min_epi32(
-            _mm256_min_epi32(_mm256_blendv_epi8(reach, _mm256_sub_epi32(own, ones), rises), upper[o1]), upper[o2]);
-        _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.band[e].lo), band_lo);
-        _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.band[e].hi), band_hi);
+        const __m256i band_lo =
+            _mm256_max_epi32(_mm256_max_epi32(rises ? reach : _mm256_add_epi32(own[e], ones), lower[o1]), lower[o2]);
+        const __m256i band_hi =
+            _mm256_min_epi32(_mm256_min_epi32(rises ? _mm256_sub_epi32(own[e], ones) : reach, upper[o1]), upper[o2]);
+        _mm256_store_si256(reinterpret_cast<__m256i *>(out.band_lo[e]), band_lo);
+        _mm256_store_si256(reinterpret_cast<__m256i *>(out.band_hi[e]), band_hi);
         const __m256i in_band = nonempty(band_lo, band_hi);
-        out.band_edges |= unsigned(!_mm256_testz_si256(in_band, in_band)) << e;
+        out.band_lanes[e] = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(in_band)));
         first = _mm256_blendv_epi8(first, _mm256_min_epi32(first, band_lo), in_band);
         last = _mm256_blendv_epi8(last, _mm256_max_epi32(last, band_hi), in_band);
     }
-    out.whole_first = lanes_max(_mm256_blendv_epi8(c_lo, held_lo, rows));
-    out.whole_last = lanes_min(_mm256_blendv_epi8(c_hi, held_hi, rows));
-    out.first = lanes_min(first);
-    out.last = lanes_max(last);
-    return out.first <= out.last;
+    // Per row, over its k lanes.
+    __m256i whole_first = _mm256_blendv_epi8(c_lo, held_lo, valid);
+    __m256i whole_last = _mm256_blendv_epi8(c_hi, held_hi, valid);
+    const RowReduction &reduction = row_reduction[kk];
+    for (int step = 0; step < reduction.steps; ++step) {
+        const __m256i p = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(reduction.permute[step]));
+        first = _mm256_min_epi32(first, _mm256_permutevar8x32_epi32(first, p));
+        last = _mm256_max_epi32(last, _mm256_permutevar8x32_epi32(last, p));
+        whole_first = _mm256_max_epi32(whole_first, _mm256_permutevar8x32_epi32(whole_first, p));
+        whole_last = _mm256_min_epi32(whole_last, _mm256_permutevar8x32_epi32(whole_last, p));
+    }
+    _mm256_store_si256(reinterpret_cast<__m256i *>(out.first), first);
+    _mm256_store_si256(reinterpret_cast<__m256i *>(out.last), last);
+    _mm256_store_si256(reinterpret_cast<__m256i *>(out.whole_first), whole_first);
+    _mm256_store_si256(reinterpret_cast<__m256i *>(out.whole_last), whole_last);
+    // Bit r: lane r k has first <= last.
+    const unsigned lanes = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(first, last)))) ^ 0xffu;
+    unsigned found = 0;
+    for (int r = 0; r < rows; ++r)
+        found |= (lanes >> (r * kk) & 1u) << r;
+    return found;
 }
 
 namespace {
@@ -289,7 +330,7 @@ inline __m128i shift_count(int n) { return _mm_cvtsi32_si128(n); }
 
 }  // namespace
 
-unsigned run_masks_avx2(const SampleRuns &runs, int k, int x8, MaskRow &out)
+unsigned run_masks_avx2(const std::int32_t *run_lo, const std::int32_t *run_hi, int k, int x8, MaskRow &out)
 {
     // Lane l: pixel x8 + l's first sample column; the scalar loop's
     // expressions (shifts by 32 or more give 0 in both).
@@ -299,9 +340,9 @@ unsigned run_masks_avx2(const SampleRuns &runs, int k, int x8, MaskRow &out)
     const __m256i zero = _mm256_setzero_si256(), kk = _mm256_set1_epi32(k), one = _mm256_set1_epi32(1);
     __m256i lo = zero, hi = zero;
     for (int j = 0; j < k; ++j) {
-        const __m256i s = _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(runs.lo[j]), first), zero), kk);
+        const __m256i s = _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(run_lo[j]), first), zero), kk);
         const __m256i t =
-            _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(runs.hi[j] + 1), first), s), kk);
+            _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(run_hi[j] + 1), first), s), kk);
         const __m256i bits = _mm256_sub_epi32(_mm256_sllv_epi32(one, t), _mm256_sllv_epi32(one, s));
         const int b = j * k;
         lo = _mm256_or_si256(lo, _mm256_sll_epi32(bits, shift_count(b)));

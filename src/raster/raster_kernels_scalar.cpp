@@ -53,77 +53,89 @@ void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
     }
 }
 
-bool partial_row_runs_scalar(const Crossings &c, int y, RowRuns &out)
+namespace {
+
+// Where a line crosses sample row v, as partial_rows_runs' column.
+std::int32_t line_column(const Crossings &c, int line, double v)
 {
     constexpr double eps = 0x1p-52;
-    std::int32_t column[max_crossings];
-    for (int l = 0; l < c.lanes; ++l) {
-        const double v = double(y) + c.offset[l];
-        const double bv = c.slope[l] * v, crossing = c.start[l] + bv;
-        if (c.level[l]) {
-            const bool holds = crossing - 8.0 * eps * (std::fabs(c.start[l]) + std::fabs(bv)) >= 0.0;
-            column[l] = holds ? c.c_lo : c.c_hi + 1;
-            continue;
-        }
-        const double slack = 8.0 * eps * ((std::fabs(c.start[l]) + std::fabs(bv)) + std::fabs(crossing));
-        if (c.rising[l]) {
-            const double x = (crossing + slack) * c.k - 0.5;
-            const double first = std::ceil(x + 4.0 * eps * (std::fabs(x) + 1.0));
-            column[l] = first <= double(c.c_hi) ? std::int32_t(first < double(c.c_lo) ? double(c.c_lo) : first)
-                                                : c.c_hi + 1;
-        } else {
-            const double x = (crossing - slack) * c.k - 0.5;
-            const double last = std::floor(x - 4.0 * eps * (std::fabs(x) + 1.0));
-            column[l] = last >= double(c.c_lo) ? std::int32_t(last > double(c.c_hi) ? double(c.c_hi) : last)
-                                               : c.c_lo - 1;
-        }
+    const double start = c.start[line], bv = c.slope[line] * v, crossing = start + bv;
+    if (c.level[line]) {
+        const bool holds = crossing - 8.0 * eps * (std::fabs(start) + std::fabs(bv)) >= 0.0;
+        return holds ? c.c_lo : c.c_hi + 1;
     }
-    // Edge e's bound at sample row j: from column[e k + j] on where it
-    // rises, else up to it.
+    const double slack = 8.0 * eps * ((std::fabs(start) + std::fabs(bv)) + std::fabs(crossing));
+    if (c.rising[line]) {
+        const double x = (crossing + slack) * c.k - 0.5;
+        const double first = std::ceil(x + 4.0 * eps * (std::fabs(x) + 1.0));
+        return first <= double(c.c_hi) ? std::int32_t(first < double(c.c_lo) ? double(c.c_lo) : first) : c.c_hi + 1;
+    }
+    const double x = (crossing - slack) * c.k - 0.5;
+    const double last = std::floor(x - 4.0 * eps * (std::fabs(x) + 1.0));
+    return last >= double(c.c_lo) ? std::int32_t(last > double(c.c_hi) ? double(c.c_hi) : last) : c.c_lo - 1;
+}
+
+}  // namespace
+
+unsigned partial_rows_runs_scalar(const Crossings &c, int y, RowsRuns &out)
+{
     const int k = c.k;
-    const auto lower = [&](int e, int j) { return c.rising_edges >> e & 1 ? column[e * k + j] : c.c_lo; };
-    const auto upper = [&](int e, int j) { return c.rising_edges >> e & 1 ? c.c_hi : column[e * k + j]; };
-    out.first = c.c_hi + 1;
-    out.last = c.c_lo - 1;
-    out.band_edges = 0;
-    out.whole_first = c.c_lo;
-    out.whole_last = c.c_hi;
-    const auto extend = [&](int lo, int hi) {
-        if (lo <= hi) {
-            out.first = std::min(out.first, lo);
-            out.last = std::max(out.last, hi);
+    unsigned rows = 0;
+    for (int e = 0; e < 3; ++e)
+        out.band_lanes[e] = 0;
+    for (int r = 0; r < rows_at_once(k); ++r) {
+        const int l0 = r * k;
+        int first = c.c_hi + 1, last = c.c_lo - 1, whole_first = c.c_lo, whole_last = c.c_hi;
+        const auto extend = [&](int lo, int hi) {
+            if (lo <= hi) {
+                first = std::min(first, lo);
+                last = std::max(last, hi);
+            }
+            return lo <= hi;
+        };
+        for (int j = 0; j < k; ++j) {
+            const int l = l0 + j;
+            const double v = double(y + r) + c.lane_offset[l];
+            // Edge e's bound: from its column on where it rises, else up to it.
+            std::int32_t column[max_edges], lower[max_edges], upper[max_edges];
+            int lo = c.c_lo, hi = c.c_hi;
+            for (int e = 0; e < c.edges; ++e) {
+                column[e] = line_column(c, e, v);
+                const bool rises = c.rising_edges >> e & 1;
+                lower[e] = rises ? column[e] : c.c_lo;
+                upper[e] = rises ? c.c_hi : column[e];
+                lo = std::max(lo, lower[e]);
+                hi = std::min(hi, upper[e]);
+            }
+            out.held_lo[l] = lo;
+            out.held_hi[l] = hi;
+            whole_first = std::max(whole_first, lo);
+            whole_last = std::min(whole_last, hi);
+            extend(lo, hi);
+            for (int e = 0; e < 3; ++e) {
+                if (!(c.candidates >> e & 1))
+                    continue;
+                const int reach = line_column(c, c.reach_line[e], v);
+                int band_lo = c.rising_edges >> e & 1 ? reach : column[e] + 1;
+                int band_hi = c.rising_edges >> e & 1 ? column[e] - 1 : reach;
+                for (int o = 0; o < c.edges; ++o)
+                    if (o != e) {
+                        band_lo = std::max(band_lo, lower[o]);
+                        band_hi = std::min(band_hi, upper[o]);
+                    }
+                out.band_lo[e][l] = band_lo;
+                out.band_hi[e][l] = band_hi;
+                if (extend(band_lo, band_hi))
+                    out.band_lanes[e] |= 1u << l;
+            }
         }
-        return lo <= hi;
-    };
-    for (int j = 0; j < k; ++j) {
-        int lo = c.c_lo, hi = c.c_hi;
-        for (int e = 0; e < c.edges; ++e) {
-            lo = std::max(lo, lower(e, j));
-            hi = std::min(hi, upper(e, j));
-        }
-        out.held.lo[j] = lo;
-        out.held.hi[j] = hi;
-        out.whole_first = std::max(out.whole_first, lo);
-        out.whole_last = std::min(out.whole_last, hi);
-        extend(lo, hi);
-        for (int e = 0; e < 3; ++e) {
-            if (!(c.candidates >> e & 1))
-                continue;
-            const int reach = column[c.reach_lane[e] + j], own = column[e * k + j];
-            int band_lo = c.rising_edges >> e & 1 ? reach : own + 1;
-            int band_hi = c.rising_edges >> e & 1 ? own - 1 : reach;
-            for (int o = 0; o < c.edges; ++o)
-                if (o != e) {
-                    band_lo = std::max(band_lo, lower(o, j));
-                    band_hi = std::min(band_hi, upper(o, j));
-                }
-            out.band[e].lo[j] = band_lo;
-            out.band[e].hi[j] = band_hi;
-            if (extend(band_lo, band_hi))
-                out.band_edges |= 1u << e;
-        }
+        out.first[l0] = first;
+        out.last[l0] = last;
+        out.whole_first[l0] = whole_first;
+        out.whole_last[l0] = whole_last;
+        rows |= unsigned(first <= last) << r;
     }
-    return out.first <= out.last;
+    return rows;
 }
 
 namespace {
@@ -137,7 +149,7 @@ inline float widened(float z, double error) { return partial_next_up(float(doubl
 
 }  // namespace
 
-unsigned run_masks_scalar(const SampleRuns &runs, int k, int x8, MaskRow &out)
+unsigned run_masks_scalar(const std::int32_t *run_lo, const std::int32_t *run_hi, int k, int x8, MaskRow &out)
 {
     unsigned lanes = 0;
     for (int lane = 0; lane < tile_size; ++lane) {
@@ -145,8 +157,8 @@ unsigned run_masks_scalar(const SampleRuns &runs, int k, int x8, MaskRow &out)
         std::uint32_t lo = 0, hi = 0;
         for (int j = 0; j < k; ++j) {
             // Columns [s, t) of the pixel's k: bits (1 << t) - (1 << s).
-            const int s = std::min(std::max(runs.lo[j] - first, 0), k);
-            const int t = std::min(std::max(runs.hi[j] + 1 - first, s), k);
+            const int s = std::min(std::max(run_lo[j] - first, 0), k);
+            const int t = std::min(std::max(run_hi[j] + 1 - first, s), k);
             const std::uint32_t bits = (std::uint32_t(1) << t) - (std::uint32_t(1) << s);
             const int b = j * k;
             lo |= shift_left(bits, b);
