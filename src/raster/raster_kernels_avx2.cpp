@@ -326,32 +326,53 @@ inline __m256 widened(__m256 z, double error)
     return next_up(_mm256_insertf128_ps(_mm256_castps128_ps256(low), high, 1));
 }
 
-inline __m128i shift_count(int n) { return _mm_cvtsi32_si128(n); }
+}  // namespace
+
+namespace {
+
+// run_masks_avx2 for divisor K, its loop over sample rows unrolled: the
+// shifts into place are constants, and the high plane is 0 where K K <= 32.
+template <int K>
+unsigned run_masks_k(const std::int32_t *run_lo, const std::int32_t *run_hi, int x8, MaskRow &out)
+{
+    // Lane l: pixel x8 + l's first sample column; the scalar loop's
+    // expressions (shifts by 32 or more give 0 in both).
+    const __m256i first = _mm256_add_epi32(_mm256_set1_epi32(x8 * K), _mm256_setr_epi32(0, K, 2 * K, 3 * K, 4 * K,
+                                                                                         5 * K, 6 * K, 7 * K));
+    const __m256i zero = _mm256_setzero_si256(), kk = _mm256_set1_epi32(K), one = _mm256_set1_epi32(1);
+    __m256i lo = zero, hi = zero;
+    for (int j = 0; j < K; ++j) {
+        const __m256i s = _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(run_lo[j]), first), zero), kk);
+        const __m256i t =
+            _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(run_hi[j] + 1), first), s), kk);
+        const __m256i bits = _mm256_sub_epi32(_mm256_sllv_epi32(one, t), _mm256_sllv_epi32(one, s));
+        const int b = j * K;
+        if (b < 32)
+            lo = _mm256_or_si256(lo, _mm256_slli_epi32(bits, b));
+        if (b >= 32)
+            hi = _mm256_or_si256(hi, _mm256_slli_epi32(bits, b - 32));
+        else if (b + K > 32)
+            hi = _mm256_or_si256(hi, _mm256_srli_epi32(bits, 32 - b));
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.lo), lo);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.hi), hi);
+    return unsigned(~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero)))) & 0xffu;
+}
 
 }  // namespace
 
 unsigned run_masks_avx2(const std::int32_t *run_lo, const std::int32_t *run_hi, int k, int x8, MaskRow &out)
 {
-    // Lane l: pixel x8 + l's first sample column; the scalar loop's
-    // expressions (shifts by 32 or more give 0 in both).
-    const __m256i first = _mm256_add_epi32(_mm256_set1_epi32(x8 * k),
-                                           _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
-                                                              _mm256_set1_epi32(k)));
-    const __m256i zero = _mm256_setzero_si256(), kk = _mm256_set1_epi32(k), one = _mm256_set1_epi32(1);
-    __m256i lo = zero, hi = zero;
-    for (int j = 0; j < k; ++j) {
-        const __m256i s = _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(run_lo[j]), first), zero), kk);
-        const __m256i t =
-            _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(run_hi[j] + 1), first), s), kk);
-        const __m256i bits = _mm256_sub_epi32(_mm256_sllv_epi32(one, t), _mm256_sllv_epi32(one, s));
-        const int b = j * k;
-        lo = _mm256_or_si256(lo, _mm256_sll_epi32(bits, shift_count(b)));
-        hi = _mm256_or_si256(hi, _mm256_or_si256(_mm256_sll_epi32(bits, shift_count(b >= 32 ? b - 32 : 32)),
-                                                 _mm256_srl_epi32(bits, shift_count(b < 32 ? 32 - b : 32))));
+    switch (k) {
+    case 1: return run_masks_k<1>(run_lo, run_hi, x8, out);
+    case 2: return run_masks_k<2>(run_lo, run_hi, x8, out);
+    case 3: return run_masks_k<3>(run_lo, run_hi, x8, out);
+    case 4: return run_masks_k<4>(run_lo, run_hi, x8, out);
+    case 5: return run_masks_k<5>(run_lo, run_hi, x8, out);
+    case 6: return run_masks_k<6>(run_lo, run_hi, x8, out);
+    case 7: return run_masks_k<7>(run_lo, run_hi, x8, out);
+    default: return run_masks_k<8>(run_lo, run_hi, x8, out);
     }
-    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.lo), lo);
-    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.hi), hi);
-    return unsigned(~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero)))) & 0xffu;
 }
 
 unsigned partial_row_depth_avx2(PartialRow &r, const float *depth)
@@ -366,9 +387,13 @@ unsigned partial_row_depth_avx2(PartialRow &r, const float *depth)
     return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, _mm256_loadu_ps(depth), _CMP_LT_OQ)));
 }
 
-unsigned merge_partial_row_avx2(const PartialRow &r, const PartialTileRow &t)
+namespace {
+
+// merge_partial_row_avx2 for divisor K, its sample loops unrolled.
+template <int K>
+unsigned merge_row_k(const PartialRow &r, const PartialTileRow &t)
 {
-    const int k = r.k;
+    constexpr int k = K;
     const float fy = float(r.y);
     const __m256i zero = _mm256_setzero_si256();
     // float(x8 + lane), exactly, as the scalar loop converts it.
@@ -439,6 +464,22 @@ unsigned merge_partial_row_avx2(const PartialRow &r, const PartialTileRow &t)
     _mm256_storeu_ps(t.partial_depth, _mm256_blendv_ps(old_depth, farthest, store));
     _mm256_storeu_ps(t.depth, _mm256_blendv_ps(depth, farthest, nearer));
     return (_mm256_movemask_ps(nearer) != 0 ? 1u : 0u) | (_mm256_movemask_ps(store) != 0 ? 2u : 0u);
+}
+
+}  // namespace
+
+unsigned merge_partial_row_avx2(const PartialRow &r, const PartialTileRow &t)
+{
+    switch (r.k) {
+    case 1: return merge_row_k<1>(r, t);
+    case 2: return merge_row_k<2>(r, t);
+    case 3: return merge_row_k<3>(r, t);
+    case 4: return merge_row_k<4>(r, t);
+    case 5: return merge_row_k<5>(r, t);
+    case 6: return merge_row_k<6>(r, t);
+    case 7: return merge_row_k<7>(r, t);
+    default: return merge_row_k<8>(r, t);
+    }
 }
 
 bool tile_behind_avx2(const float *tile, int c0, int c1, int r0, int r1, float z)
