@@ -833,6 +833,13 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // Rows a few at a time (raster::rows_at_once), each in turn.
     const int rows_at_once = raster::rows_at_once(k);
     const unsigned row_lanes = (1u << k) - 1;
+    // Sample column c's depth pixel, c / k, by a multiply rather than a
+    // division's latency on every row: with reciprocal = 2^32 / k + d, 0 <
+    // d <= 1, c reciprocal / 2^32 exceeds c / k by less than 1 / k for 0 <=
+    // c < 2^32 / k, so its floor is c / k's; the columns here lie in [0,
+    // k (width + 1)].
+    const std::uint64_t reciprocal = (std::uint64_t(1) << 32) / std::uint64_t(k) + 1;
+    const auto pixel_of = [reciprocal](int column) { return int(std::uint64_t(column) * reciprocal >> 32); };
     for (int y_first = p.y0; y_first < p.y1; y_first += rows_at_once) {
         unsigned found = rows_runs(c, y_first, runs);
         if (p.y1 - y_first < rows_at_once)
@@ -846,14 +853,15 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
             // Pixels every sample of which is held, between two such
             // pixels: the fill has taken them (its margins are no wider
             // than these).
-            const int skip0 = (runs.whole_first[l] + k - 1) / k + 1, skip1 = (runs.whole_last[l] + 1) / k - 2;
+            const int skip0 = pixel_of(runs.whole_first[l] + k - 1) + 1, skip1 = pixel_of(runs.whole_last[l] + 1) - 2;
             const unsigned band_edges = unsigned((runs.band_lanes[0] >> l & row_lanes) != 0) |
                                         unsigned((runs.band_lanes[1] >> l & row_lanes) != 0) << 1 |
                                         unsigned((runs.band_lanes[2] >> l & row_lanes) != 0) << 2;
             // A tile row at a time (raster::merge_partial_row): the masks
             // of its eight pixels from the runs, met with the triangles
             // across, merged lane by lane.
-            for (int x8 = runs.first[l] / k / tile_size * tile_size; x8 <= runs.last[l] / k; x8 += tile_size) {
+            const int last_pixel = pixel_of(runs.last[l]);
+            for (int x8 = pixel_of(runs.first[l]) / tile_size * tile_size; x8 <= last_pixel; x8 += tile_size) {
                 if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
                     continue;
                 // A tile nearer everywhere than the polygon's nearest
