@@ -31,9 +31,10 @@ FrameTesting SwitchOff::begin_frame(const FrameOutlook &frame)
     nodes_ = &frame.nodes;
     hidden_.resize(frame.nodes.size(), 0);
     cut_ = false;
-    probe_ = off_ && (frames_to_probe_ <= 1 || (frame.frustum_triangles &&
-                      double(frame.frustum_triangles()) > unjudged_view * double(judged_view_triangles_)));
-    if (off_ && !probe_)
+    scheduled_probe_ = off_ && frames_to_probe_ <= 1;
+    probe_ = scheduled_probe_ || (off_ && frame.frustum_triangles &&
+                                  double(frame.frustum_triangles()) > unjudged_view * double(judged_view_triangles_));
+    if (off_ && !scheduled_probe_)
         --frames_to_probe_;
     return !off_ ? FrameTesting::full : probe_ ? FrameTesting::probe : FrameTesting::off;
 }
@@ -85,8 +86,12 @@ void SwitchOff::end_frame(const FrameStats &stats)
     // an occluded subtree, tested or not.
     const std::uint64_t view = stats.triangles + stats.triangles_occluded;
     judged_view_triangles_ = was_off ? std::max(judged_view_triangles_, view) : view;
-    // Switching off waits the base period; a probe that finds occlusion
-    // still not worth it waits twice as long as before.
+    // A probe of a larger view leaves the schedule as it was: it judged
+    // that view, not the wait.
+    if (was_off && !scheduled_probe_)
+        return;
+    // Switching off waits the base period; a scheduled probe that finds
+    // occlusion still not worth it waits twice as long as before.
     const std::uint32_t base = std::max<std::uint32_t>(1, settings_.probe_period);
     wait_ = was_off ? std::min(std::max(base, settings_.max_probe_period), 2 * std::max(base, wait_)) : base;
     frames_to_probe_ = wait_;

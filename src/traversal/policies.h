@@ -99,7 +99,7 @@ private:
 // `probe_period` frames after switching off; each probe that finds the
 // tests still not worth it doubles the wait, up to `max_probe_period`;
 // a view much larger than any judged since the tests went off is probed
-// at once (`unjudged_view`). A probe stops testing after `probe_nodes`
+// at once (`unjudged_view`), outside that schedule. A probe stops testing after `probe_nodes`
 // node tests and judges by what it saw until then: an unbounded probe of
 // an open view costs several frames' worth, and a dense view shows its
 // gain sooner.
@@ -176,6 +176,7 @@ private:
     // Per node: some test found it (or an inner node above it) hidden.
     std::vector<std::uint8_t> hidden_;
     bool off_ = false, probe_ = false;
+    bool scheduled_probe_ = false;       // this probe is the wait's, not a larger view's
     double balance_ = 0.0;               // of the frames tested since the tests came on
     bool cut_ = false;                   // this probe stopped testing
     std::uint64_t judged_triangles_ = 0, judged_occluded_ = 0;   // at the cut

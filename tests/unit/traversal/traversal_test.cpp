@@ -401,7 +401,8 @@ TEST(TraversalPolicies, AProbeTestsTheLeavesFoundHidden)
 
 // Switched off, a frame whose frustum holds more than twice the triangles
 // of every view judged since is probed at once, whatever the wait; a
-// view it judged not worth testing raises the bar.
+// view it judged not worth testing raises the bar, and the scheduled
+// probe comes when it would have.
 TEST(TraversalPolicies, AViewMuchLargerThanAnyJudgedIsProbedAtOnce)
 {
     SwitchOff switch_off;   // probes 8 frames after switching off
@@ -421,4 +422,9 @@ TEST(TraversalPolicies, AViewMuchLargerThanAnyJudgedIsProbedAtOnce)
     EXPECT_EQ(switch_off.begin_frame(view_of(4002)), FrameTesting::off);
     EXPECT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::off);
     EXPECT_EQ(switch_off.begin_frame(view_of(4003)), FrameTesting::probe);
+    switch_off.end_frame(nothing_hidden);
+    // Frames 1-5 above; the probe 8 frames after switching off is frame 8.
+    EXPECT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::off);
+    EXPECT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::off);
+    EXPECT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::probe);
 }
