@@ -5,10 +5,10 @@
 
 namespace occu {
 
-FrameTesting VisibleNodeList::begin_frame(std::size_t nodes)
+FrameTesting VisibleNodeList::begin_frame(const FrameOutlook &frame)
 {
-    last_.resize(nodes, 0);
-    now_.assign(nodes, 0);
+    last_.resize(frame.nodes.size(), 0);
+    now_.assign(frame.nodes.size(), 0);
     return FrameTesting::full;
 }
 
@@ -26,21 +26,39 @@ void VisibleNodeList::end_frame(const FrameStats &stats)
     ++frame_;
 }
 
-FrameTesting SwitchOff::begin_frame(std::size_t nodes)
+FrameTesting SwitchOff::begin_frame(const FrameOutlook &frame)
 {
-    (void)nodes;
+    nodes_ = &frame.nodes;
+    hidden_.resize(frame.nodes.size(), 0);
     cut_ = false;
-    probe_ = off_ && frames_to_probe_ <= 1;
-    if (off_ && !probe_)
+    scheduled_probe_ = off_ && frames_to_probe_ <= 1;
+    probe_ = scheduled_probe_ || (off_ && frame.frustum_triangles &&
+                                  double(frame.frustum_triangles()) > unjudged_view * double(judged_view_triangles_));
+    if (off_ && !scheduled_probe_)
         --frames_to_probe_;
     return !off_ ? FrameTesting::full : probe_ ? FrameTesting::probe : FrameTesting::off;
 }
 
 NodeTesting SwitchOff::node_testing(std::uint32_t node, bool leaf, FrameTesting frame) const
 {
-    (void)node;
     (void)frame;
-    return probe_ && !settings_.probe_leaves && leaf ? NodeTesting::skipped : NodeTesting::test;
+    return probe_ && leaf && !hidden_[node] ? NodeTesting::skipped : NodeTesting::test;
+}
+
+void SwitchOff::visible(std::uint32_t node)
+{
+    if (!testing() || !hidden_[node])
+        return;
+    // Its children were hidden with it: the leaves among them are worth a
+    // probe's tests.
+    const HierarchyNode &n = (*nodes_)[node];
+    for (std::uint32_t c = 0; c < n.child_count; ++c)
+        hidden_[n.first_child + c] = 1;
+}
+
+void SwitchOff::occluded(std::uint32_t node)
+{
+    hidden_[node] = 1;
 }
 
 bool SwitchOff::stop_testing(const FrameStats &so_far)
@@ -64,8 +82,16 @@ void SwitchOff::end_frame(const FrameStats &stats)
     off_ = balance_ < 0.0;
     if (!off_)
         return;
-    // Switching off waits the base period; a probe that finds occlusion
-    // still not worth it waits twice as long as before.
+    // The view judged: every triangle in the frustum was drawn or lies in
+    // an occluded subtree, tested or not.
+    const std::uint64_t view = stats.triangles + stats.triangles_occluded;
+    judged_view_triangles_ = was_off ? std::max(judged_view_triangles_, view) : view;
+    // A probe of a larger view leaves the schedule as it was: it judged
+    // that view, not the wait.
+    if (was_off && !scheduled_probe_)
+        return;
+    // Switching off waits the base period; a scheduled probe that finds
+    // occlusion still not worth it waits twice as long as before.
     const std::uint32_t base = std::max<std::uint32_t>(1, settings_.probe_period);
     wait_ = was_off ? std::min(std::max(base, settings_.max_probe_period), 2 * std::max(base, wait_)) : base;
     frames_to_probe_ = wait_;

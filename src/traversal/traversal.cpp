@@ -41,9 +41,10 @@ public:
 
     FrameStats run()
     {
+        const FrameOutlook outlook{nodes_, [this] { return in_frustum_triangles(0, Frustum::all_planes); }};
         FrameTesting testing = FrameTesting::full;
         for (TraversalPolicy *p : options_.policies)
-            testing = std::min(testing, p->begin_frame(nodes_.size()));
+            testing = std::min(testing, p->begin_frame(outlook));
         testing_ = testing != FrameTesting::off;
         // A strategy that orders the frame itself runs its own traversal
         // while it tests; switched off, it is not called at all and the
@@ -193,6 +194,8 @@ private:
         }
         if (visibility == Visibility::occluded) {
             ++stats_.nodes_occluded;
+            for (TraversalPolicy *p : options_.policies)
+                p->occluded(node);
             if (count_occluded_)
                 stats_.triangles_occluded += in_frustum_triangles(node, Frustum::all_planes);
             return;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <set>
 
 #include "culling/registry.h"
 #include "gl/offscreen_context.h"
@@ -58,6 +59,27 @@ struct BoxRow {
     std::optional<SceneRenderer> renderer;
     Camera camera;
 };
+
+// A hierarchy of five nodes: the root, an inner node 1 over leaves 3
+// and 4, and leaf 2.
+const std::vector<HierarchyNode> &five_nodes()
+{
+    static const std::vector<HierarchyNode> nodes = [] {
+        std::vector<HierarchyNode> n(5);
+        n[0].first_child = 1;
+        n[0].child_count = 2;
+        n[1].first_child = 3;
+        n[1].child_count = 2;
+        return n;
+    }();
+    return nodes;
+}
+
+// A frame over five_nodes() whose frustum holds `triangles`.
+FrameOutlook view_of(std::uint64_t triangles)
+{
+    return {five_nodes(), [triangles] { return triangles; }};
+}
 
 }  // namespace
 
@@ -121,8 +143,9 @@ private:
     std::optional<Frustum> frustum_;
 };
 
-// A probe (traversal/policies.h) is begun as a Frame::probe, tests inner
-// nodes only and draws what a frame draws; a frame tests leaves too.
+// A probe (traversal/policies.h) is begun as a Frame::probe and draws what
+// a frame draws; where no test found a leaf hidden it tests inner nodes
+// only, a frame leaves too.
 TEST(Traversal, ProbesTestInnerNodesOnlyAndDrawWhatAFrameDraws)
 {
     const BoxRow row(40);
@@ -154,6 +177,58 @@ TEST(Traversal, ProbesTestInnerNodesOnlyAndDrawWhatAFrameDraws)
     }
     EXPECT_EQ(probe_only.leaves, 0u) << "a probe tested leaves";
     EXPECT_GT(probe_only.inner, 0u) << "a probe tested no inner node";
+}
+
+// Finds the leaves it is given occluded and every other node in the
+// frustum visible, and keeps the leaves it was asked about since cleared.
+class HidesLeaves final : public Culler {
+public:
+    HidesLeaves(const Hierarchy &h, std::set<std::uint32_t> hidden) : h_(h), hidden_(std::move(hidden)) {}
+    void begin_frame(const Frame &frame) override { frustum_.emplace(frame.frustum); }
+    void test(std::vector<NodeTest> &tests) override
+    {
+        for (NodeTest &t : tests) {
+            if (h_.nodes()[t.node].leaf())
+                leaves.insert(t.node);
+            t.result = frustum_->classify(t.box) == Frustum::Side::outside ? Visibility::view_culled
+                       : hidden_.count(t.node)                             ? Visibility::occluded
+                                                                           : Visibility::visible;
+        }
+    }
+    std::set<std::uint32_t> leaves;
+
+private:
+    const Hierarchy &h_;
+    const std::set<std::uint32_t> hidden_;
+    std::optional<Frustum> frustum_;
+};
+
+// A probe tests the leaves the tests before it found hidden (too few to
+// keep the tests on) and no other leaf, and culls them as a frame does.
+TEST(Traversal, AProbeTestsTheLeavesFoundHidden)
+{
+    const BoxRow row(40);
+    const Strategy vfc = make_strategy("vfc", {row.scene, *row.h, *row.renderer});
+    const Frame frame(row.camera, 32, 32);
+    const FrameStats v = render_hierarchy(*row.renderer, *row.h, *vfc.culler, frame);
+    ASSERT_GT(v.drawn.size(), 4u);
+    const std::set<std::uint32_t> hidden{v.drawn[1], v.drawn[3]};
+    HidesLeaves hides(*row.h, hidden);
+    SwitchOff switch_off;   // off after frame 0, probe at frame 8
+    TraversalOptions options;
+    options.policies = {&switch_off};
+    std::vector<FrameStats> stats;
+    for (int f = 0; f <= 8; ++f) {
+        if (f == 8)
+            hides.leaves.clear();
+        stats.push_back(render_hierarchy(*row.renderer, *row.h, hides, frame, options));
+    }
+    ASSERT_TRUE(switch_off.off());
+    ASSERT_FALSE(stats[7].occlusion_tested);
+    ASSERT_TRUE(stats[8].occlusion_tested);
+    EXPECT_EQ(hides.leaves, hidden);
+    EXPECT_EQ(stats[8].drawn, stats[0].drawn);
+    EXPECT_EQ(stats[8].drawn.size() + hidden.size(), v.drawn.size());
 }
 
 // Answers occluded for every node but the root, which it finds visible.
@@ -219,10 +294,10 @@ TEST(Traversal, VisibleNodeListSkipsTestsOfLastFramesVisibleNodes)
 TEST(TraversalPolicies, VisibleNodeListAppliesToFullFramesOnly)
 {
     VisibleNodeList coherence(1000);
-    coherence.begin_frame(4);
+    coherence.begin_frame(view_of(1000));
     coherence.visible(2);
     coherence.end_frame({});
-    EXPECT_EQ(coherence.begin_frame(4), FrameTesting::full);
+    EXPECT_EQ(coherence.begin_frame(view_of(1000)), FrameTesting::full);
     EXPECT_EQ(coherence.node_testing(2, true, FrameTesting::full), NodeTesting::assumed_visible);
     EXPECT_EQ(coherence.node_testing(1, true, FrameTesting::full), NodeTesting::test);
     EXPECT_EQ(coherence.node_testing(2, true, FrameTesting::probe), NodeTesting::test);
@@ -237,12 +312,12 @@ TEST(TraversalPolicies, ProbeStopsAtItsBudgetAndIsJudgedThere)
     settings.probe_period = 1;
     settings.probe_nodes = 10;
     SwitchOff switch_off(settings);
-    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+    ASSERT_EQ(switch_off.begin_frame(view_of(100)), FrameTesting::full);
     FrameStats nothing_hidden;
     nothing_hidden.triangles = 100;
     switch_off.end_frame(nothing_hidden);
     ASSERT_TRUE(switch_off.off());
-    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::probe);
+    ASSERT_EQ(switch_off.begin_frame(view_of(100)), FrameTesting::probe);
     EXPECT_EQ(switch_off.node_testing(3, true, FrameTesting::probe), NodeTesting::skipped);
     EXPECT_EQ(switch_off.node_testing(0, false, FrameTesting::probe), NodeTesting::test);
     FrameStats so_far;
@@ -256,7 +331,7 @@ TEST(TraversalPolicies, ProbeStopsAtItsBudgetAndIsJudgedThere)
     whole.triangles = 1000;            // drawn untested after the cut
     switch_off.end_frame(whole);
     EXPECT_FALSE(switch_off.off());
-    EXPECT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+    EXPECT_EQ(switch_off.begin_frame(view_of(100)), FrameTesting::full);
 }
 
 // The switch-off judges the tested frames lately drawn, each by its
@@ -267,23 +342,89 @@ TEST(TraversalPolicies, ProbeStopsAtItsBudgetAndIsJudgedThere)
 TEST(TraversalPolicies, ASmallFrameHidingNothingDoesNotOutweighTheFramesBefore)
 {
     SwitchOff switch_off;   // min_gain 0.5
-    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+    ASSERT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::full);
     FrameStats much_hidden;
     much_hidden.triangles = 1000;
     much_hidden.triangles_occluded = 3000;
     switch_off.end_frame(much_hidden);
     ASSERT_FALSE(switch_off.off());
-    ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+    ASSERT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::full);
     FrameStats small_nothing_hidden;
     small_nothing_hidden.triangles = 600;
     switch_off.end_frame(small_nothing_hidden);
     EXPECT_FALSE(switch_off.off()) << "one small frame hiding nothing switched the tests off";
     int frames = 0;
     for (; frames < 8 && !switch_off.off(); ++frames) {
-        ASSERT_EQ(switch_off.begin_frame(4), FrameTesting::full);
+        ASSERT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::full);
         FrameStats nothing_hidden;
         nothing_hidden.triangles = 1000;
         switch_off.end_frame(nothing_hidden);
     }
     EXPECT_TRUE(switch_off.off()) << "8 frames hiding nothing left the tests on";
+}
+
+// A probe tests the leaves some test found hidden, their own or an inner
+// node's above them, and draws the others untested; a leaf found hidden
+// once is tested by every probe after.
+TEST(TraversalPolicies, AProbeTestsTheLeavesFoundHidden)
+{
+    SwitchOff::Settings settings;
+    settings.probe_period = settings.max_probe_period = 1;   // every frame a probe once off
+    SwitchOff switch_off(settings);
+    ASSERT_EQ(switch_off.begin_frame(view_of(100)), FrameTesting::full);
+    switch_off.visible(0);
+    switch_off.occluded(1);   // leaves 3 and 4 with it
+    switch_off.visible(2);
+    FrameStats little_hidden;
+    little_hidden.triangles = 90;
+    little_hidden.triangles_occluded = 10;
+    switch_off.end_frame(little_hidden);
+    ASSERT_TRUE(switch_off.off());
+
+    ASSERT_EQ(switch_off.begin_frame(view_of(100)), FrameTesting::probe);
+    EXPECT_EQ(switch_off.node_testing(1, false, FrameTesting::probe), NodeTesting::test);
+    EXPECT_EQ(switch_off.node_testing(2, true, FrameTesting::probe), NodeTesting::skipped);
+    EXPECT_EQ(switch_off.node_testing(3, true, FrameTesting::probe), NodeTesting::skipped);
+    switch_off.visible(1);    // now visible: its leaves were hidden with it
+    EXPECT_EQ(switch_off.node_testing(3, true, FrameTesting::probe), NodeTesting::test);
+    EXPECT_EQ(switch_off.node_testing(4, true, FrameTesting::probe), NodeTesting::test);
+    switch_off.visible(3);
+    switch_off.visible(4);
+    switch_off.end_frame(little_hidden);
+    ASSERT_TRUE(switch_off.off());
+
+    ASSERT_EQ(switch_off.begin_frame(view_of(100)), FrameTesting::probe);
+    EXPECT_EQ(switch_off.node_testing(2, true, FrameTesting::probe), NodeTesting::skipped);
+    EXPECT_EQ(switch_off.node_testing(3, true, FrameTesting::probe), NodeTesting::test);
+    EXPECT_EQ(switch_off.node_testing(4, true, FrameTesting::probe), NodeTesting::test);
+}
+
+// Switched off, a frame whose frustum holds more than twice the triangles
+// of every view judged since is probed at once, whatever the wait; a
+// view it judged not worth testing raises the bar, and the scheduled
+// probe comes when it would have.
+TEST(TraversalPolicies, AViewMuchLargerThanAnyJudgedIsProbedAtOnce)
+{
+    SwitchOff switch_off;   // probes 8 frames after switching off
+    ASSERT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::full);
+    FrameStats nothing_hidden;
+    nothing_hidden.triangles = 1000;
+    switch_off.end_frame(nothing_hidden);
+    ASSERT_TRUE(switch_off.off());
+    EXPECT_EQ(switch_off.begin_frame(view_of(2000)), FrameTesting::off);
+    FrameStats untested;
+    untested.occlusion_tested = false;
+    switch_off.end_frame(untested);
+    EXPECT_EQ(switch_off.begin_frame(view_of(2001)), FrameTesting::probe);
+    nothing_hidden.triangles = 2001;
+    switch_off.end_frame(nothing_hidden);
+    ASSERT_TRUE(switch_off.off());
+    EXPECT_EQ(switch_off.begin_frame(view_of(4002)), FrameTesting::off);
+    EXPECT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::off);
+    EXPECT_EQ(switch_off.begin_frame(view_of(4003)), FrameTesting::probe);
+    switch_off.end_frame(nothing_hidden);
+    // Frames 1-5 above; the probe 8 frames after switching off is frame 8.
+    EXPECT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::off);
+    EXPECT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::off);
+    EXPECT_EQ(switch_off.begin_frame(view_of(1000)), FrameTesting::probe);
 }
