@@ -3,6 +3,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -36,15 +38,39 @@ std::optional<BoxProjection> project_box(const glm::mat4 &view_projection, const
 {
     if (box.contains(eye))
         return std::nullopt;
+    // The eight corners (Aabb::corner's order) four at a time in SSE2 lanes
+    // (x86-64's baseline), each lane glm's float product for one corner in
+    // glm's order, (m0 x + m1 y) + (m2 z + m3), with no fused operation:
+    // every lane equals what glm computes, bit for bit. Every occlusion
+    // test projects every node it tests, so this is on every strategy's path.
+    const glm::mat4 &m = view_projection;
+    const __m128 x = _mm_setr_ps(box.min.x, box.max.x, box.min.x, box.max.x);
+    const __m128 y = _mm_setr_ps(box.min.y, box.min.y, box.max.y, box.max.y);
+    const __m128 negate = _mm_set1_ps(-0.0f), zero = _mm_setzero_ps();
+    alignas(16) float ndc_x[8], ndc_y[8], ndc_z[8];
+    int behind = 0;
+    for (int half = 0; half < 2; ++half) {
+        const __m128 z = _mm_set1_ps(half ? box.max.z : box.min.z);
+        __m128 row[4];
+        for (int r = 0; r < 4; ++r)
+            row[r] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[0][r]), x), _mm_mul_ps(_mm_set1_ps(m[1][r]), y)),
+                                _mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[2][r]), z), _mm_set1_ps(m[3][r])));
+        // c.w <= 0 or c.z < -c.w: behind the eye or in front of the near plane.
+        behind |= _mm_movemask_ps(_mm_or_ps(_mm_cmple_ps(row[3], zero), _mm_cmplt_ps(row[2], _mm_xor_ps(row[3], negate))));
+        _mm_store_ps(ndc_x + 4 * half, _mm_div_ps(row[0], row[3]));
+        _mm_store_ps(ndc_y + 4 * half, _mm_div_ps(row[1], row[3]));
+        _mm_store_ps(ndc_z + 4 * half, _mm_div_ps(row[2], row[3]));
+    }
+    if (behind)
+        return std::nullopt;
+    // Folded corner by corner as glm::min, glm::max and std::min fold them
+    // (a NaN corner leaves the bounds as they were).
     BoxProjection p{glm::vec2(1e30f), glm::vec2(-1e30f), 1.0f};
     for (int i = 0; i < 8; ++i) {
-        const glm::vec4 c = view_projection * glm::vec4(box.corner(i), 1.0f);
-        if (c.w <= 0.0f || c.z < -c.w)
-            return std::nullopt;
-        const glm::vec2 ndc(c.x / c.w, c.y / c.w);
+        const glm::vec2 ndc(ndc_x[i], ndc_y[i]);
         p.ndc_min = glm::min(p.ndc_min, ndc);
         p.ndc_max = glm::max(p.ndc_max, ndc);
-        p.window_z_near = std::min(p.window_z_near, 0.5f * (c.z / c.w) + 0.5f);
+        p.window_z_near = std::min(p.window_z_near, 0.5f * ndc_z[i] + 0.5f);
     }
     return p;
 }

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <random>
 
 using namespace occu;
@@ -123,4 +126,64 @@ TEST(Frustum, PlaneMaskOfAnEnclosingBoxGivesTheSameAnswer)
     }
     EXPECT_GT(masked, 500);   // enclosing boxes left planes out
     EXPECT_GT(inside, 100);   // and answers came from the masked planes alone
+}
+
+// project_box takes its corners four at a time in SIMD lanes; its answer is
+// the corner-by-corner fold of glm's float transform, bit for bit (the
+// footprints, and so every strategy's culling, do not move), near the eye,
+// across the near plane, far off and with non-finite corners too.
+TEST(ProjectBox, EqualsGlmsTransformCornerByCornerBitForBit)
+{
+    const auto reference = [](const glm::mat4 &vp, const glm::vec3 &eye, const Aabb &box) {
+        std::optional<BoxProjection> none;
+        if (box.contains(eye))
+            return none;
+        BoxProjection p{glm::vec2(1e30f), glm::vec2(-1e30f), 1.0f};
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec4 c = vp * glm::vec4(box.corner(i), 1.0f);
+            if (c.w <= 0.0f || c.z < -c.w)
+                return none;
+            const glm::vec2 ndc(c.x / c.w, c.y / c.w);
+            p.ndc_min = glm::min(p.ndc_min, ndc);
+            p.ndc_max = glm::max(p.ndc_max, ndc);
+            p.window_z_near = std::min(p.window_z_near, 0.5f * (c.z / c.w) + 0.5f);
+        }
+        return std::optional<BoxProjection>(p);
+    };
+    const auto bits = [](float f) {
+        std::uint32_t u;
+        std::memcpy(&u, &f, sizeof u);
+        return u;
+    };
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(-1, 1), size(0.001f, 1), fov(20, 120);
+    int projected = 0, none = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Camera c;
+        const float scale = std::pow(10.0f, float(i % 7));   // 1 m to 1e6 m from the origin
+        c.position = glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
+        c.target = c.position + glm::vec3(unit(rng), unit(rng), unit(rng));
+        c.fovy_degrees = fov(rng);
+        c.aspect = 0.5f + size(rng);
+        const glm::mat4 vp = c.view_projection();
+        const glm::vec3 lo = c.position + glm::vec3(unit(rng), unit(rng), unit(rng)) * 50.0f;
+        Aabb box = Aabb::of(lo, lo + glm::vec3(size(rng), size(rng), size(rng)) * 30.0f);
+        if (i % 97 == 0)
+            box.max.y = std::numeric_limits<float>::infinity();
+        const auto expected = reference(vp, c.position, box);
+        const auto got = project_box(vp, c.position, box);
+        ASSERT_EQ(bool(expected), bool(got)) << "box " << i;
+        if (!expected) {
+            ++none;
+            continue;
+        }
+        ++projected;
+        ASSERT_EQ(bits(got->ndc_min.x), bits(expected->ndc_min.x)) << "box " << i;
+        ASSERT_EQ(bits(got->ndc_min.y), bits(expected->ndc_min.y)) << "box " << i;
+        ASSERT_EQ(bits(got->ndc_max.x), bits(expected->ndc_max.x)) << "box " << i;
+        ASSERT_EQ(bits(got->ndc_max.y), bits(expected->ndc_max.y)) << "box " << i;
+        ASSERT_EQ(bits(got->window_z_near), bits(expected->window_z_near)) << "box " << i;
+    }
+    EXPECT_GT(projected, 5000);   // the test compared footprints
+    EXPECT_GT(none, 1000);        // and boxes across the near plane or around the eye
 }
