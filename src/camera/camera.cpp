@@ -82,8 +82,14 @@ Frustum::Frustum(const glm::mat4 &m)
     auto row = [&m](int i) { return glm::vec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
     const glm::vec4 w = row(3);
     planes_ = {w + row(0), w - row(0), w + row(1), w - row(1), w + row(2), w - row(2)};
-    for (glm::vec4 &p : planes_)
+    for (std::size_t i = 0; i < planes_.size(); ++i) {
+        glm::vec4 &p = planes_[i];
         p /= glm::length(glm::vec3(p));
+        lane_x_[i] = p.x;
+        lane_y_[i] = p.y;
+        lane_z_[i] = p.z;
+        lane_w_[i] = p.w;
+    }
 }
 
 Frustum::Side Frustum::classify(const Aabb &box) const
@@ -94,27 +100,43 @@ Frustum::Side Frustum::classify(const Aabb &box) const
 
 Frustum::Side Frustum::classify(const Aabb &box, unsigned &crossing) const
 {
-    Side side = Side::inside;
-    const unsigned planes = crossing;
-    crossing = 0;
-    for (unsigned i = 0; i < planes_.size(); ++i) {
-        if (!(planes & (1u << i)))
-            continue;
-        const glm::vec4 &p = planes_[i];
-        const glm::vec3 n(p);
-        // The corner farthest along the normal, and the nearest.
-        const glm::vec3 far_corner{n.x >= 0 ? box.max.x : box.min.x, n.y >= 0 ? box.max.y : box.min.y,
-                                   n.z >= 0 ? box.max.z : box.min.z};
-        const glm::vec3 near_corner{n.x >= 0 ? box.min.x : box.max.x, n.y >= 0 ? box.min.y : box.max.y,
-                                    n.z >= 0 ? box.min.z : box.max.z};
-        if (glm::dot(n, far_corner) + p.w < 0.0f)
-            return Side::outside;
-        if (glm::dot(n, near_corner) + p.w < 0.0f) {
-            side = Side::intersecting;
-            crossing |= 1u << i;
-        }
+    // Four planes a step in SSE2 lanes: for each, the box's corner farthest
+    // along its normal (behind it: the box is outside) and the nearest
+    // (behind it: the box reaches across), glm::dot's order
+    // (n.x c.x + n.y c.y) + n.z c.z, then + w. The answer is that of the
+    // planes in order: the first in `crossing` with the box behind it
+    // decides outside, and the planes crossed before it are reported.
+    const __m128 zero = _mm_setzero_ps();
+    const __m128 lo_x = _mm_set1_ps(box.min.x), lo_y = _mm_set1_ps(box.min.y), lo_z = _mm_set1_ps(box.min.z);
+    const __m128 hi_x = _mm_set1_ps(box.max.x), hi_y = _mm_set1_ps(box.max.y), hi_z = _mm_set1_ps(box.max.z);
+    const auto select = [](__m128 mask, __m128 a, __m128 b) {
+        return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+    };
+    unsigned behind = 0, across = 0;
+    for (int g = 0; g < 8; g += 4) {
+        const __m128 nx = _mm_load_ps(lane_x_ + g), ny = _mm_load_ps(lane_y_ + g), nz = _mm_load_ps(lane_z_ + g),
+                     nw = _mm_load_ps(lane_w_ + g);
+        const __m128 px = _mm_cmpge_ps(nx, zero), py = _mm_cmpge_ps(ny, zero), pz = _mm_cmpge_ps(nz, zero);
+        const __m128 far = _mm_add_ps(
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, select(px, hi_x, lo_x)), _mm_mul_ps(ny, select(py, hi_y, lo_y))),
+                       _mm_mul_ps(nz, select(pz, hi_z, lo_z))),
+            nw);
+        const __m128 near = _mm_add_ps(
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, select(px, lo_x, hi_x)), _mm_mul_ps(ny, select(py, lo_y, hi_y))),
+                       _mm_mul_ps(nz, select(pz, lo_z, hi_z))),
+            nw);
+        behind |= unsigned(_mm_movemask_ps(_mm_cmplt_ps(far, zero))) << g;
+        across |= unsigned(_mm_movemask_ps(_mm_cmplt_ps(near, zero))) << g;
     }
-    return side;
+    const unsigned planes = crossing & all_planes;
+    behind &= planes;
+    across &= planes;
+    if (behind) {
+        crossing = across & ((behind & (~behind + 1u)) - 1u);   // the planes before the first behind
+        return Side::outside;
+    }
+    crossing = across;
+    return across ? Side::intersecting : Side::inside;
 }
 
 }  // namespace occu

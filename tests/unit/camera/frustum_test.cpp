@@ -187,3 +187,56 @@ TEST(ProjectBox, EqualsGlmsTransformCornerByCornerBitForBit)
     EXPECT_GT(projected, 5000);   // the test compared footprints
     EXPECT_GT(none, 1000);        // and boxes across the near plane or around the eye
 }
+
+// Frustum::classify takes four planes a step in SIMD lanes; its answer and
+// the planes it reports crossed are those of the planes tested one by one
+// in order (glm::dot's float sums), for any subset of planes, boxes from
+// tiny to huge and far from the origin.
+TEST(Frustum, LanesAnswerAsThePlanesOneByOne)
+{
+    const auto reference = [](const Frustum &f, const Aabb &box, unsigned &crossing) {
+        Frustum::Side side = Frustum::Side::inside;
+        const unsigned planes = crossing;
+        crossing = 0;
+        for (unsigned i = 0; i < 6; ++i) {
+            if (!(planes & (1u << i)))
+                continue;
+            const glm::vec4 &p = f.planes()[i];
+            const glm::vec3 n(p);
+            const glm::vec3 far_corner{n.x >= 0 ? box.max.x : box.min.x, n.y >= 0 ? box.max.y : box.min.y,
+                                       n.z >= 0 ? box.max.z : box.min.z};
+            const glm::vec3 near_corner{n.x >= 0 ? box.min.x : box.max.x, n.y >= 0 ? box.min.y : box.max.y,
+                                        n.z >= 0 ? box.min.z : box.max.z};
+            if (glm::dot(n, far_corner) + p.w < 0.0f)
+                return Frustum::Side::outside;
+            if (glm::dot(n, near_corner) + p.w < 0.0f) {
+                side = Frustum::Side::intersecting;
+                crossing |= 1u << i;
+            }
+        }
+        return side;
+    };
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> unit(-1, 1), size(0.001f, 1), fov(20, 120);
+    std::uniform_int_distribution<unsigned> mask(0, Frustum::all_planes);
+    int counts[3] = {};
+    for (int i = 0; i < 20000; ++i) {
+        Camera c;
+        const float scale = std::pow(10.0f, float(i % 7));
+        c.position = glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
+        c.target = c.position + glm::vec3(unit(rng), unit(rng), unit(rng));
+        c.fovy_degrees = fov(rng);
+        c.near_plane = 0.1f;
+        c.far_plane = 200.0f;
+        const Frustum f(c.view_projection());
+        const glm::vec3 lo = c.position + glm::vec3(unit(rng), unit(rng), unit(rng)) * 250.0f;
+        const Aabb box = Aabb::of(lo, lo + glm::vec3(size(rng), size(rng), size(rng)) * std::pow(10.0f, float(i % 4)));
+        unsigned expected_crossing = i % 2 ? Frustum::all_planes : mask(rng), crossing = expected_crossing;
+        const Frustum::Side expected = reference(f, box, expected_crossing);
+        ASSERT_EQ(f.classify(box, crossing), expected) << "box " << i;
+        ASSERT_EQ(crossing, expected_crossing) << "box " << i;
+        ++counts[int(expected)];
+    }
+    for (int side = 0; side < 3; ++side)
+        EXPECT_GT(counts[side], 1000) << "side " << side;   // every answer was compared
+}
