@@ -1034,14 +1034,20 @@ bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
     // window depth, in double: this test decides what is not drawn.
     const double k = options_.divisor;
     const double sx = 0.5 * double(frame_width_) / k, sy = 0.5 * double(frame_height_) / k;
-    glm::dvec2 window[8];
-    double corner_depth[8];
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec4 c = glm::dmat4(view_projection_) * glm::dvec4(glm::dvec3(box.corner(i)), 1.0);
-        if (!(c.w > 0.0) || c.z < -c.w)
+    double window_x[8], window_y[8], corner_depth[8];
+    if (isa_ == Isa::avx2) {
+        if (!raster::box_corners_window_avx2(&view_projection_double_[0][0], &box.min.x, &box.max.x, sx, sy, window_x,
+                                             window_y, corner_depth))
             return false;   // in front of the near plane, or around the eye
-        window[i] = {(c.x / c.w + 1.0) * sx, (c.y / c.w + 1.0) * sy};
-        corner_depth[i] = c.z / c.w * 0.5 + 0.5;
+    } else {
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec4 c = view_projection_double_ * glm::dvec4(glm::dvec3(box.corner(i)), 1.0);
+            if (!(c.w > 0.0) || c.z < -c.w)
+                return false;
+            window_x[i] = (c.x / c.w + 1.0) * sx;
+            window_y[i] = (c.y / c.w + 1.0) * sy;
+            corner_depth[i] = c.z / c.w * 0.5 + 0.5;
+        }
     }
     // The box's content can be nearer than its faces nowhere, and nearer
     // than its nearest corner nowhere: both bounds less the depth margin.
@@ -1052,7 +1058,7 @@ bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
         glm::dvec2 p[4];
         double z[4];
         for (int i = 0; i < 4; ++i) {
-            p[i] = window[face[i]];
+            p[i] = {window_x[face[i]], window_y[face[i]]};
             z[i] = corner_depth[face[i]];
         }
         // A face facing away is skipped: the faces that face the eye cover

@@ -19,6 +19,15 @@ namespace occu::raster {
 void occludee_transform_avx2(const double *m, const double *magnitude, double product_error,
                              const float *const corners[3], double clip[3][4], double bound[3][4]);
 
+// A box's eight corners (Aabb::corner's order: bit 0 max x, bit 1 max y,
+// bit 2 max z; lo and hi its min and max) through the view-projection matrix
+// as double columns m0..m3, glm's order, each corner a lane: window
+// coordinates of the buffer ((x / w + 1) sx, (y / w + 1) sy) and window
+// depth (z / w 0.5 + 0.5). False (the outputs then unset) where a corner
+// has !(w > 0) or z < -w: in front of the near plane, or around the eye.
+bool box_corners_window_avx2(const double *m, const float lo[3], const float hi[3], double sx, double sy,
+                             double window_x[8], double window_y[8], double depth[8]);
+
 // A convex polygon of at most 4 edges in buffer pixels: depth pixel (X, Y)
 // is reached where (ea[e] X + eb[e] Y) + ec[e] >= 0 for every edge e, and
 // the polygon is no nearer there than max(floor_z, (za X + zb Y) + zc).

@@ -28,6 +28,29 @@ void occludee_transform_avx2(const double *m, const double *magnitude, double pr
     }
 }
 
+bool box_corners_window_avx2(const double *m, const float lo[3], const float hi[3], double sx, double sy,
+                             double window_x[8], double window_y[8], double depth[8])
+{
+    const __m256d x = _mm256_setr_pd(lo[0], hi[0], lo[0], hi[0]), y = _mm256_setr_pd(lo[1], lo[1], hi[1], hi[1]);
+    const __m256d one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5), zero = _mm256_setzero_pd();
+    const __m256d scale_x = _mm256_set1_pd(sx), scale_y = _mm256_set1_pd(sy), sign = _mm256_set1_pd(-0.0);
+    for (int g = 0; g < 2; ++g) {
+        const __m256d z = _mm256_set1_pd(g ? hi[2] : lo[2]);
+        __m256d row[4];
+        for (int r = 0; r < 4; ++r)
+            row[r] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[r]), x), _mm256_mul_pd(_mm256_set1_pd(m[4 + r]), y)),
+                                   _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[8 + r]), z), _mm256_set1_pd(m[12 + r])));
+        const __m256d outside = _mm256_or_pd(_mm256_cmp_pd(row[3], zero, _CMP_NGT_UQ),
+                                             _mm256_cmp_pd(row[2], _mm256_xor_pd(row[3], sign), _CMP_LT_OQ));
+        if (_mm256_movemask_pd(outside) != 0)
+            return false;
+        _mm256_storeu_pd(window_x + 4 * g, _mm256_mul_pd(_mm256_add_pd(_mm256_div_pd(row[0], row[3]), one), scale_x));
+        _mm256_storeu_pd(window_y + 4 * g, _mm256_mul_pd(_mm256_add_pd(_mm256_div_pd(row[1], row[3]), one), scale_y));
+        _mm256_storeu_pd(depth + 4 * g, _mm256_add_pd(_mm256_mul_pd(_mm256_div_pd(row[2], row[3]), half), half));
+    }
+    return true;
+}
+
 bool tile_pixels_behind_avx2(const OccludeeEdges &p, const float *tile, int x8, int y8, int c0, int c1, int r0,
                              int r1)
 {
