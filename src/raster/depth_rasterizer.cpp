@@ -1078,48 +1078,24 @@ bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::
     if (any_dirty_)
         update_tile_maxima();
     for (std::size_t t = 0; t < count; ++t) {
-        // Each corner's clip position, and the bound of GL's float error in
-        // its rows: add_transform_error's, each row's sum of magnitudes
-        // taken as one product of magnitudes (|m| |p|; only the order of the
-        // additions differs, far below product_error's slack).
+        // Each corner's window position, and the bound of GL's float error
+        // from its clip coordinates: add_transform_error's, each row's sum
+        // of magnitudes taken as one product of magnitudes (|m| |p|; only
+        // the order of the additions differs, far below product_error's
+        // slack).
         const float *const corner[3] = {&positions[indices[3 * t]].x, &positions[indices[3 * t + 1]].x,
                                         &positions[indices[3 * t + 2]].x};
-        double clip[3][4], bound[3][4];
+        raster::OccludeeCorners q;
         if (isa_ == Isa::avx2) {
-            raster::occludee_transform_avx2(&m[0][0], &magnitude[0][0], product_error, corner, clip, bound);
-        } else {
-            for (int i = 0; i < 3; ++i) {
-                const glm::dvec3 p(corner[i][0], corner[i][1], corner[i][2]);
-                const glm::dvec4 c = m * glm::dvec4(p, 1.0), b = product_error * (magnitude * glm::dvec4(glm::abs(p), 1.0));
-                for (int r = 0; r < 4; ++r) {
-                    clip[i][r] = c[r];
-                    bound[i][r] = b[r];
-                }
-            }
-        }
-        glm::dvec2 p[3];
-        double z[3];
-        unsigned out_all = 63;   // beyond one side of the frustum with every corner: GL draws none of it
-        TransformError error{0.0, 0.0};   // how far GL's transform may move it
-        for (int i = 0; i < 3; ++i) {
-            const glm::dvec4 c(clip[i][0], clip[i][1], clip[i][2], clip[i][3]);
-            const glm::dvec4 b(bound[i][0], bound[i][1], bound[i][2], bound[i][3]);
-            if (!std::isfinite(c.x + c.y + c.z + c.w) || !(c.w > 0.0) || c.z < -c.w)
+            if (!raster::occludee_corners_avx2(&m[0][0], &magnitude[0][0], product_error, corner, sx, sy, q))
                 return false;   // across the near plane, around the eye, or unknown: not shown hidden
-            out_all &= unsigned(c.x > c.w) << 0 | unsigned(c.x < -c.w) << 1 | unsigned(c.y > c.w) << 2 |
-                       unsigned(c.y < -c.w) << 3 | unsigned(c.z > c.w) << 4;
-            const glm::dvec3 ndc = glm::dvec3(c) / c.w;
-            p[i] = {(ndc.x + 1.0) * sx, (ndc.y + 1.0) * sy};
-            z[i] = ndc.z * 0.5 + 0.5;
-            if (!(c.w > b.w)) {
-                error.window = error.depth = std::numeric_limits<double>::infinity();
-                continue;
-            }
-            const double w = c.w - b.w;
-            error.window = std::max({error.window, sx * (b.x + std::abs(ndc.x) * b.w) / w,
-                                     sy * (b.y + std::abs(ndc.y) * b.w) / w});
-            error.depth = std::max(error.depth, 0.5 * (b.z + std::abs(ndc.z) * b.w) / w);
+        } else if (!raster::occludee_corners_scalar(&m[0][0], &magnitude[0][0], product_error, corner, sx, sy, q)) {
+            return false;
         }
+        const glm::dvec2 p[3] = {{q.x[0], q.y[0]}, {q.x[1], q.y[1]}, {q.x[2], q.y[2]}};
+        double z[3] = {q.z[0], q.z[1], q.z[2]};
+        const unsigned out_all = q.beyond;   // beyond one side of the frustum with every corner: GL draws none of it
+        const TransformError error{q.window, q.depth};   // how far GL's transform may move it
         if (out_all)
             continue;
         // Never nearer than its nearest corner, less the depth margin and
