@@ -59,6 +59,9 @@ public:
 
 private:
     std::array<glm::vec4, 6> planes_;
+    // The same planes coordinate by coordinate, for four planes a step in
+    // SIMD lanes (the last two lanes zero: never behind).
+    alignas(16) float lane_x_[8] = {}, lane_y_[8] = {}, lane_z_[8] = {}, lane_w_[8] = {};
 };
 
 }  // namespace occu

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "raster/depth_rasterizer.h"
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -989,14 +991,18 @@ bool DepthRasterizer::all_nearer(int x0, int y0, int x1, int y1, float z) const
 
 void DepthRasterizer::refresh_tile_maximum(std::size_t t) const
 {
-    // Column by column first (a row's lanes at once), then across.
+    // The largest of its pixels (which hold no NaN): each half row's four
+    // lanes at once in SSE2 (x86-64's baseline), then across.
     const float *tile = tiles_.data() + t * tile_pixels;
-    float column[tile_size];
-    std::copy(tile, tile + tile_size, column);
-    for (int y = 1; y < tile_size; ++y)
-        for (int x = 0; x < tile_size; ++x)
-            column[x] = std::max(column[x], tile[y * tile_size + x]);
-    tile_max_[t] = *std::max_element(column, column + tile_size);
+    __m128 left = _mm_loadu_ps(tile), right = _mm_loadu_ps(tile + 4);
+    for (int y = 1; y < tile_size; ++y) {
+        left = _mm_max_ps(left, _mm_loadu_ps(tile + y * tile_size));
+        right = _mm_max_ps(right, _mm_loadu_ps(tile + y * tile_size + 4));
+    }
+    __m128 m = _mm_max_ps(left, right);
+    m = _mm_max_ps(m, _mm_movehl_ps(m, m));
+    m = _mm_max_ss(m, _mm_shuffle_ps(m, m, 1));
+    tile_max_[t] = _mm_cvtss_f32(m);
     dirty_[t] = 0;
 }
 
@@ -1048,14 +1054,20 @@ bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
     // window depth, in double: this test decides what is not drawn.
     const double k = options_.divisor;
     const double sx = 0.5 * double(frame_width_) / k, sy = 0.5 * double(frame_height_) / k;
-    glm::dvec2 window[8];
-    double corner_depth[8];
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec4 c = glm::dmat4(view_projection_) * glm::dvec4(glm::dvec3(box.corner(i)), 1.0);
-        if (!(c.w > 0.0) || c.z < -c.w)
+    double window_x[8], window_y[8], corner_depth[8];
+    if (isa_ == Isa::avx2) {
+        if (!raster::box_corners_window_avx2(&view_projection_double_[0][0], &box.min.x, &box.max.x, sx, sy, window_x,
+                                             window_y, corner_depth))
             return false;   // in front of the near plane, or around the eye
-        window[i] = {(c.x / c.w + 1.0) * sx, (c.y / c.w + 1.0) * sy};
-        corner_depth[i] = c.z / c.w * 0.5 + 0.5;
+    } else {
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec4 c = view_projection_double_ * glm::dvec4(glm::dvec3(box.corner(i)), 1.0);
+            if (!(c.w > 0.0) || c.z < -c.w)
+                return false;
+            window_x[i] = (c.x / c.w + 1.0) * sx;
+            window_y[i] = (c.y / c.w + 1.0) * sy;
+            corner_depth[i] = c.z / c.w * 0.5 + 0.5;
+        }
     }
     // The box's content can be nearer than its faces nowhere, and nearer
     // than its nearest corner nowhere: both bounds less the depth margin.
@@ -1066,7 +1078,7 @@ bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
         glm::dvec2 p[4];
         double z[4];
         for (int i = 0; i < 4; ++i) {
-            p[i] = window[face[i]];
+            p[i] = {window_x[face[i]], window_y[face[i]]};
             z[i] = corner_depth[face[i]];
         }
         // A face facing away is skipped: the faces that face the eye cover
@@ -1086,48 +1098,24 @@ bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::
     if (any_dirty_)
         update_tile_maxima();
     for (std::size_t t = 0; t < count; ++t) {
-        // Each corner's clip position, and the bound of GL's float error in
-        // its rows: add_transform_error's, each row's sum of magnitudes
-        // taken as one product of magnitudes (|m| |p|; only the order of the
-        // additions differs, far below product_error's slack).
+        // Each corner's window position, and the bound of GL's float error
+        // from its clip coordinates: add_transform_error's, each row's sum
+        // of magnitudes taken as one product of magnitudes (|m| |p|; only
+        // the order of the additions differs, far below product_error's
+        // slack).
         const float *const corner[3] = {&positions[indices[3 * t]].x, &positions[indices[3 * t + 1]].x,
                                         &positions[indices[3 * t + 2]].x};
-        double clip[3][4], bound[3][4];
+        raster::OccludeeCorners q;
         if (isa_ == Isa::avx2) {
-            raster::occludee_transform_avx2(&m[0][0], &magnitude[0][0], product_error, corner, clip, bound);
-        } else {
-            for (int i = 0; i < 3; ++i) {
-                const glm::dvec3 p(corner[i][0], corner[i][1], corner[i][2]);
-                const glm::dvec4 c = m * glm::dvec4(p, 1.0), b = product_error * (magnitude * glm::dvec4(glm::abs(p), 1.0));
-                for (int r = 0; r < 4; ++r) {
-                    clip[i][r] = c[r];
-                    bound[i][r] = b[r];
-                }
-            }
-        }
-        glm::dvec2 p[3];
-        double z[3];
-        unsigned out_all = 63;   // beyond one side of the frustum with every corner: GL draws none of it
-        TransformError error{0.0, 0.0};   // how far GL's transform may move it
-        for (int i = 0; i < 3; ++i) {
-            const glm::dvec4 c(clip[i][0], clip[i][1], clip[i][2], clip[i][3]);
-            const glm::dvec4 b(bound[i][0], bound[i][1], bound[i][2], bound[i][3]);
-            if (!std::isfinite(c.x + c.y + c.z + c.w) || !(c.w > 0.0) || c.z < -c.w)
+            if (!raster::occludee_corners_avx2(&m[0][0], &magnitude[0][0], product_error, corner, sx, sy, q))
                 return false;   // across the near plane, around the eye, or unknown: not shown hidden
-            out_all &= unsigned(c.x > c.w) << 0 | unsigned(c.x < -c.w) << 1 | unsigned(c.y > c.w) << 2 |
-                       unsigned(c.y < -c.w) << 3 | unsigned(c.z > c.w) << 4;
-            const glm::dvec3 ndc = glm::dvec3(c) / c.w;
-            p[i] = {(ndc.x + 1.0) * sx, (ndc.y + 1.0) * sy};
-            z[i] = ndc.z * 0.5 + 0.5;
-            if (!(c.w > b.w)) {
-                error.window = error.depth = std::numeric_limits<double>::infinity();
-                continue;
-            }
-            const double w = c.w - b.w;
-            error.window = std::max({error.window, sx * (b.x + std::abs(ndc.x) * b.w) / w,
-                                     sy * (b.y + std::abs(ndc.y) * b.w) / w});
-            error.depth = std::max(error.depth, 0.5 * (b.z + std::abs(ndc.z) * b.w) / w);
+        } else if (!raster::occludee_corners_scalar(&m[0][0], &magnitude[0][0], product_error, corner, sx, sy, q)) {
+            return false;
         }
+        const glm::dvec2 p[3] = {{q.x[0], q.y[0]}, {q.x[1], q.y[1]}, {q.x[2], q.y[2]}};
+        double z[3] = {q.z[0], q.z[1], q.z[2]};
+        const unsigned out_all = q.beyond;   // beyond one side of the frustum with every corner: GL draws none of it
+        const TransformError error{q.window, q.depth};   // how far GL's transform may move it
         if (out_all)
             continue;
         // Never nearer than its nearest corner, less the depth margin and

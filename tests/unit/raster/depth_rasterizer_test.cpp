@@ -18,6 +18,7 @@
 #include "camera/footprint.h"
 #include "gl/gl_headers.h"
 #include "gl/offscreen_context.h"
+#include "raster/occludee_kernels.h"
 
 using namespace occu;
 
@@ -516,6 +517,62 @@ TEST(DepthRasterizer, ScalarAndAvx2OccludeeTestsAgree)
     EXPECT_GT(shown, 200);
     EXPECT_GT(boxes_hidden, 100);
     EXPECT_GT(boxes_shown, 100);
+}
+
+// The triangle test's corner stage (window position, sides beyond, the
+// bound of GL's transform error) in AVX2 lanes equals its scalar twin bit
+// for bit: near the origin and up to 1e6 m from it (where the error bound
+// grows to pixels), beyond the far plane and the sides, across the near
+// plane and with a corner that is not finite.
+TEST(DepthRasterizer, ScalarAndAvx2OccludeeCornersAgreeBitForBit)
+{
+    if (!DepthRasterizer::avx2_supported())
+        GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
+    const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    const double product_error = 8.0 * std::numeric_limits<float>::epsilon();
+    std::mt19937 rng(61);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    int shown = 0, beyond = 0, unknown = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Camera c;
+        const float scale = std::pow(10.0f, float(i % 7));
+        c.position = glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
+        c.target = c.position + glm::vec3(unit(rng), unit(rng), unit(rng));
+        c.near_plane = 0.1f;
+        c.far_plane = 100.0f;
+        const glm::dmat4 m(c.view_projection());
+        glm::dmat4 magnitude;
+        for (int k = 0; k < 4; ++k)
+            magnitude[k] = glm::abs(m[k]);
+        glm::vec3 v[3];
+        const glm::vec3 centre = c.position + glm::vec3(unit(rng), unit(rng), unit(rng)) * 120.0f;
+        for (glm::vec3 &x : v)
+            x = centre + glm::vec3(unit(rng), unit(rng), unit(rng)) * 10.0f;
+        if (i % 101 == 0)
+            v[i % 3].y = std::numeric_limits<float>::quiet_NaN();
+        const float *const corners[3] = {&v[0].x, &v[1].x, &v[2].x};
+        const double sx = 128.0 / (1 + i % 4), sy = 96.0 / (1 + i % 4);
+        raster::OccludeeCorners a{}, b{};
+        const bool known = raster::occludee_corners_scalar(&m[0][0], &magnitude[0][0], product_error, corners, sx, sy, a);
+        ASSERT_EQ(known, raster::occludee_corners_avx2(&m[0][0], &magnitude[0][0], product_error, corners, sx, sy, b))
+            << "triangle " << i;
+        if (!known) {
+            ++unknown;
+            continue;
+        }
+        ++shown;
+        ASSERT_EQ(a.beyond, b.beyond) << "triangle " << i;
+        beyond += a.beyond != 0;
+        ASSERT_TRUE(same(a.window, b.window)) << "triangle " << i << ": " << a.window << " " << b.window;
+        ASSERT_TRUE(same(a.depth, b.depth)) << "triangle " << i << ": " << a.depth << " " << b.depth;
+        for (int k = 0; k < 3; ++k) {
+            ASSERT_TRUE(same(a.x[k], b.x[k]) && same(a.y[k], b.y[k]) && same(a.z[k], b.z[k]))
+                << "triangle " << i << " corner " << k;
+        }
+    }
+    EXPECT_GT(shown, 3000);     // corners compared
+    EXPECT_GT(beyond, 1000);    // with every corner beyond a side
+    EXPECT_GT(unknown, 1000);   // and triangles across the near plane or not finite
 }
 
 TEST(DepthRasterizer, RectangleTestEqualsAScanOfTheBuffer)
