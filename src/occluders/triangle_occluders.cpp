@@ -110,7 +110,12 @@ float TriangleOccluders::bound_per_area(const Aabb &box, float &nearest_w) const
     nearest_w = v.w_row.w;
     for (int axis = 0; axis < 3; ++axis)
         nearest_w += std::min(v.w_row[axis] * box.min[axis], v.w_row[axis] * box.max[axis]);
-    const float farthest = glm::length(glm::max(glm::abs(v.eye - box.min), glm::abs(box.max - v.eye)));
+    float far_squared = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const float d = std::max(std::fabs(v.eye[axis] - box.min[axis]), std::fabs(box.max[axis] - v.eye[axis]));
+        far_squared += d * d;
+    }
+    const float farthest = std::sqrt(far_squared);
     const float scale = std::abs(v.area_scale) * farthest;
     if (nearest_w > v.near)
         return scale / (nearest_w * nearest_w * nearest_w);
@@ -150,14 +155,18 @@ void TriangleOccluders::scan(const Group &g, const Aabb &box, unsigned planes)
         if (full() && !(lanes_.twice_area[first] * per_area > smallest_chosen()))
             return;
         // Eight scored at once; what depends on the budget's smallest
-        // score, which rises as triangles are taken, is tested one by one.
+        // score, which rises as triangles are taken, is tested one by one,
+        // on the kept lanes alone: the group is largest first and the score
+        // to beat does not move over the lanes skipped, so where a skipped
+        // lane's bound falls short, the next kept lane's does too.
         const int count = int(std::min<std::uint32_t>(8, end - first));
         score_lanes_(lanes_, nullptr, first, count, view_, planes, lanes);
-        for (int i = 0; i < count; ++i) {
+        for (unsigned kept = lanes.keep; kept != 0; kept &= kept - 1) {
+            const int i = __builtin_ctz(kept);
             const std::uint32_t t = first + std::uint32_t(i);
             if (full() && !(lanes_.twice_area[t] * per_area > smallest_chosen()))
                 return;
-            if (!(lanes.keep & (1u << i)) || taken_again_[t])
+            if (taken_again_[t])
                 continue;
             const float most = lanes.most[i];
             if (beyond_near && (!(most > 0.0f) || (full() && !(most > smallest_chosen() * nearest_cubed))))
@@ -201,11 +210,12 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
         const auto smaller_bound = [](const Candidate &a, const Candidate &b) { return a.bound < b.bound; };
         candidates_.clear();
         const auto offer = [&](std::uint32_t n, unsigned planes) {
-            if (!(node_largest_[n] > 0.0f) || frame.frustum.classify(nodes[n].bounds, planes) == Frustum::Side::outside)
+            if (!(node_largest_[n] > 0.0f))
                 return;
             float nearest_w;
             const float bound = node_largest_[n] * bound_per_area(nodes[n].bounds, nearest_w);
-            if (full() && !(bound > smallest_chosen()))
+            if ((full() && !(bound > smallest_chosen())) ||
+                frame.frustum.classify(nodes[n].bounds, planes) == Frustum::Side::outside)
                 return;
             candidates_.push_back({bound, n, planes});
             std::push_heap(candidates_.begin(), candidates_.end(), smaller_bound);
