@@ -1,27 +1,34 @@
 // SPDX-License-Identifier: MIT
 // occu-bench-choice: what choosing the scene's own triangles as occluders
-// (occluders/triangle_occluders.h) costs a frame, without GL or the
-// rasterizer, on the scene and route the walkthrough would take with the
-// same options, as `skins-triangles` chooses them (occluder-triangles=1024
-// unless --budget says otherwise, leaf by leaf of the scene's hierarchy).
+// (occluders/triangle_occluders.h) costs a frame, without GL, on the scene
+// and route the walkthrough would take with the same options, as
+// `skins-triangles` chooses them (occluder-triangles=1024 unless --budget
+// says otherwise, leaf by leaf of the scene's hierarchy).
 //
 //   occu-bench-choice [--scene S] [--route R] [--frames N] [--size WxH]
 //                     [--budget N] [--rounds N] [--leaf-triangles N|auto]
+//                     [--raster none|whole|merged] [--divisor N]
 //
 // Each round walks the route with occluders made afresh (the choice keeps
 // last frame's triangles, so the first frame of each round is a cold one
 // as in the walkthrough), timing choose() alone; the best round's time is
-// printed. It also prints, per route, a digest of every frame's chosen
-// indices in the order drawn and of the set alone (sorted), so that two
-// builds can be checked to choose the same triangles, and the same order.
-// Counting instructions: valgrind --tool=callgrind
-// --toggle-collect='occu::TriangleOccluders::choose*' with --rounds 1.
+// printed, with a digest of every frame's chosen indices in the order
+// drawn and of the set alone (sorted), so that two builds can be checked
+// to choose the same triangles, and in the same order. With --raster
+// whole|merged the rounds time TriangleOccluders::render instead, the
+// choice and its rasterization as the strategies draw them (into a CPU
+// depth buffer of --divisor, 2 by default as at 512x512, with that
+// coverage rule), and the digest is of every frame's depth buffer.
+// Counting instructions: valgrind --tool=callgrind --rounds 1
+// --toggle-collect='occu::TriangleOccluders::choose*' (the choice), or
+// with --raster 'occu::TriangleOccluders::render*' (both).
 // Prints CSV:
-//   scene,route,frames,budget,triangles_a_frame,us_a_frame,set_digest,order_digest
+//   scene,route,frames,budget,raster,triangles_a_frame,us_a_frame,set_digest,order_digest,buffer_digest
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -31,6 +38,7 @@
 #include "evaluation/scene_setup.h"
 #include "occluders/sources.h"
 #include "occluders/triangle_occluders.h"
+#include "raster/depth_rasterizer.h"
 
 using namespace occu;
 
@@ -43,6 +51,8 @@ struct Options {
     int width = 512, height = 512;
     long budget = 1024;
     int rounds = 5;
+    std::string raster = "none";
+    int divisor = 2;
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
 };
 
@@ -52,7 +62,8 @@ struct Options {
     if (!error.empty())
         std::fprintf(stderr, "occu-bench-choice: %s\n", error.c_str());
     std::fprintf(to, "usage: occu-bench-choice [--scene S] [--route R] [--frames N] [--size WxH] [--budget N]\n"
-                     "                         [--rounds N] [--leaf-triangles N|auto]\n");
+                     "                         [--rounds N] [--leaf-triangles N|auto] [--raster none|whole|merged]\n"
+                     "                         [--divisor N]\n");
     std::exit(error.empty() ? 0 : 2);
 }
 
@@ -80,6 +91,12 @@ int main(int argc, char **argv)
         else if (a == "--budget") o.budget = integer_option(a, v, 1, 1L << 24);
         else if (a == "--rounds") o.rounds = int(integer_option(a, v, 1, 1000));
         else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
+        else if (a == "--divisor") o.divisor = int(integer_option(a, v, 1, 8));
+        else if (a == "--raster") {
+            if (v != "none" && v != "whole" && v != "merged")
+                usage("--raster wants none, whole or merged, got '" + v + "'");
+            o.raster = v;
+        }
         else if (a == "--size") {
             const auto x = v.find('x');
             if (x == std::string::npos)
@@ -101,11 +118,17 @@ int main(int argc, char **argv)
         std::vector<SettingSpec> specs{occluder_triangles_setting(), coverage_setting()};
         Settings settings("skins-triangles", &specs);
         settings.set("occluder-triangles", std::to_string(o.budget));
-        settings.set("coverage", "merged");
+        settings.set("coverage", o.raster == "whole" ? "whole" : "merged");
+        const bool rasterize = o.raster != "none";
+        DepthRasterizer raster;
+        DepthRasterizer::Options options;
+        options.divisor = o.divisor;
+        options.merge_partial_coverage = o.raster == "merged";
+        std::vector<float> depth;
 
         double best = 0;
         std::size_t chosen = 0;
-        Digest set, order;
+        Digest set, order;   // with --raster: the buffers, in `set`
         for (int round = 0; round < o.rounds; ++round) {
             TriangleOccluders occluders(setup.scene(), settings, 0, &setup.hierarchy());
             double seconds = 0;
@@ -113,6 +136,19 @@ int main(int argc, char **argv)
             Digest round_set, round_order;
             std::vector<std::uint32_t> sorted;
             for (const Frame &f : frames) {
+                if (rasterize) {
+                    raster.begin(f.view_projection, f.width, f.height, options);
+                    const auto start = std::chrono::steady_clock::now();
+                    count += occluders.render(f, raster);
+                    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    raster.read(depth);
+                    for (float d : depth) {
+                        std::uint32_t bits;
+                        std::memcpy(&bits, &d, sizeof bits);
+                        round_set.add(bits);
+                    }
+                    continue;
+                }
                 const auto start = std::chrono::steady_clock::now();
                 const std::vector<std::uint32_t> &indices = occluders.choose(f);
                 seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -135,10 +171,16 @@ int main(int argc, char **argv)
             chosen = count;
             best = round == 0 ? seconds : std::min(best, seconds);
         }
-        std::printf("scene,route,frames,budget,triangles_a_frame,us_a_frame,set_digest,order_digest\n");
-        std::printf("%s,%s,%zu,%ld,%.1f,%.2f,%016llx,%016llx\n", setup.name().c_str(), o.route.c_str(), frames.size(),
-                    o.budget, double(chosen) / double(frames.size()), 1e6 * best / double(frames.size()),
-                    static_cast<unsigned long long>(set.h), static_cast<unsigned long long>(order.h));
+        std::printf("scene,route,frames,budget,raster,triangles_a_frame,us_a_frame,set_digest,order_digest,buffer_digest\n");
+        const auto hex = [](const Digest &d) {
+            char text[20];
+            std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(d.h));
+            return std::string(text);
+        };
+        std::printf("%s,%s,%zu,%ld,%s,%.1f,%.2f,%s,%s,%s\n", setup.name().c_str(), o.route.c_str(), frames.size(), o.budget,
+                    o.raster.c_str(), double(chosen) / double(frames.size()), 1e6 * best / double(frames.size()),
+                    rasterize ? "-" : hex(set).c_str(), rasterize ? "-" : hex(order).c_str(),
+                    rasterize ? hex(set).c_str() : "-");
     } catch (const std::exception &e) {
         std::fprintf(stderr, "occu-bench-choice: %s\n", e.what());
         return 1;
