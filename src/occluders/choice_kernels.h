@@ -17,28 +17,36 @@
 
 namespace occu::choice {
 
-// The triangles by coordinate: normal (twice the world area long), the
-// three corners, twice the world area. Each array holds `lane_padding`
-// floats past the last triangle, so that eight lanes may be loaded from
-// any triangle.
-constexpr std::size_t lane_padding = 8;
+// The triangles in blocks of eight slots, each field's eight lanes side
+// by side (13 x 8 floats a block: the normal, twice the world area long,
+// the three corners, twice the world area), so that a batch of eight reads
+// as few cache lines as the triangles themselves would. A group of
+// triangles starts a block; the slots past its end are zeros.
+constexpr int fields = 13;
+enum Field { normal_x = 0, corner0_x = 3, corner1_x = 6, corner2_x = 9, twice_area = 12 };
+constexpr std::size_t block_floats = std::size_t(fields) * 8;
 struct TriangleLanes {
-    const float *normal[3];
-    const float *corner[3][3];   // [corner][axis]
-    const float *twice_area;
+    const float *blocks;
+    float at(int field, std::uint32_t slot) const { return blocks[slot / 8 * block_floats + std::size_t(field) * 8 + slot % 8]; }
 };
 
-// The same, owned: add() in order, then finish().
+// The same, owned: start_group(), its triangles' add() in order, ...,
+// then finish().
 class TriangleArrays {
 public:
+    // Returns the group's first slot.
+    std::uint32_t start_group();
     void add(const glm::vec3 *corners, const glm::vec3 &normal, float twice_area);
-    void finish();
-    TriangleLanes lanes() const;
-    std::size_t size() const { return size_; }
+    void finish() { blocks_.resize((slots_ + 7) / 8 * block_floats, 0.0f); }
+    TriangleLanes lanes() const { return {blocks_.data()}; }
+    // The slot of the t-th triangle added.
+    std::uint32_t slot(std::uint32_t t) const { return slot_of_[t]; }
+    std::size_t size() const { return slot_of_.size(); }
 
 private:
-    std::size_t size_ = 0;
-    std::vector<float> normal_[3], corner_[3][3], twice_area_;
+    std::uint32_t slots_ = 0;
+    std::vector<float> blocks_;
+    std::vector<std::uint32_t> slot_of_;
 };
 
 // What a frame's scores read: clip w = w_row . (p, 1); the frustum's
@@ -59,9 +67,10 @@ struct LaneScores {
     unsigned keep;        // bit i: lane i faces the eye, has a finite score above 0, and is behind none of `planes`
 };
 
-// Scores `count` (at most 8) triangles: first .. first + count - 1, or
-// where `gather` is given, gather[0 .. count - 1]. `planes`: bit i tests
-// view.planes[i]. Lanes from `count` on are not kept.
+// Scores `count` (at most 8) triangles: the slots first .. first + count
+// - 1 (first a multiple of 8), or where `gather` is given, the slots
+// gather[0 .. count - 1]. `planes`: bit i tests view.planes[i]. Lanes
+// from `count` on are not kept.
 void score_lanes_scalar(const TriangleLanes &t, const std::uint32_t *gather, std::uint32_t first, int count,
                         const ChoiceView &view, unsigned planes, LaneScores &out);
 void score_lanes_avx2(const TriangleLanes &t, const std::uint32_t *gather, std::uint32_t first, int count,

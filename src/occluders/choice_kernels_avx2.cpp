@@ -12,22 +12,28 @@ void score_lanes_avx2(const TriangleLanes &t, const std::uint32_t *gather, std::
 {
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     const __m256i in_count = _mm256_cmpgt_epi32(_mm256_set1_epi32(count), lane);
+    // A slot's float in field f: its block's, f's row, its lane.
     __m256i index = _mm256_setzero_si256();
-    if (gather)
-        index = _mm256_maskload_epi32(reinterpret_cast<const int *>(gather), in_count);
-    const auto load = [&](const float *a) {
+    const float *block = t.blocks + first / 8 * block_floats;
+    if (gather) {
+        const __m256i slot = _mm256_maskload_epi32(reinterpret_cast<const int *>(gather), in_count);
+        index = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_srli_epi32(slot, 3), _mm256_set1_epi32(int(block_floats))),
+                                 _mm256_and_si256(slot, _mm256_set1_epi32(7)));
+        block = t.blocks;
+    }
+    const auto load = [&](int field) {
         if (!gather)
-            return _mm256_loadu_ps(a + first);
-        return _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a, index, _mm256_castsi256_ps(in_count), 4);
+            return _mm256_loadu_ps(block + field * 8);
+        return _mm256_mask_i32gather_ps(_mm256_setzero_ps(), block + field * 8, index, _mm256_castsi256_ps(in_count), 4);
     };
     __m256 p[3][3];
     for (int v = 0; v < 3; ++v)
         for (int axis = 0; axis < 3; ++axis)
-            p[v][axis] = load(t.corner[v][axis]);
+            p[v][axis] = load(corner0_x + 3 * v + axis);
     const __m256 facing = _mm256_add_ps(
-        _mm256_add_ps(_mm256_mul_ps(load(t.normal[0]), _mm256_sub_ps(_mm256_set1_ps(view.eye.x), p[0][0])),
-                      _mm256_mul_ps(load(t.normal[1]), _mm256_sub_ps(_mm256_set1_ps(view.eye.y), p[0][1]))),
-        _mm256_mul_ps(load(t.normal[2]), _mm256_sub_ps(_mm256_set1_ps(view.eye.z), p[0][2])));
+        _mm256_add_ps(_mm256_mul_ps(load(normal_x), _mm256_sub_ps(_mm256_set1_ps(view.eye.x), p[0][0])),
+                      _mm256_mul_ps(load(normal_x + 1), _mm256_sub_ps(_mm256_set1_ps(view.eye.y), p[0][1]))),
+        _mm256_mul_ps(load(normal_x + 2), _mm256_sub_ps(_mm256_set1_ps(view.eye.z), p[0][2])));
     const __m256 wx = _mm256_set1_ps(view.w_row.x), wy = _mm256_set1_ps(view.w_row.y),
                  wz = _mm256_set1_ps(view.w_row.z), ww = _mm256_set1_ps(view.w_row.w);
     __m256 w[3];
@@ -45,7 +51,7 @@ void score_lanes_avx2(const TriangleLanes &t, const std::uint32_t *gather, std::
     // near distance.
     const __m256 projected = _mm256_div_ps(most, _mm256_mul_ps(_mm256_mul_ps(w[0], w[1]), w[2]));
     const __m256 nearest = _mm256_max_ps(near, nearest_w);
-    const __m256 solid = _mm256_div_ps(load(t.twice_area), _mm256_mul_ps(nearest, nearest));
+    const __m256 solid = _mm256_div_ps(load(twice_area), _mm256_mul_ps(nearest, nearest));
     const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7FFFFFFF));
     const __m256 solid_kept = _mm256_and_ps(_mm256_cmp_ps(facing, zero, _CMP_GT_OQ),
                                             _mm256_cmp_ps(_mm256_and_ps(solid, abs_mask),

@@ -8,37 +8,24 @@
 
 namespace occu::choice {
 
+std::uint32_t TriangleArrays::start_group()
+{
+    slots_ = (slots_ + 7) / 8 * 8;
+    return slots_;
+}
+
 void TriangleArrays::add(const glm::vec3 *corners, const glm::vec3 &normal, float twice_area)
 {
+    blocks_.resize((slots_ / 8 + 1) * block_floats, 0.0f);
+    float *lane = &blocks_[slots_ / 8 * block_floats + slots_ % 8];
     for (int axis = 0; axis < 3; ++axis) {
-        normal_[axis].push_back(normal[axis]);
-        for (int v = 0; v < 3; ++v)
-            corner_[v][axis].push_back(corners[v][axis]);
+        lane[(normal_x + axis) * 8] = normal[axis];
+        lane[(corner0_x + axis) * 8] = corners[0][axis];
+        lane[(corner1_x + axis) * 8] = corners[1][axis];
+        lane[(corner2_x + axis) * 8] = corners[2][axis];
     }
-    twice_area_.push_back(twice_area);
-    ++size_;
-}
-
-void TriangleArrays::finish()
-{
-    for (int axis = 0; axis < 3; ++axis) {
-        normal_[axis].resize(size_ + lane_padding, 0.0f);
-        for (int v = 0; v < 3; ++v)
-            corner_[v][axis].resize(size_ + lane_padding, 0.0f);
-    }
-    twice_area_.resize(size_ + lane_padding, 0.0f);
-}
-
-TriangleLanes TriangleArrays::lanes() const
-{
-    TriangleLanes l;
-    for (int axis = 0; axis < 3; ++axis) {
-        l.normal[axis] = normal_[axis].data();
-        for (int v = 0; v < 3; ++v)
-            l.corner[v][axis] = corner_[v][axis].data();
-    }
-    l.twice_area = twice_area_.data();
-    return l;
+    lane[Field::twice_area * 8] = twice_area;
+    slot_of_.push_back(slots_++);
 }
 
 namespace {
@@ -61,10 +48,10 @@ void score_lanes_scalar(const TriangleLanes &t, const std::uint32_t *gather, std
         float p[3][3];
         for (int v = 0; v < 3; ++v)
             for (int axis = 0; axis < 3; ++axis)
-                p[v][axis] = t.corner[v][axis][k];
+                p[v][axis] = t.at(corner0_x + 3 * v + axis, k);
         // n . (e - p0), as glm::dot sums: (x + y) + z.
-        const float facing = t.normal[0][k] * (view.eye.x - p[0][0]) + t.normal[1][k] * (view.eye.y - p[0][1]) +
-                             t.normal[2][k] * (view.eye.z - p[0][2]);
+        const float facing = t.at(normal_x, k) * (view.eye.x - p[0][0]) + t.at(normal_x + 1, k) * (view.eye.y - p[0][1]) +
+                             t.at(normal_x + 2, k) * (view.eye.z - p[0][2]);
         float w[3];
         for (int v = 0; v < 3; ++v)
             w[v] = view.w_row.x * p[v][0] + view.w_row.y * p[v][1] + view.w_row.z * p[v][2] + view.w_row.w;
@@ -77,7 +64,7 @@ void score_lanes_scalar(const TriangleLanes &t, const std::uint32_t *gather, std
             keep = score > 0.0f;
         } else {
             const float nearest = lane_max(view.near, nearest_w);
-            score = t.twice_area[k] / (nearest * nearest);
+            score = t.at(twice_area, k) / (nearest * nearest);
             keep = facing > 0.0f && std::fabs(score) < std::numeric_limits<float>::infinity();
         }
         for (unsigned j = 0; j < 6 && keep; ++j) {

@@ -25,6 +25,7 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
     const auto add_group = [&]() {
         Group g;
         g.first = std::uint32_t(corners_.size() / 3);
+        g.slot = arrays_.start_group();
         std::vector<std::pair<float, std::size_t>> order;
         for (std::size_t i = 0; i < refs.size(); ++i) {
             const Mesh &mesh = scene.meshes[refs[i].first];
@@ -149,22 +150,22 @@ void TriangleOccluders::scan(const Group &g, const Aabb &box, unsigned planes)
     // area_scale (n . (e - p0)) over the box's nearest w cubed.
     const bool beyond_near = nearest_w > view_.near;
     const float nearest_cubed = nearest_w * nearest_w * nearest_w;
-    const std::uint32_t end = g.first + g.count;
     choice::LaneScores lanes;
-    for (std::uint32_t first = g.first; first < end; first += 8) {
-        if (full() && !(lanes_.twice_area[first] * per_area > smallest_chosen()))
+    for (std::uint32_t done = 0; done < g.count; done += 8) {
+        const std::uint32_t first = g.first + done, slot = g.slot + done;
+        if (full() && !(lanes_.at(choice::twice_area, slot) * per_area > smallest_chosen()))
             return;
         // Eight scored at once; what depends on the budget's smallest
         // score, which rises as triangles are taken, is tested one by one,
         // on the kept lanes alone: the group is largest first and the score
         // to beat does not move over the lanes skipped, so where a skipped
         // lane's bound falls short, the next kept lane's does too.
-        const int count = int(std::min<std::uint32_t>(8, end - first));
-        score_lanes_(lanes_, nullptr, first, count, view_, planes, lanes);
+        const int count = int(std::min<std::uint32_t>(8, g.count - done));
+        score_lanes_(lanes_, nullptr, slot, count, view_, planes, lanes);
         for (unsigned kept = lanes.keep; kept != 0; kept &= kept - 1) {
             const int i = __builtin_ctz(kept);
             const std::uint32_t t = first + std::uint32_t(i);
-            if (full() && !(lanes_.twice_area[t] * per_area > smallest_chosen()))
+            if (full() && !(lanes_.at(choice::twice_area, slot + std::uint32_t(i)) * per_area > smallest_chosen()))
                 return;
             if (taken_again_[t])
                 continue;
@@ -190,10 +191,13 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     view_.near = std::max(frame.camera.near_plane, 1e-6f);
     std::copy(frame.frustum.planes().begin(), frame.frustum.planes().end(), view_.planes);
     // Last frame's choice first: the smallest score to beat starts high.
+    seed_slots_.clear();
+    for (std::uint32_t t : last_chosen_)
+        seed_slots_.push_back(arrays_.slot(t));
     choice::LaneScores lanes;
     for (std::size_t first = 0; first < last_chosen_.size(); first += 8) {
         const int count = int(std::min<std::size_t>(8, last_chosen_.size() - first));
-        score_lanes_(lanes_, &last_chosen_[first], 0, count, view_, Frustum::all_planes, lanes);
+        score_lanes_(lanes_, &seed_slots_[first], 0, count, view_, Frustum::all_planes, lanes);
         for (int i = 0; i < count; ++i) {
             taken_again_[last_chosen_[first + i]] = 1;
             if (lanes.keep & (1u << i))

@@ -75,6 +75,7 @@ public:
 private:
     struct Group {
         std::uint32_t first = 0, count = 0;   // in corners_ / 3, the largest world area first
+        std::uint32_t slot = 0;               // its first in arrays_
     };
     // A node to open, or a leaf to scan: the most a triangle in it may
     // score, and the frustum planes its box reaches across.
@@ -104,7 +105,7 @@ private:
     std::size_t budget_ = 0;
     Aabb bounds_;                      // of every occluder triangle
     std::vector<glm::vec3> corners_;   // 3 per triangle, grouped
-    choice::TriangleArrays arrays_;    // by coordinate: normals twice the world area long, corners, twice areas
+    choice::TriangleArrays arrays_;    // in blocks of eight: normals twice the world area long, corners, twice areas
     choice::TriangleLanes lanes_;
     decltype(&choice::score_lanes_scalar) score_lanes_ = choice::score_lanes_scalar;   // AVX2 where the CPU has it
     std::vector<Group> groups_;
@@ -120,7 +121,7 @@ private:
     std::vector<Candidate> candidates_;
     std::vector<std::uint32_t> drawn_indices_;
     std::vector<glm::vec3> drawn_across_;
-    std::vector<std::uint32_t> last_chosen_;
+    std::vector<std::uint32_t> last_chosen_, seed_slots_;
     std::vector<std::uint8_t> taken_again_;
 };
 
