@@ -242,12 +242,8 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     for (std::uint32_t t : last_chosen_)
         taken_again_[t] = 0;
     last_chosen_.clear();
-    // With merged coverage nearest first (by the nearest corner's clip w),
-    // as a z-buffer fills: a depth pixel's mask and depth then depend on
-    // the order. Whole pixels keep each depth pixel's nearest whatever the
-    // order, and the sort costs more than the occluded work it saves.
-    if (!across_.empty())
-        std::sort(chosen_.begin(), chosen_.end(), [](const Chosen &a, const Chosen &b) { return a.nearest_w < b.nearest_w; });
+    // Nearest first (by the nearest corner's clip w), as a z-buffer fills.
+    std::sort(chosen_.begin(), chosen_.end(), [](const Chosen &a, const Chosen &b) { return a.nearest_w < b.nearest_w; });
     for (const Chosen &c : chosen_) {
         last_chosen_.push_back(c.triangle);
         for (std::uint32_t v = 0; v < 3; ++v)

@@ -61,12 +61,10 @@ public:
 
     // Renders into `raster` at most budget() of the scene's occluder
     // triangles that face the eye in `frame`'s frustum, the largest
-    // projected area first, with coverage=merged drawn nearest first.
-    // Returns how many it drew.
+    // projected area first, drawn nearest first. Returns how many it drew.
     std::size_t render(const Frame &frame, DepthRasterizer &raster);
     // What render() draws for `frame`: three indices into corners() a
-    // triangle, with coverage=merged nearest first. Valid until the next
-    // call.
+    // triangle, nearest first. Valid until the next call.
     const std::vector<std::uint32_t> &choose(const Frame &frame);
     // The occluder triangles' corners, three a triangle.
     const std::vector<glm::vec3> &corners() const { return corners_; }
@@ -112,7 +110,7 @@ private:
     std::vector<std::uint32_t> leaf_group_;   // per hierarchy node: its group, or none (~0)
     std::vector<float> node_largest_;         // per hierarchy node: its subtree's largest twice world area
     std::vector<glm::vec3> across_;   // coverage=merged: 3 per triangle (shared_edge_opposites)
-    // Per frame: the best so far, a min-heap by score, then (merged) nearest first;
+    // Per frame: the best so far, a min-heap by score, then nearest first;
     // the nodes to open, a max-heap by bound; the corners' indices drawn
     // and the triangles across them. Between frames: the triangles chosen
     // last, and a mark on each while it is being taken again.

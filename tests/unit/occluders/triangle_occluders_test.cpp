@@ -387,8 +387,7 @@ std::optional<double> brute_force_score(const Frame &frame, const std::array<glm
 // wide fields of view, some across the near plane, some beside or behind
 // the eye: the leaves and triangles a frame skips cannot hold a triangle
 // of the budget's best, so the chosen ones are the best by score (to a
-// rounding of the score, for ties), drawn nearest first with merged
-// coverage (whole pixels keep each depth pixel's nearest in any order).
+// rounding of the score, for ties), drawn nearest first.
 TEST(TriangleOccluders, TheChosenAreTheLargestByScore)
 {
     std::mt19937 rng(41);
@@ -408,10 +407,8 @@ TEST(TriangleOccluders, TheChosenAreTheLargestByScore)
     int views = 0;
     for (const Hierarchy *h : {&hierarchy, static_cast<const Hierarchy *>(nullptr)})
         for (long budget : {20L, 300L}) {
-            const bool merged = budget == 300;
             Settings settings("test", &s);
             settings.set("occluder-triangles", std::to_string(budget));
-            settings.set("coverage", merged ? "merged" : "whole");
             TriangleOccluders occluders(scene, settings, 0, h);
             for (int view = 0; view < 12; ++view) {
                 Camera camera;
@@ -452,8 +449,7 @@ TEST(TriangleOccluders, TheChosenAreTheLargestByScore)
                     double nearest = std::numeric_limits<double>::infinity();
                     for (const glm::vec3 *q : {&a, &b, &c})
                         nearest = std::min(nearest, (glm::dmat4(frame.view_projection) * glm::dvec4(glm::dvec3(*q), 1.0)).w);
-                    if (merged)
-                        EXPECT_GE(nearest, previous_nearest - 1e-4) << "view " << view << ": not nearest first";
+                    EXPECT_GE(nearest, previous_nearest - 1e-4) << "view " << view << ": not nearest first";
                     previous_nearest = nearest;
                 }
                 const auto all_above = std::size_t(std::count_if(scores.begin(), scores.end(), [&](double x) {
