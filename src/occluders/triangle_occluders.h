@@ -27,8 +27,10 @@
 // smallest score is high at once), then opens the hierarchy's nodes in
 // the frustum best bound first, and stops at the first node, and within a
 // leaf at the first triangle, whose bound cannot beat the budget's
-// smallest score; a triangle facing away, or whose own plane bounds it
-// below that score, ends before its corners are transformed. The chosen
+// smallest score. A leaf's triangles are scored eight at a time
+// (occluders/choice_kernels.h), with every test that does not depend on
+// the scores chosen so far; a triangle facing away, or whose own plane
+// bounds it below that score, is then dropped one by one. The chosen
 // ones are the budget's best by score. Which triangles are chosen decides
 // only how much is culled, never whether it is safe: every one drawn is a
 // triangle GL draws.
