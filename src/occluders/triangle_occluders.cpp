@@ -25,6 +25,7 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
     const auto add_group = [&]() {
         Group g;
         g.first = std::uint32_t(corners_.size() / 3);
+        g.slot = arrays_.start_group();
         std::vector<std::pair<float, std::size_t>> order;
         for (std::size_t i = 0; i < refs.size(); ++i) {
             const Mesh &mesh = scene.meshes[refs[i].first];
@@ -44,8 +45,7 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
                 bounds_.expand(corners_.back());
             }
             const glm::vec3 *p = &corners_[corners_.size() - 3];
-            normals_.push_back(glm::cross(p[1] - p[0], p[2] - p[0]));
-            twice_area_.push_back(twice);
+            arrays_.add(p, glm::cross(p[1] - p[0], p[2] - p[0]), twice);
         }
         g.count = std::uint32_t(order.size());
         if (g.count > 0)
@@ -80,7 +80,10 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
         }
         add_group();
     }
-    taken_again_.assign(twice_area_.size(), 0);
+    arrays_.finish();
+    lanes_ = arrays_.lanes();
+    score_lanes_ = DepthRasterizer::avx2_supported() ? choice::score_lanes_avx2 : choice::score_lanes_scalar;
+    taken_again_.assign(arrays_.size(), 0);
     // With merged coverage, the triangle across each edge (GL draws a
     // sample on a shared edge with one of the two), among the occluder
     // triangles of every mesh: equal positions are transformed alike.
@@ -104,11 +107,16 @@ std::size_t TriangleOccluders::render(const Frame &frame, DepthRasterizer &raste
 
 float TriangleOccluders::bound_per_area(const Aabb &box, float &nearest_w) const
 {
-    const View &v = view_;
+    const choice::ChoiceView &v = view_;
     nearest_w = v.w_row.w;
     for (int axis = 0; axis < 3; ++axis)
         nearest_w += std::min(v.w_row[axis] * box.min[axis], v.w_row[axis] * box.max[axis]);
-    const float farthest = glm::length(glm::max(glm::abs(v.eye - box.min), glm::abs(box.max - v.eye)));
+    float far_squared = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const float d = std::max(std::fabs(v.eye[axis] - box.min[axis]), std::fabs(box.max[axis] - v.eye[axis]));
+        far_squared += d * d;
+    }
+    const float farthest = std::sqrt(far_squared);
     const float scale = std::abs(v.area_scale) * farthest;
     if (nearest_w > v.near)
         return scale / (nearest_w * nearest_w * nearest_w);
@@ -117,48 +125,14 @@ float TriangleOccluders::bound_per_area(const Aabb &box, float &nearest_w) const
     return std::max(scale / (v.near * v.near * v.near), 1.0f / (v.near * v.near));
 }
 
-void TriangleOccluders::consider(std::uint32_t t, unsigned planes)
+void TriangleOccluders::take(float score, std::uint32_t t, float nearest_w)
 {
-    // The projected area in normalized device coordinates, signed (front
-    // faces counter-clockwise, positive; see the header for the formula):
-    // back faces and triangles wholly outside one clip plane are never
-    // chosen. A triangle across the near plane has no such area; it is
-    // scored by its world area over its nearest corner's squared w (at
-    // least the near distance), the solid angle it would subtend, and the
-    // rasterizer clips it.
-    const View &v = view_;
-    const glm::vec3 *p = corners_.data() + 3 * std::size_t(t);
-    float w[3];
-    for (int i = 0; i < 3; ++i)
-        w[i] = v.w_row.x * p[i].x + v.w_row.y * p[i].y + v.w_row.z * p[i].z + v.w_row.w;
-    const float facing = glm::dot(normals_[t], v.eye - p[0]);
-    float score;
-    if (w[0] > v.near && w[1] > v.near && w[2] > v.near) {
-        score = v.area_scale * facing / (w[0] * w[1] * w[2]);
-        if (!(score > 0.0f))
-            return;   // back-facing, degenerate, or NaN
-    } else {
-        if (!(facing > 0.0f))
-            return;   // seen from behind: GL culls it
-        const float nearest = std::max(v.near, std::min({w[0], w[1], w[2]}));
-        score = twice_area_[t] / (nearest * nearest);
-        if (!std::isfinite(score))
-            return;
-    }
     if (full() && !(score > smallest_chosen()))
         return;
-    for (unsigned i = 0; i < 6; ++i) {
-        if (!(planes & (1u << i)))
-            continue;
-        const glm::vec4 &plane = v.frustum->planes()[i];
-        const auto behind = [&](const glm::vec3 &q) { return glm::dot(glm::vec3(plane), q) + plane.w < 0.0f; };
-        if (behind(p[0]) && behind(p[1]) && behind(p[2]))
-            return;
-    }
     // The best `budget_` in a min-heap: its top, once full, is the score
     // to beat.
     const auto smaller_first = [](const Chosen &a, const Chosen &b) { return a.score > b.score; };
-    const Chosen c{score, t, std::min({w[0], w[1], w[2]})};
+    const Chosen c{score, t, nearest_w};
     if (full()) {
         std::pop_heap(chosen_.begin(), chosen_.end(), smaller_first);
         chosen_.back() = c;
@@ -176,17 +150,30 @@ void TriangleOccluders::scan(const Group &g, const Aabb &box, unsigned planes)
     // area_scale (n . (e - p0)) over the box's nearest w cubed.
     const bool beyond_near = nearest_w > view_.near;
     const float nearest_cubed = nearest_w * nearest_w * nearest_w;
-    for (std::uint32_t t = g.first; t < g.first + g.count; ++t) {
-        if (full() && !(twice_area_[t] * per_area > smallest_chosen()))
-            break;
-        if (taken_again_[t])
-            continue;
-        if (beyond_near) {
-            const float most = view_.area_scale * glm::dot(normals_[t], view_.eye - corners_[3 * std::size_t(t)]);
-            if (!(most > 0.0f) || (full() && !(most > smallest_chosen() * nearest_cubed)))
+    choice::LaneScores lanes;
+    for (std::uint32_t done = 0; done < g.count; done += 8) {
+        const std::uint32_t first = g.first + done, slot = g.slot + done;
+        if (full() && !(lanes_.at(choice::twice_area, slot) * per_area > smallest_chosen()))
+            return;
+        // Eight scored at once; what depends on the budget's smallest
+        // score, which rises as triangles are taken, is tested one by one,
+        // on the kept lanes alone: the group is largest first and the score
+        // to beat does not move over the lanes skipped, so where a skipped
+        // lane's bound falls short, the next kept lane's does too.
+        const int count = int(std::min<std::uint32_t>(8, g.count - done));
+        score_lanes_(lanes_, nullptr, slot, count, view_, planes, lanes);
+        for (unsigned kept = lanes.keep; kept != 0; kept &= kept - 1) {
+            const int i = __builtin_ctz(kept);
+            const std::uint32_t t = first + std::uint32_t(i);
+            if (full() && !(lanes_.at(choice::twice_area, slot + std::uint32_t(i)) * per_area > smallest_chosen()))
+                return;
+            if (taken_again_[t])
                 continue;
+            const float most = lanes.most[i];
+            if (beyond_near && (!(most > 0.0f) || (full() && !(most > smallest_chosen() * nearest_cubed))))
+                continue;
+            take(lanes.score[i], t, lanes.nearest_w[i]);
         }
-        consider(t, planes);
     }
 }
 
@@ -202,11 +189,20 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     const glm::vec3 x_row(vp[0][0], vp[1][0], vp[2][0]), y_row(vp[0][1], vp[1][1], vp[2][1]);
     view_.area_scale = -glm::dot(x_row, glm::cross(y_row, glm::vec3(view_.w_row)));
     view_.near = std::max(frame.camera.near_plane, 1e-6f);
-    view_.frustum = &frame.frustum;
+    std::copy(frame.frustum.planes().begin(), frame.frustum.planes().end(), view_.planes);
     // Last frame's choice first: the smallest score to beat starts high.
-    for (std::uint32_t t : last_chosen_) {
-        taken_again_[t] = 1;
-        consider(t, Frustum::all_planes);
+    seed_slots_.clear();
+    for (std::uint32_t t : last_chosen_)
+        seed_slots_.push_back(arrays_.slot(t));
+    choice::LaneScores lanes;
+    for (std::size_t first = 0; first < last_chosen_.size(); first += 8) {
+        const int count = int(std::min<std::size_t>(8, last_chosen_.size() - first));
+        score_lanes_(lanes_, &seed_slots_[first], 0, count, view_, Frustum::all_planes, lanes);
+        for (int i = 0; i < count; ++i) {
+            taken_again_[last_chosen_[first + i]] = 1;
+            if (lanes.keep & (1u << i))
+                take(lanes.score[i], last_chosen_[first + i], lanes.nearest_w[i]);
+        }
     }
     if (!hierarchy_) {
         unsigned planes = Frustum::all_planes;
@@ -218,11 +214,12 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
         const auto smaller_bound = [](const Candidate &a, const Candidate &b) { return a.bound < b.bound; };
         candidates_.clear();
         const auto offer = [&](std::uint32_t n, unsigned planes) {
-            if (!(node_largest_[n] > 0.0f) || frame.frustum.classify(nodes[n].bounds, planes) == Frustum::Side::outside)
+            if (!(node_largest_[n] > 0.0f))
                 return;
             float nearest_w;
             const float bound = node_largest_[n] * bound_per_area(nodes[n].bounds, nearest_w);
-            if (full() && !(bound > smallest_chosen()))
+            if ((full() && !(bound > smallest_chosen())) ||
+                frame.frustum.classify(nodes[n].bounds, planes) == Frustum::Side::outside)
                 return;
             candidates_.push_back({bound, n, planes});
             std::push_heap(candidates_.begin(), candidates_.end(), smaller_bound);

@@ -27,8 +27,10 @@
 // smallest score is high at once), then opens the hierarchy's nodes in
 // the frustum best bound first, and stops at the first node, and within a
 // leaf at the first triangle, whose bound cannot beat the budget's
-// smallest score; a triangle facing away, or whose own plane bounds it
-// below that score, ends before its corners are transformed. The chosen
+// smallest score. A leaf's triangles are scored eight at a time
+// (occluders/choice_kernels.h), with every test that does not depend on
+// the scores chosen so far; a triangle facing away, or whose own plane
+// bounds it below that score, is then dropped one by one. The chosen
 // ones are the budget's best by score. Which triangles are chosen decides
 // only how much is culled, never whether it is safe: every one drawn is a
 // triangle GL draws.
@@ -41,6 +43,7 @@
 
 #include "culling/culler.h"
 #include "culling/settings.h"
+#include "occluders/choice_kernels.h"
 #include "raster/depth_rasterizer.h"
 #include "scene/scene.h"
 #include "spatial/hierarchy.h"
@@ -72,6 +75,7 @@ public:
 private:
     struct Group {
         std::uint32_t first = 0, count = 0;   // in corners_ / 3, the largest world area first
+        std::uint32_t slot = 0;               // its first in arrays_
     };
     // A node to open, or a leaf to scan: the most a triangle in it may
     // score, and the frustum planes its box reaches across.
@@ -85,21 +89,12 @@ private:
         std::uint32_t triangle;
         float nearest_w;   // its corners' smallest clip w
     };
-    // What a frame's choice reads again and again.
-    struct View {
-        glm::vec3 eye;
-        glm::vec4 w_row;       // the view-projection's w row: clip w = w_row . (p, 1)
-        float area_scale = 0;  // -det M: a front face's projected twice area is area_scale (n . (e - p0)) / (w0 w1 w2)
-        float near = 0;
-        const Frustum *frustum = nullptr;
-    };
     // The most a triangle in `box` may score, over its twice world area;
     // `nearest_w` is the box's nearest clip w.
     float bound_per_area(const Aabb &box, float &nearest_w) const;
-    // Scores triangle t (twice its projected area, the header's formula) and keeps it
-    // if it is among the best so far; `planes` are the frustum planes it
-    // may lie outside of.
-    void consider(std::uint32_t t, unsigned planes);
+    // Keeps triangle t, of `score` (twice its projected area, the header's
+    // formula; choice::score_lanes), if it is among the best so far.
+    void take(float score, std::uint32_t t, float nearest_w);
     // The triangles of group g, largest first, while they may beat the
     // budget's smallest score.
     void scan(const Group &g, const Aabb &box, unsigned planes);
@@ -110,8 +105,9 @@ private:
     std::size_t budget_ = 0;
     Aabb bounds_;                      // of every occluder triangle
     std::vector<glm::vec3> corners_;   // 3 per triangle, grouped
-    std::vector<glm::vec3> normals_;   // per triangle, twice its world area long
-    std::vector<float> twice_area_;    // per triangle, world
+    choice::TriangleArrays arrays_;    // in blocks of eight: normals twice the world area long, corners, twice areas
+    choice::TriangleLanes lanes_;
+    decltype(&choice::score_lanes_scalar) score_lanes_ = choice::score_lanes_scalar;   // AVX2 where the CPU has it
     std::vector<Group> groups_;
     std::vector<std::uint32_t> leaf_group_;   // per hierarchy node: its group, or none (~0)
     std::vector<float> node_largest_;         // per hierarchy node: its subtree's largest twice world area
@@ -120,12 +116,12 @@ private:
     // the nodes to open, a max-heap by bound; the corners' indices drawn
     // and the triangles across them. Between frames: the triangles chosen
     // last, and a mark on each while it is being taken again.
-    View view_;
+    choice::ChoiceView view_;
     std::vector<Chosen> chosen_;
     std::vector<Candidate> candidates_;
     std::vector<std::uint32_t> drawn_indices_;
     std::vector<glm::vec3> drawn_across_;
-    std::vector<std::uint32_t> last_chosen_;
+    std::vector<std::uint32_t> last_chosen_, seed_slots_;
     std::vector<std::uint8_t> taken_again_;
 };
 
