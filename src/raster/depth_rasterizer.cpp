@@ -299,19 +299,74 @@ void DepthRasterizer::render_box(const Aabb &box)
 {
     // aabb_faces wind counter-clockwise seen from outside, so back-face
     // culling after projection keeps the faces that face the eye (section
-    // 5's N . L < 0).
+    // 5's N . L < 0). The faces share their corners: each corner is
+    // transformed and, where no face of it needs clipping, put on screen
+    // once, as polygon() puts a face's corners, and a face whose area there
+    // is not positive (at least three of the six: those facing away) ends
+    // before rasterize(), which would end it by the same area after its
+    // bounds and its test against the buffer. Faces that need clipping
+    // take polygon()'s way, so the buffer is the same bit for bit.
     glm::vec4 corners[8];
     glm::vec3 points[8];
+    unsigned outside[8];
+    bool clipped[8];
     for (int i = 0; i < 8; ++i) {
         points[i] = box.corner(i);
-        corners[i] = clip_position(view_projection_, points[i]);
+        const glm::vec4 v = clip_position(view_projection_, points[i]);
+        corners[i] = v;
+        // polygon()'s outcodes and clip test, per corner.
+        outside[i] = unsigned(v.x > v.w) << 0 | unsigned(v.x < -v.w) << 1 | unsigned(v.y > v.w) << 2 |
+                     unsigned(v.y < -v.w) << 3 | unsigned(v.z > v.w) << 4 | unsigned(v.z < -v.w) << 5;
+        const float g = float(guard) * v.w;
+        clipped[i] = v.z < -v.w || v.x > g || v.x < -g || v.y > g || v.y < -g || !(v.w > 0.0f);
     }
-    const TransformError error = options_.merge_partial_coverage ? transform_error(points, 8) : TransformError{};
-    glm::vec4 quad[4];
+    const float sx = 0.5f * float(frame_width_) / float(options_.divisor);
+    const float sy = 0.5f * float(frame_height_) / float(options_.divisor);
+    glm::vec2 window[8];
+    float depth[8];
+    for (int i = 0; i < 8; ++i)
+        if (!clipped[i]) {
+            const float inv = 1.0f / corners[i].w;
+            window[i] = {(corners[i].x * inv + 1.0f) * sx, (corners[i].y * inv + 1.0f) * sy};
+            depth[i] = corners[i].z * inv * 0.5f + 0.5f;
+        }
+    // Merged coverage's margins take the whole box's transform error, on
+    // first need.
+    TransformError error{};
+    bool error_known = !options_.merge_partial_coverage;
     for (const auto &face : aabb_faces) {
-        for (int i = 0; i < 4; ++i)
-            quad[i] = corners[face[i]];
-        polygon(quad, 4, nullptr, error);
+        unsigned all_out = 63;
+        bool needs_clip = false;
+        for (int i = 0; i < 4; ++i) {
+            all_out &= outside[face[i]];
+            needs_clip |= clipped[face[i]];
+        }
+        const glm::vec4 &first = corners[face[0]];
+        if (all_out || !std::isfinite(first.x + first.y + first.z + first.w)) {
+            ++stats_.polygons;   // as polygon() counts and drops it
+            continue;
+        }
+        if (!error_known) {
+            error = transform_error(points, 8);
+            error_known = true;
+        }
+        if (needs_clip) {
+            const glm::vec4 quad[4] = {corners[face[0]], corners[face[1]], corners[face[2]], corners[face[3]]};
+            polygon(quad, 4, nullptr, error);
+            continue;
+        }
+        ++stats_.polygons;
+        const glm::vec2 face_window[4] = {window[face[0]], window[face[1]], window[face[2]], window[face[3]]};
+        // rasterize()'s area, in its order.
+        double area = 0.0;
+        for (int i = 0; i < 4; ++i) {
+            const glm::vec2 &p = face_window[i], &q = face_window[(i + 1) % 4];
+            area += double(p.x) * double(q.y) - double(q.x) * double(p.y);
+        }
+        if (!(area > 0.0))
+            continue;
+        const float face_depth[4] = {depth[face[0]], depth[face[1]], depth[face[2]], depth[face[3]]};
+        rasterize(face_window, face_depth, 4, nullptr, error);
     }
     // Covering whole depth pixels, the faces leave the depth pixels along
     // the edges where they meet uncovered (none holds all its samples in
