@@ -76,4 +76,27 @@ void score_lanes_scalar(const TriangleLanes &t, const std::uint32_t *gather, std
 void score_lanes_avx2(const TriangleLanes &t, const std::uint32_t *gather, std::uint32_t first, int count,
                       const ChoiceView &view, unsigned planes, LaneScores &out);
 
+// Boxes coordinate by coordinate (a hierarchy's nodes: min x, y, z, then
+// max x, y, z, each an array by node), and eight of them at once: what
+// TriangleOccluders::bound_per_area bounds a triangle's score in each by,
+// over its twice world area, and the box's nearest clip w; and the box
+// classified against the frustum as Frustum::classify(box, crossing)
+// classifies it, with the same float expressions in the same order.
+struct BoxArrays {
+    const float *min[3], *max[3];
+};
+struct LaneBounds {
+    float per_area[8];
+    float nearest_w[8];
+    unsigned outside;       // bit i: box i lies wholly behind one of the planes tested
+    unsigned crossing[8];   // Frustum::classify's `crossing` on return, box by box
+};
+// The boxes first .. first + count - 1 (count at most 8; the arrays
+// readable up to first + 8), each tested against the planes in `planes`
+// (bit i: view.planes[i]).
+void bound_boxes_scalar(const BoxArrays &b, std::uint32_t first, int count, const ChoiceView &view, unsigned planes,
+                        LaneBounds &out);
+void bound_boxes_avx2(const BoxArrays &b, std::uint32_t first, int count, const ChoiceView &view, unsigned planes,
+                      LaneBounds &out);
+
 }  // namespace occu::choice

@@ -3,6 +3,8 @@
 // of choice_kernels_scalar.cpp, eight triangles to an instruction.
 #include <immintrin.h>
 
+#include <cmath>
+
 #include "occluders/choice_kernels.h"
 
 namespace occu::choice {
@@ -78,6 +80,74 @@ void score_lanes_avx2(const TriangleLanes &t, const std::uint32_t *gather, std::
     _mm256_storeu_ps(out.most, _mm256_and_ps(most, _mm256_castsi256_ps(in_count)));
     _mm256_storeu_ps(out.nearest_w, _mm256_and_ps(nearest_w, _mm256_castsi256_ps(in_count)));
     out.keep = unsigned(_mm256_movemask_ps(keep));
+}
+
+void bound_boxes_avx2(const BoxArrays &b, std::uint32_t first, int count, const ChoiceView &view, unsigned planes,
+                      LaneBounds &out)
+{
+    const __m256i in_count = _mm256_cmpgt_epi32(_mm256_set1_epi32(count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    __m256 lo[3], hi[3];
+    for (int axis = 0; axis < 3; ++axis) {
+        lo[axis] = _mm256_loadu_ps(b.min[axis] + first);
+        hi[axis] = _mm256_loadu_ps(b.max[axis] + first);
+    }
+    // std::min(a, b) is _mm256_min_ps(b, a), std::max(a, b) _mm256_max_ps(b, a).
+    __m256 nearest_w = _mm256_set1_ps(view.w_row.w);
+    for (int axis = 0; axis < 3; ++axis) {
+        const __m256 m = _mm256_set1_ps(view.w_row[axis]);
+        nearest_w = _mm256_add_ps(nearest_w, _mm256_min_ps(_mm256_mul_ps(m, hi[axis]), _mm256_mul_ps(m, lo[axis])));
+    }
+    const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7FFFFFFF));
+    __m256 far_squared = _mm256_setzero_ps();
+    for (int axis = 0; axis < 3; ++axis) {
+        const __m256 e = _mm256_set1_ps(view.eye[axis]);
+        const __m256 d = _mm256_max_ps(_mm256_and_ps(_mm256_sub_ps(hi[axis], e), abs_mask),
+                                       _mm256_and_ps(_mm256_sub_ps(e, lo[axis]), abs_mask));
+        far_squared = _mm256_add_ps(far_squared, _mm256_mul_ps(d, d));
+    }
+    const __m256 scale = _mm256_mul_ps(_mm256_set1_ps(std::fabs(view.area_scale)), _mm256_sqrt_ps(far_squared));
+    const float near = view.near;
+    const __m256 near_lanes = _mm256_set1_ps(near);
+    const __m256 projected = _mm256_div_ps(scale, _mm256_mul_ps(_mm256_mul_ps(nearest_w, nearest_w), nearest_w));
+    const __m256 across_near = _mm256_max_ps(_mm256_set1_ps(1.0f / (near * near)),
+                                             _mm256_div_ps(scale, _mm256_set1_ps(near * near * near)));
+    const __m256 per_area = _mm256_blendv_ps(across_near, projected, _mm256_cmp_ps(nearest_w, near_lanes, _CMP_GT_OQ));
+    _mm256_storeu_ps(out.per_area, _mm256_and_ps(per_area, _mm256_castsi256_ps(in_count)));
+    _mm256_storeu_ps(out.nearest_w, _mm256_and_ps(nearest_w, _mm256_castsi256_ps(in_count)));
+    // The planes as Frustum::classify tests them, eight boxes a plane.
+    const __m256 zero = _mm256_setzero_ps();
+    unsigned behind[6], across[6];
+    for (int j = 0; j < 6; ++j) {
+        const glm::vec4 &q = view.planes[j];
+        __m256 far = _mm256_setzero_ps(), near_sum = _mm256_setzero_ps();
+        for (int axis = 0; axis < 3; ++axis) {
+            const __m256 n = _mm256_set1_ps(q[axis]);
+            const bool positive = q[axis] >= 0.0f;
+            const __m256 f = _mm256_mul_ps(n, positive ? hi[axis] : lo[axis]);
+            const __m256 c = _mm256_mul_ps(n, positive ? lo[axis] : hi[axis]);
+            far = axis == 0 ? f : _mm256_add_ps(far, f);
+            near_sum = axis == 0 ? c : _mm256_add_ps(near_sum, c);
+        }
+        far = _mm256_add_ps(far, _mm256_set1_ps(q.w));
+        near_sum = _mm256_add_ps(near_sum, _mm256_set1_ps(q.w));
+        behind[j] = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(far, zero, _CMP_LT_OQ)));
+        across[j] = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(near_sum, zero, _CMP_LT_OQ)));
+    }
+    out.outside = 0;
+    for (int i = 0; i < 8; ++i) {
+        out.crossing[i] = 0;
+        if (i >= count)
+            continue;
+        unsigned box_behind = 0, box_across = 0;
+        for (int j = 0; j < 6; ++j) {
+            box_behind |= (behind[j] >> i & 1u) << j;
+            box_across |= (across[j] >> i & 1u) << j;
+        }
+        box_behind &= planes;
+        box_across &= planes;
+        out.crossing[i] = box_behind ? box_across & ((box_behind & (~box_behind + 1u)) - 1u) : box_across;
+        out.outside |= unsigned(box_behind != 0) << i;
+    }
 }
 
 }  // namespace occu::choice

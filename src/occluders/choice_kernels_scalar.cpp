@@ -83,4 +83,71 @@ void score_lanes_scalar(const TriangleLanes &t, const std::uint32_t *gather, std
     }
 }
 
+namespace {
+
+// The planes' answer as Frustum::classify gives it (camera/camera.cpp):
+// the first tested plane with the box behind it decides outside, and the
+// planes crossed before it are reported.
+unsigned classified(unsigned behind, unsigned across, unsigned planes, bool &outside)
+{
+    behind &= planes;
+    across &= planes;
+    outside = behind != 0;
+    return behind ? across & ((behind & (~behind + 1u)) - 1u) : across;
+}
+
+}  // namespace
+
+void bound_boxes_scalar(const BoxArrays &b, std::uint32_t first, int count, const ChoiceView &view, unsigned planes,
+                        LaneBounds &out)
+{
+    out.outside = 0;
+    for (int i = 0; i < 8; ++i) {
+        out.per_area[i] = out.nearest_w[i] = 0.0f;
+        out.crossing[i] = 0;
+        if (i >= count)
+            continue;
+        const std::uint32_t k = first + std::uint32_t(i);
+        const float lo[3] = {b.min[0][k], b.min[1][k], b.min[2][k]}, hi[3] = {b.max[0][k], b.max[1][k], b.max[2][k]};
+        // std::min(a, b) and std::max(a, b), as the AVX2 twin takes them:
+        // b < a ? b : a, a < b ? b : a.
+        float nearest_w = view.w_row.w;
+        for (int axis = 0; axis < 3; ++axis) {
+            const float a = view.w_row[axis] * lo[axis], c = view.w_row[axis] * hi[axis];
+            nearest_w += c < a ? c : a;
+        }
+        float far_squared = 0.0f;
+        for (int axis = 0; axis < 3; ++axis) {
+            const float a = std::fabs(view.eye[axis] - lo[axis]), c = std::fabs(hi[axis] - view.eye[axis]);
+            const float d = a < c ? c : a;
+            far_squared += d * d;
+        }
+        const float scale = std::fabs(view.area_scale) * std::sqrt(far_squared);
+        float per_area;
+        if (nearest_w > view.near) {
+            per_area = scale / (nearest_w * nearest_w * nearest_w);
+        } else {
+            const float beyond = scale / (view.near * view.near * view.near), across = 1.0f / (view.near * view.near);
+            per_area = beyond < across ? across : beyond;
+        }
+        out.per_area[i] = per_area;
+        out.nearest_w[i] = nearest_w;
+        // Each plane's farthest corner along its normal (behind it: the
+        // box is outside) and nearest (behind it: the box reaches across).
+        unsigned behind = 0, across = 0;
+        for (unsigned j = 0; j < 6; ++j) {
+            const glm::vec4 &q = view.planes[j];
+            const float far = q.x * (q.x >= 0.0f ? hi[0] : lo[0]) + q.y * (q.y >= 0.0f ? hi[1] : lo[1]) +
+                              q.z * (q.z >= 0.0f ? hi[2] : lo[2]) + q.w;
+            const float near = q.x * (q.x >= 0.0f ? lo[0] : hi[0]) + q.y * (q.y >= 0.0f ? lo[1] : hi[1]) +
+                               q.z * (q.z >= 0.0f ? lo[2] : hi[2]) + q.w;
+            behind |= unsigned(far < 0.0f) << j;
+            across |= unsigned(near < 0.0f) << j;
+        }
+        bool outside;
+        out.crossing[i] = classified(behind, across, planes, outside);
+        out.outside |= unsigned(outside) << i;
+    }
+}
+
 }  // namespace occu::choice

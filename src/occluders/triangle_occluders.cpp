@@ -71,6 +71,18 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
         for (std::size_t n = nodes.size(); n-- > 0;)
             for (std::uint32_t c = 0; c < nodes[n].child_count; ++c)
                 node_largest_[n] = std::max(node_largest_[n], node_largest_[nodes[n].first_child + c]);
+        const std::size_t stride = nodes.size() + 8;
+        node_box_coordinates_.assign(6 * stride, 0.0f);
+        for (int axis = 0; axis < 3; ++axis) {
+            float *lo = &node_box_coordinates_[std::size_t(axis) * stride];
+            float *hi = &node_box_coordinates_[std::size_t(3 + axis) * stride];
+            for (std::size_t n = 0; n < nodes.size(); ++n) {
+                lo[n] = nodes[n].bounds.min[axis];
+                hi[n] = nodes[n].bounds.max[axis];
+            }
+            node_boxes_.min[axis] = lo;
+            node_boxes_.max[axis] = hi;
+        }
     } else {
         for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
             if (!scene.meshes[m].occluder)
@@ -83,6 +95,7 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
     arrays_.finish();
     lanes_ = arrays_.lanes();
     score_lanes_ = DepthRasterizer::avx2_supported() ? choice::score_lanes_avx2 : choice::score_lanes_scalar;
+    bound_boxes_ = DepthRasterizer::avx2_supported() ? choice::bound_boxes_avx2 : choice::bound_boxes_scalar;
     taken_again_.assign(arrays_.size(), 0);
     // With merged coverage, the triangle across each edge (GL draws a
     // sample on a shared edge with one of the two), among the occluder
@@ -142,10 +155,8 @@ void TriangleOccluders::take(float score, std::uint32_t t, float nearest_w)
     std::push_heap(chosen_.begin(), chosen_.end(), smaller_first);
 }
 
-void TriangleOccluders::scan(const Group &g, const Aabb &box, unsigned planes)
+void TriangleOccluders::scan(const Group &g, float per_area, float nearest_w, unsigned planes)
 {
-    float nearest_w;
-    const float per_area = bound_per_area(box, nearest_w);
     // Beyond the near plane a triangle's own plane bounds its score:
     // area_scale (n . (e - p0)) over the box's nearest w cubed.
     const bool beyond_near = nearest_w > view_.near;
@@ -173,6 +184,27 @@ void TriangleOccluders::scan(const Group &g, const Aabb &box, unsigned planes)
             if (beyond_near && (!(most > 0.0f) || (full() && !(most > smallest_chosen() * nearest_cubed))))
                 continue;
             take(lanes.score[i], t, lanes.nearest_w[i]);
+        }
+    }
+}
+
+void TriangleOccluders::offer(std::uint32_t first, std::uint32_t count, unsigned planes)
+{
+    const auto smaller_bound = [](const Candidate &a, const Candidate &b) { return a.bound < b.bound; };
+    choice::LaneBounds lanes;
+    for (std::uint32_t done = 0; done < count; done += 8) {
+        const std::uint32_t batch = first + done;
+        const int in_batch = int(std::min<std::uint32_t>(8, count - done));
+        bound_boxes_(node_boxes_, batch, in_batch, view_, planes, lanes);
+        for (int i = 0; i < in_batch; ++i) {
+            const std::uint32_t n = batch + std::uint32_t(i);
+            if (!(node_largest_[n] > 0.0f))
+                continue;
+            const float bound = node_largest_[n] * lanes.per_area[i];
+            if ((full() && !(bound > smallest_chosen())) || (lanes.outside >> i & 1u))
+                continue;
+            candidates_.push_back({bound, n, lanes.crossing[i], lanes.per_area[i], lanes.nearest_w[i]});
+            std::push_heap(candidates_.begin(), candidates_.end(), smaller_bound);
         }
     }
 }
@@ -206,25 +238,17 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     }
     if (!hierarchy_) {
         unsigned planes = Frustum::all_planes;
-        if (frame.frustum.classify(bounds_, planes) != Frustum::Side::outside)
-            scan(groups_.front(), bounds_, planes);
+        if (frame.frustum.classify(bounds_, planes) != Frustum::Side::outside) {
+            float nearest_w;
+            const float per_area = bound_per_area(bounds_, nearest_w);
+            scan(groups_.front(), per_area, nearest_w, planes);
+        }
     } else {
         // The nodes best bound first; a leaf is scanned when it comes up.
         const auto &nodes = hierarchy_->nodes();
         const auto smaller_bound = [](const Candidate &a, const Candidate &b) { return a.bound < b.bound; };
         candidates_.clear();
-        const auto offer = [&](std::uint32_t n, unsigned planes) {
-            if (!(node_largest_[n] > 0.0f))
-                return;
-            float nearest_w;
-            const float bound = node_largest_[n] * bound_per_area(nodes[n].bounds, nearest_w);
-            if ((full() && !(bound > smallest_chosen())) ||
-                frame.frustum.classify(nodes[n].bounds, planes) == Frustum::Side::outside)
-                return;
-            candidates_.push_back({bound, n, planes});
-            std::push_heap(candidates_.begin(), candidates_.end(), smaller_bound);
-        };
-        offer(0, Frustum::all_planes);
+        offer(0, 1, Frustum::all_planes);
         while (!candidates_.empty()) {
             const Candidate c = candidates_.front();
             if (full() && !(c.bound > smallest_chosen()))
@@ -233,10 +257,9 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
             candidates_.pop_back();
             const HierarchyNode &node = nodes[c.node];
             if (node.leaf())
-                scan(groups_[leaf_group_[c.node]], node.bounds, c.planes);
+                scan(groups_[leaf_group_[c.node]], c.per_area, c.nearest_w, c.planes);
             else
-                for (std::uint32_t k = 0; k < node.child_count; ++k)
-                    offer(node.first_child + k, c.planes);
+                offer(node.first_child, node.child_count, c.planes);
         }
     }
     for (std::uint32_t t : last_chosen_)

@@ -83,6 +83,7 @@ private:
         float bound;
         std::uint32_t node;
         unsigned planes;
+        float per_area, nearest_w;   // bound_per_area's, for a leaf's scan
     };
     struct Chosen {
         float score;
@@ -96,8 +97,14 @@ private:
     // formula; choice::score_lanes), if it is among the best so far.
     void take(float score, std::uint32_t t, float nearest_w);
     // The triangles of group g, largest first, while they may beat the
-    // budget's smallest score.
-    void scan(const Group &g, const Aabb &box, unsigned planes);
+    // budget's smallest score; per_area and nearest_w are bound_per_area's
+    // for the group's box.
+    void scan(const Group &g, float per_area, float nearest_w, unsigned planes);
+    // Offers the nodes first .. first + count - 1 (siblings) to open, those
+    // in the frustum that may beat the budget's smallest score, bounded
+    // and classified eight at a time (choice::bound_boxes); `planes`: the
+    // frustum planes their parent reaches across.
+    void offer(std::uint32_t first, std::uint32_t count, unsigned planes);
     bool full() const { return chosen_.size() == budget_; }
     float smallest_chosen() const { return chosen_.front().score; }
 
@@ -111,6 +118,9 @@ private:
     std::vector<Group> groups_;
     std::vector<std::uint32_t> leaf_group_;   // per hierarchy node: its group, or none (~0)
     std::vector<float> node_largest_;         // per hierarchy node: its subtree's largest twice world area
+    std::vector<float> node_box_coordinates_;   // the nodes' boxes by coordinate (node_boxes_), 8 floats' padding each
+    choice::BoxArrays node_boxes_{};
+    decltype(&choice::bound_boxes_scalar) bound_boxes_ = choice::bound_boxes_scalar;   // AVX2 where the CPU has it
     std::vector<glm::vec3> across_;   // coverage=merged: 3 per triangle (shared_edge_opposites)
     // Per frame: the best so far, a min-heap by score, then nearest first;
     // the nodes to open, a max-heap by bound; the corners' indices drawn

@@ -3,11 +3,14 @@
 // AVX2 twins give the same scores, facing bounds, nearest w and kept lanes
 // bit for bit, on triangles beyond, across and behind the near plane,
 // facing both ways, inside and outside the frustum, loaded in a row or
-// gathered, for every batch size.
+// gathered, for every batch size; and the hierarchy's boxes bounded and
+// classified eight at a time, as Frustum::classify classifies them.
 #include "occluders/choice_kernels.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -104,4 +107,70 @@ TEST(ChoiceKernels, ScalarAndAvx2AgreeBitForBit)
     EXPECT_GT(kept, 1000);
     EXPECT_GT(dropped, 1000);
     EXPECT_GT(compared, 4000);
+}
+
+// The nodes' bounds and frustum sides eight at a time: the twins equal bit
+// for bit, and the sides and crossing planes those of Frustum::classify,
+// on boxes inside, across and outside the frustum, around the eye and
+// across the near plane, flat ones among them, for every batch size.
+TEST(ChoiceKernels, BoxBoundsAndSidesAgreeBitForBitAndWithTheFrustum)
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), exponent(-2.0f, 1.5f);
+    const int boxes = 1000;
+    std::vector<float> coordinates(6 * (boxes + 8), 0.0f);
+    choice::BoxArrays arrays;
+    std::vector<Aabb> list;
+    for (int axis = 0; axis < 3; ++axis) {
+        arrays.min[axis] = &coordinates[std::size_t(axis) * (boxes + 8)];
+        arrays.max[axis] = &coordinates[std::size_t(3 + axis) * (boxes + 8)];
+    }
+    for (int i = 0; i < boxes; ++i) {
+        const glm::vec3 centre(20.0f * unit(rng), 20.0f * unit(rng), 20.0f * unit(rng));
+        glm::vec3 half(std::pow(10.0f, exponent(rng)), std::pow(10.0f, exponent(rng)), std::pow(10.0f, exponent(rng)));
+        if (i % 7 == 0)
+            half[i % 3] = 0.0f;   // flat
+        const Aabb box = Aabb::of(centre - half, centre + half);
+        list.push_back(box);
+        for (int axis = 0; axis < 3; ++axis) {
+            coordinates[std::size_t(axis) * (boxes + 8) + std::size_t(i)] = box.min[axis];
+            coordinates[std::size_t(3 + axis) * (boxes + 8) + std::size_t(i)] = box.max[axis];
+        }
+    }
+    const bool avx2 = DepthRasterizer::avx2_supported();
+    int compared = 0, outside = 0, crossing = 0, inside = 0;
+    for (int view = 0; view < 16; ++view) {
+        Camera camera;
+        camera.position = glm::vec3(10.0f * unit(rng), 10.0f * unit(rng), 10.0f * unit(rng));
+        camera.target = camera.position + glm::vec3(unit(rng), unit(rng), unit(rng));
+        camera.fovy_degrees = view % 2 ? 60.0f : 120.0f;
+        camera.near_plane = view % 3 ? 0.1f : 2.0f;
+        const Frame frame(camera, 64, 48);
+        const choice::ChoiceView v = view_of(frame);
+        for (std::uint32_t first = 0; first < std::uint32_t(boxes); first += 1 + first % 8) {
+            const int count = int(std::min<std::uint32_t>(1 + first % 8, std::uint32_t(boxes) - first));
+            const unsigned planes = view % 4 ? Frustum::all_planes : 0x2Bu;
+            choice::LaneBounds scalar, lanes;
+            std::memset(&lanes, 0xA5, sizeof lanes);
+            choice::bound_boxes_scalar(arrays, first, count, v, planes, scalar);
+            if (avx2) {
+                choice::bound_boxes_avx2(arrays, first, count, v, planes, lanes);
+                ASSERT_EQ(std::memcmp(&scalar, &lanes, sizeof lanes), 0) << "view " << view << ", first " << first;
+            }
+            for (int i = 0; i < count; ++i) {
+                unsigned expected = planes;
+                const Frustum::Side side = frame.frustum.classify(list[first + std::uint32_t(i)], expected);
+                ASSERT_EQ(scalar.outside >> i & 1u, unsigned(side == Frustum::Side::outside))
+                    << "view " << view << ", box " << first + std::uint32_t(i);
+                ASSERT_EQ(scalar.crossing[i], expected) << "view " << view << ", box " << first + std::uint32_t(i);
+                (side == Frustum::Side::outside ? outside : side == Frustum::Side::inside ? inside : crossing) += 1;
+            }
+            EXPECT_EQ(scalar.outside >> count, 0u) << "a box past the batch outside";
+            ++compared;
+        }
+    }
+    EXPECT_GT(outside, 1000);
+    EXPECT_GT(crossing, 1000);
+    EXPECT_GT(inside, 100);
+    EXPECT_GT(compared, 2000);
 }
