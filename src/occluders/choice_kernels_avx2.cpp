@@ -114,10 +114,13 @@ void bound_boxes_avx2(const BoxArrays &b, std::uint32_t first, int count, const 
     const __m256 per_area = _mm256_blendv_ps(across_near, projected, _mm256_cmp_ps(nearest_w, near_lanes, _CMP_GT_OQ));
     _mm256_storeu_ps(out.per_area, _mm256_and_ps(per_area, _mm256_castsi256_ps(in_count)));
     _mm256_storeu_ps(out.nearest_w, _mm256_and_ps(nearest_w, _mm256_castsi256_ps(in_count)));
-    // The planes as Frustum::classify tests them, eight boxes a plane.
+    // The planes as Frustum::classify tests them, eight boxes a plane (only
+    // those in `planes`: the others are masked off in the end anyway), each
+    // box's planes behind and across as bits of its lane.
     const __m256 zero = _mm256_setzero_ps();
-    unsigned behind[6], across[6];
-    for (int j = 0; j < 6; ++j) {
+    __m256i behind = _mm256_setzero_si256(), across = _mm256_setzero_si256();
+    for (unsigned left = planes & 0x3Fu; left != 0; left &= left - 1) {
+        const int j = __builtin_ctz(left);
         const glm::vec4 &q = view.planes[j];
         __m256 far = _mm256_setzero_ps(), near_sum = _mm256_setzero_ps();
         for (int axis = 0; axis < 3; ++axis) {
@@ -130,24 +133,18 @@ void bound_boxes_avx2(const BoxArrays &b, std::uint32_t first, int count, const 
         }
         far = _mm256_add_ps(far, _mm256_set1_ps(q.w));
         near_sum = _mm256_add_ps(near_sum, _mm256_set1_ps(q.w));
-        behind[j] = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(far, zero, _CMP_LT_OQ)));
-        across[j] = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(near_sum, zero, _CMP_LT_OQ)));
+        const __m256i bit = _mm256_set1_epi32(1 << j);
+        behind = _mm256_or_si256(behind, _mm256_and_si256(_mm256_castps_si256(_mm256_cmp_ps(far, zero, _CMP_LT_OQ)), bit));
+        across = _mm256_or_si256(across, _mm256_and_si256(_mm256_castps_si256(_mm256_cmp_ps(near_sum, zero, _CMP_LT_OQ)), bit));
     }
-    out.outside = 0;
-    for (int i = 0; i < 8; ++i) {
-        out.crossing[i] = 0;
-        if (i >= count)
-            continue;
-        unsigned box_behind = 0, box_across = 0;
-        for (int j = 0; j < 6; ++j) {
-            box_behind |= (behind[j] >> i & 1u) << j;
-            box_across |= (across[j] >> i & 1u) << j;
-        }
-        box_behind &= planes;
-        box_across &= planes;
-        out.crossing[i] = box_behind ? box_across & ((box_behind & (~box_behind + 1u)) - 1u) : box_across;
-        out.outside |= unsigned(box_behind != 0) << i;
-    }
+    // The planes crossed before the first behind: behind's lowest bit less
+    // one masks them (all ones where none is behind).
+    const __m256i lowest = _mm256_and_si256(behind, _mm256_sub_epi32(_mm256_setzero_si256(), behind));
+    const __m256i crossing =
+        _mm256_and_si256(across, _mm256_sub_epi32(lowest, _mm256_set1_epi32(1)));
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.crossing), _mm256_and_si256(crossing, in_count));
+    const __m256i outside = _mm256_and_si256(_mm256_cmpgt_epi32(behind, _mm256_setzero_si256()), in_count);
+    out.outside = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(outside)));
 }
 
 }  // namespace occu::choice
