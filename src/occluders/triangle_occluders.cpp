@@ -223,9 +223,9 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     view_.near = std::max(frame.camera.near_plane, 1e-6f);
     std::copy(frame.frustum.planes().begin(), frame.frustum.planes().end(), view_.planes);
     // Last frame's choice first: the smallest score to beat starts high.
-    seed_slots_.clear();
-    for (std::uint32_t t : last_chosen_)
-        seed_slots_.push_back(arrays_.slot(t));
+    seed_slots_.resize(last_chosen_.size());
+    for (std::size_t i = 0; i < last_chosen_.size(); ++i)
+        seed_slots_[i] = arrays_.slot(last_chosen_[i]);
     choice::LaneScores lanes;
     for (std::size_t first = 0; first < last_chosen_.size(); first += 8) {
         const int count = int(std::min<std::size_t>(8, last_chosen_.size() - first));
@@ -264,13 +264,15 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     }
     for (std::uint32_t t : last_chosen_)
         taken_again_[t] = 0;
-    last_chosen_.clear();
     // Nearest first (by the nearest corner's clip w), as a z-buffer fills.
     std::sort(chosen_.begin(), chosen_.end(), [](const Chosen &a, const Chosen &b) { return a.nearest_w < b.nearest_w; });
-    for (const Chosen &c : chosen_) {
-        last_chosen_.push_back(c.triangle);
+    last_chosen_.resize(chosen_.size());
+    drawn_indices_.resize(3 * chosen_.size());
+    for (std::size_t i = 0; i < chosen_.size(); ++i) {
+        const std::uint32_t t = chosen_[i].triangle;
+        last_chosen_[i] = t;
         for (std::uint32_t v = 0; v < 3; ++v)
-            drawn_indices_.push_back(3 * c.triangle + v);
+            drawn_indices_[3 * i + v] = 3 * t + v;
     }
     return drawn_indices_;
 }
