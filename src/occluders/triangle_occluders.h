@@ -25,7 +25,8 @@
 // every node keeps its subtree's largest; a frame starts from the
 // triangles it chose last time (frames are coherent, so the budget's
 // smallest score is high at once), then opens the hierarchy's nodes in
-// the frustum best bound first, and stops at the first node, and within a
+// the frustum best bound first (a node's children bounded and classified
+// eight at a time, occluders/choice_kernels.h), and stops at the first node, and within a
 // leaf at the first triangle, whose bound cannot beat the budget's
 // smallest score. A leaf's triangles are scored eight at a time
 // (occluders/choice_kernels.h), with every test that does not depend on
