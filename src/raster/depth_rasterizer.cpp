@@ -1078,15 +1078,11 @@ bool DepthRasterizer::occluded(const PixelRect &frame_rect, float z) const
                             .clamped({0, 0, width_, height_});
     if (m.empty())
         return true;
-    // Only the rectangle's tiles' maxima brought up to date: occluders
-    // drawn between tests (a skin after each test, occluders/skin_occluders.h)
-    // dirty a few tiles, and a scan of every tile's mark each time cost more
-    // than the tests.
+    if (any_dirty_)
+        update_tile_maxima();
     for (int ty = m.y0 / tile_size; ty <= (m.y1 - 1) / tile_size; ++ty)
         for (int tx = m.x0 / tile_size; tx <= (m.x1 - 1) / tile_size; ++tx) {
             const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
-            if (dirty_[t])
-                refresh_tile_maximum(t);
             if (tile_max_[t] < z)
                 continue;   // the whole tile, padding included, is nearer
             const int c0 = std::max(m.x0 - tx * tile_size, 0), c1 = std::min(m.x1 - tx * tile_size, tile_size);
