@@ -235,6 +235,7 @@ unsigned rows_runs(const Crossings &c, int y, int rows, RowsRuns &out)
     // Edge e's own column and, with a triangle across, its reach's; the
     // two lines share the slope, so slope v once for both.
     __m256i own[Edges ? Edges : max_edges], reach[3];
+#pragma GCC unroll 3
     for (int e = 0; e < edges; ++e) {
         const __m256d slope = _mm256_set1_pd(c.slope[e]);
         const __m256d bv_low = _mm256_mul_pd(slope, v_low), size_low = _mm256_andnot_pd(x.sign, bv_low);
@@ -258,6 +259,7 @@ unsigned rows_runs(const Crossings &c, int y, int rows, RowsRuns &out)
     // to it (upper).
     __m256i lower[Edges ? Edges : max_edges], upper[Edges ? Edges : max_edges];
     __m256i held_lo = c_lo, held_hi = c_hi;
+#pragma GCC unroll 3
     for (int e = 0; e < edges; ++e) {
         const bool rises = c.rising_edges >> e & 1;
         lower[e] = rises ? own[e] : c_lo;
