@@ -260,12 +260,12 @@ struct RowsRuns {
     unsigned band_lanes[3];
 };
 
-// For rows y .. y + rows_at_once(k) - 1 below y_end: per line and lane, where rising,
-// the first column held, clamped to [c_lo, c_hi + 1] (c_hi + 1: none);
-// else the last, clamped to [c_lo - 1, c_hi] (c_lo - 1: none), a NaN
-// crossing holding none; then the runs they bound. Returns bit r where
-// row y + r has a run holding a column (first <= last); the lanes of rows
-// from y_end on hold nothing read.
+// For rows y .. y + rows_at_once(k) - 1 below y_end: per line and lane,
+// where rising, the first column held, clamped to [c_lo, c_hi + 1] (c_hi
+// + 1: none); else the last, clamped to [c_lo - 1, c_hi] (c_lo - 1: none),
+// a NaN crossing holding none; then the runs they bound. Returns bit r
+// where row y + r has a run holding a column (first <= last); the lanes of
+// rows from y_end on are not computed (their contents mean nothing).
 unsigned partial_rows_runs_scalar(const Crossings &c, int y, RowsRuns &runs);
 unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &runs);
 
