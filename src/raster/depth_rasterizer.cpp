@@ -182,6 +182,7 @@ void DepthRasterizer::begin(const glm::mat4 &view_projection, int frame_width, i
         for (int l = 0; l < 8; ++l) {
             lane_row_[l] = l < rows * k ? l / k : 0;
             lane_offset_[l] = (l % k + 0.5) / k;
+            sample_offset_[l] = float(lane_offset_[l]);
         }
     }
     stats_ = {};
@@ -672,7 +673,6 @@ struct DepthRasterizer::PartialEdges {
     // margin beyond a shared edge, held_c elsewhere).
     double reach_c[raster::max_edges];
     int candidates;   // bit e (e < 3): a triangle lies across edge e
-    float offset[8];  // sample offsets within a depth pixel, as float
     // The triangle across each edge, where the caller named one GL draws
     // whole (between the near and far planes, inside the guard band) and
     // both face the eye by more than twice the margin: a sample within
@@ -724,8 +724,9 @@ DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *wi
     p.across = across;
     p.error = error;
     const int k = p.k = options_.divisor;
-    p.first = 0.5 / k;
-    p.last = (k - 0.5) / k;
+    // 0.5 / k and (k - 0.5) / k, as begin() divided them.
+    p.first = lane_offset_[0];
+    p.last = lane_offset_[k - 1];
     p.extent = guard * std::max(width_, height_) + tile_size;
     p.candidates = 0;
     for (int e = 0; e < n; ++e) {
@@ -764,19 +765,26 @@ DepthRasterizer::PartialEdges DepthRasterizer::partial_edges(const glm::vec2 *wi
     p.y1 = std::min(height_, int(std::floor(double(hi.y) + grow - p.first)) + 1);
     for (int e = 0; e < n; ++e)
         p.reach_c[e] = (p.candidates >> e & 1) ? p.held_c[e] + 2.0 * p.margin[e] : p.held_c[e];
-    for (int i = 0; i < k; ++i)
-        p.offset[i] = float((i + 0.5) / k);
     return p;
 }
 
-bool DepthRasterizer::set_up_across(PartialEdges &p, int e) const
+// Inline where merge_partial asks, once per tile row of a band: most asks
+// find the triangle already looked at.
+inline bool DepthRasterizer::set_up_across(PartialEdges &p, int e) const
+{
+    const int state = p.neighbour[e].state;
+    return state != 0 ? state > 0 : set_up_neighbour(p, e);
+}
+
+bool DepthRasterizer::set_up_neighbour(PartialEdges &p, int e) const
 {
     PartialEdges::Across &x = p.neighbour[e];
-    if (x.state != 0)
-        return x.state > 0;
     x.state = -1;
     const int k = p.k;
-    const TransformError far = transform_error(&p.across[e], 1);
+    // transform_error(&p.across[e], 1), with the matrix begin() converted.
+    TransformError far{0.0, 0.0};
+    const glm::dvec3 corner(p.across[e]);
+    add_transform_error(view_projection_double_, corner, view_projection_double_ * glm::dvec4(corner, 1.0), far);
     if (!(far.window <= p.error.window && far.depth <= p.error.depth) && !(far.window < 1.0 && far.depth < 1e-2))
         return false;
     const double extra = std::max(far.window, p.error.window);
@@ -840,6 +848,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     raster::Crossings c;
     c.c_lo = p.x0 * k;
     c.c_hi = p.x1 * k - 1;
+    c.y_end = p.y1;
     c.k = k;
     c.lane_row = lane_row_;
     c.lane_offset = lane_offset_;
@@ -847,24 +856,27 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     c.candidates = p.candidates;
     c.rising_edges = 0;
     // The lines (raster::Crossings): edge e's held constant is line e, the
-    // reach of an edge with a triangle across a line after the edges.
-    int lines = 0;
-    const auto add_line = [&](int e, double constant) {
+    // reach of an edge with a triangle across a line after the edges, of
+    // the same slope.
+    int lines = n;
+    const auto set_line = [&](int line, int e, double constant) {
         const bool level = p.ea[e] == 0.0;
-        c.start[lines] = level ? constant : -constant / p.ea[e];
-        c.slope[lines] = level ? p.eb[e] : -p.eb[e] / p.ea[e];
-        c.rising[lines] = p.ea[e] >= 0.0;
-        c.level[lines] = level;
-        return lines++;
+        c.start[line] = level ? constant : -constant / p.ea[e];
+        c.rising[line] = p.ea[e] >= 0.0;
+        c.level[line] = level;
     };
     for (int e = 0; e < n; ++e) {
-        add_line(e, p.held_c[e]);
+        set_line(e, e, p.held_c[e]);
+        c.slope[e] = p.ea[e] == 0.0 ? p.eb[e] : -p.eb[e] / p.ea[e];
         if (p.ea[e] >= 0.0)
             c.rising_edges |= 1u << e;
     }
     for (int e = 0; e < 3; ++e)
-        if (p.candidates >> e & 1)
-            c.reach_line[e] = add_line(e, p.reach_c[e]);
+        if (p.candidates >> e & 1) {
+            set_line(lines, e, p.reach_c[e]);
+            c.slope[lines] = c.slope[e];
+            c.reach_line[e] = lines++;
+        }
     float nearest = depth[0];
     for (int i = 1; i < n; ++i)
         nearest = std::min(nearest, depth[i]);
@@ -877,7 +889,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     raster::RowsRuns runs;
     raster::PartialRow row;
     row.k = k;
-    std::copy(p.offset, p.offset + k, row.offset);
+    std::copy(sample_offset_, sample_offset_ + k, row.offset);
     row.full_lo = std::uint32_t(full_mask_);
     row.full_hi = std::uint32_t(full_mask_ >> 32);
     row.za = s.za;

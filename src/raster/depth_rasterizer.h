@@ -212,11 +212,12 @@ private:
                        const glm::vec3 *across, TransformError error);
     // merge_partial's parts: the polygon's edges at sample precision and
     // the depth pixels they may reach; the triangle across edge e, set up
-    // on first need (false where it cannot count).
+    // on first need (false where it cannot count) by set_up_neighbour.
     struct PartialEdges;
     PartialEdges partial_edges(const glm::vec2 *window, const float *depth, int count, const glm::vec3 *across,
                                TransformError error) const;
     bool set_up_across(PartialEdges &edges, int e) const;
+    bool set_up_neighbour(PartialEdges &edges, int e) const;
     // Adds sample mask `mask` held no farther than z to the pixel at
     // `index` (tile layout), as raster::merge_partial_row's rule does
     // (merge_nearest: another buffer's layer); returns whether its depth
@@ -263,6 +264,7 @@ private:
     std::vector<std::uint8_t> partial_written_;   // per tile: a mask set since begin
     std::uint64_t full_mask_ = 0;
     double lane_row_[8] = {}, lane_offset_[8] = {};   // raster::Crossings' for the divisor
+    float sample_offset_[8] = {};                      // lane_offset_[0 .. k - 1] as float
     Stats stats_;
 };
 

@@ -229,6 +229,7 @@ inline int rows_at_once(int k) { return 8 / k; }
 constexpr int max_lines = max_edges + 3;
 struct Crossings {
     int c_lo, c_hi;   // the sample columns of the polygon's box
+    int y_end;        // the row past the polygon's box: no lanes for rows from it on
     int k;
     // Lane l's row offset from y (l / k) and sample row offset (((l mod
     // k) + 0.5) / k), as double; any finite value in a lane that holds
@@ -239,7 +240,8 @@ struct Crossings {
     bool level[max_lines];
     // The polygon's edges: edge e's held line is line e; for bit e of
     // `candidates` (a triangle across edge e), its reach is line
-    // reach_line[e]. Bit e of rising_edges: edge e rises.
+    // reach_line[e], of the same slope (slope v is shared). Bit e of
+    // rising_edges: edge e rises.
     int edges, candidates, reach_line[3];
     unsigned rising_edges;
 };
@@ -258,11 +260,12 @@ struct RowsRuns {
     unsigned band_lanes[3];
 };
 
-// For rows y .. y + rows_at_once(k) - 1: per line and lane, where rising,
-// the first column held, clamped to [c_lo, c_hi + 1] (c_hi + 1: none);
-// else the last, clamped to [c_lo - 1, c_hi] (c_lo - 1: none), a NaN
-// crossing holding none; then the runs they bound. Returns bit r where
-// row y + r has a run holding a column (first <= last).
+// For rows y .. y + rows_at_once(k) - 1 below y_end: per line and lane,
+// where rising, the first column held, clamped to [c_lo, c_hi + 1] (c_hi
+// + 1: none); else the last, clamped to [c_lo - 1, c_hi] (c_lo - 1: none),
+// a NaN crossing holding none; then the runs they bound. Returns bit r
+// where row y + r has a run holding a column (first <= last); the lanes of
+// rows from y_end on are not computed (their contents mean nothing).
 unsigned partial_rows_runs_scalar(const Crossings &c, int y, RowsRuns &runs);
 unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &runs);
 

@@ -150,14 +150,15 @@ struct CrossingConstants {
     __m256d eight_eps, four_eps, one, zero, half, k, sign, lo, hi, none_rising, none_falling;
 };
 
-// One line's columns in four lanes of sample rows v: line_column's
-// expressions (raster_kernels_scalar.cpp) for the line's kind alone.
-inline __m128i line_columns(const Crossings &c, int line, __m256d v, const CrossingConstants &x)
+// One line's columns in four lanes of sample rows v, given its slope times
+// v (bv, shared by an edge's held line and its reach: the same slope) and
+// that product's magnitude: line_column's expressions
+// (raster_kernels_scalar.cpp) for the line's kind alone.
+inline __m128i line_columns(const Crossings &c, int line, __m256d bv, __m256d bv_size, const CrossingConstants &x)
 {
     const __m256d start = _mm256_set1_pd(c.start[line]);
-    const __m256d bv = _mm256_mul_pd(_mm256_set1_pd(c.slope[line]), v);
     const __m256d crossing = _mm256_add_pd(start, bv);
-    const __m256d terms = _mm256_add_pd(_mm256_andnot_pd(x.sign, start), _mm256_andnot_pd(x.sign, bv));
+    const __m256d terms = _mm256_add_pd(_mm256_andnot_pd(x.sign, start), bv_size);
     if (c.level[line]) {
         // The whole row or none.
         const __m256d holds =
@@ -168,21 +169,22 @@ inline __m128i line_columns(const Crossings &c, int line, __m256d v, const Cross
     if (c.rising[line]) {
         // The first column from (crossing + slack) k - 0.5 up; first <=
         // c_hi (false for NaN) ? max(first, c_lo) : c_hi + 1, as the
-        // scalar (first < c_lo ? c_lo : first).
+        // scalar (first < c_lo ? c_lo : first; max_pd gives c_lo where
+        // first is NaN, which the compare then drops).
         const __m256d x_up = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(crossing, slack), x.k), x.half);
         const __m256d first = _mm256_round_pd(
             _mm256_add_pd(x_up, _mm256_mul_pd(x.four_eps, _mm256_add_pd(_mm256_andnot_pd(x.sign, x_up), x.one))),
             _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
-        const __m256d clamped = _mm256_blendv_pd(first, x.lo, _mm256_cmp_pd(first, x.lo, _CMP_LT_OQ));
-        return _mm256_cvtpd_epi32(_mm256_blendv_pd(x.none_rising, clamped, _mm256_cmp_pd(first, x.hi, _CMP_LE_OQ)));
+        return _mm256_cvtpd_epi32(
+            _mm256_blendv_pd(x.none_rising, _mm256_max_pd(first, x.lo), _mm256_cmp_pd(first, x.hi, _CMP_LE_OQ)));
     }
     // The last column from (crossing - slack) k - 0.5 down.
     const __m256d x_down = _mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(crossing, slack), x.k), x.half);
     const __m256d last = _mm256_round_pd(
         _mm256_sub_pd(x_down, _mm256_mul_pd(x.four_eps, _mm256_add_pd(_mm256_andnot_pd(x.sign, x_down), x.one))),
         _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    const __m256d clamped = _mm256_blendv_pd(last, x.hi, _mm256_cmp_pd(last, x.hi, _CMP_GT_OQ));
-    return _mm256_cvtpd_epi32(_mm256_blendv_pd(x.none_falling, clamped, _mm256_cmp_pd(last, x.lo, _CMP_GE_OQ)));
+    return _mm256_cvtpd_epi32(
+        _mm256_blendv_pd(x.none_falling, _mm256_min_pd(last, x.hi), _mm256_cmp_pd(last, x.lo, _CMP_GE_OQ)));
 }
 
 // Per divisor k, the permutations that bring each row's k lanes together:
@@ -205,14 +207,13 @@ constexpr RowReduction row_reduction[9] = {
     {3, {{1, 0, 3, 2, 5, 4, 7, 6}, {2, 3, 0, 1, 6, 7, 4, 5}, {4, 5, 6, 7, 0, 1, 2, 3}}},
 };
 
-}  // namespace
-
-unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &out)
+// partial_rows_runs_avx2 for a polygon of Edges edges (0: any count) whose
+// rows in this call lie in the low four lanes (High false: lanes 4-7 are
+// not computed and hold nothing read) or reach lanes 4-7 (High true).
+template <int Edges, bool High>
+unsigned rows_runs(const Crossings &c, int y, int rows, RowsRuns &out)
 {
-    // Each line's crossings in two steps of four double lanes, the
-    // scalar's expressions lane by lane, kept in registers (no store of
-    // four columns read back as eight).
-    const int kk = c.k;
+    const int kk = c.k, edges = Edges ? Edges : c.edges;
     CrossingConstants x;
     x.eight_eps = _mm256_set1_pd(8.0 * 0x1p-52);
     x.four_eps = _mm256_set1_pd(4.0 * 0x1p-52);
@@ -229,22 +230,37 @@ unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &out)
     const __m256d row = _mm256_set1_pd(double(y));
     const __m256d v_low = _mm256_add_pd(_mm256_add_pd(row, _mm256_loadu_pd(c.lane_row)), _mm256_loadu_pd(c.lane_offset));
     const __m256d v_high =
-        _mm256_add_pd(_mm256_add_pd(row, _mm256_loadu_pd(c.lane_row + 4)), _mm256_loadu_pd(c.lane_offset + 4));
-    const auto columns = [&](int line) {
-        return _mm256_set_m128i(line_columns(c, line, v_high, x), line_columns(c, line, v_low, x));
-    };
+        High ? _mm256_add_pd(_mm256_add_pd(row, _mm256_loadu_pd(c.lane_row + 4)), _mm256_loadu_pd(c.lane_offset + 4))
+             : v_low;
+    // Edge e's own column and, with a triangle across, its reach's; the
+    // two lines share the slope, so slope v once for both.
+    __m256i own[Edges ? Edges : max_edges], reach[3];
+#pragma GCC unroll 3
+    for (int e = 0; e < edges; ++e) {
+        const __m256d slope = _mm256_set1_pd(c.slope[e]);
+        const __m256d bv_low = _mm256_mul_pd(slope, v_low), size_low = _mm256_andnot_pd(x.sign, bv_low);
+        const __m256d bv_high = High ? _mm256_mul_pd(slope, v_high) : bv_low;
+        const __m256d size_high = High ? _mm256_andnot_pd(x.sign, bv_high) : size_low;
+        const auto columns = [&](int line) {
+            const __m128i low = line_columns(c, line, bv_low, size_low, x);
+            return High ? _mm256_set_m128i(line_columns(c, line, bv_high, size_high, x), low)
+                        : _mm256_castsi128_si256(low);
+        };
+        own[e] = columns(e);
+        if (e < 3 && (c.candidates >> e & 1))
+            reach[e] = columns(c.reach_line[e]);
+    }
     const __m256i c_lo = _mm256_set1_epi32(c.c_lo), c_hi = _mm256_set1_epi32(c.c_hi);
     const __m256i ones = _mm256_set1_epi32(1);
-    const int rows = rows_at_once(kk);
-    // The lanes that hold a sample row.
+    // The lanes that hold a sample row of the polygon's.
     const __m256i valid =
         _mm256_cmpgt_epi32(_mm256_set1_epi32(rows * kk), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
     // Edge e's bound: from its column on where it rises (lower), else up
     // to it (upper).
-    __m256i own[max_edges], lower[max_edges], upper[max_edges];
+    __m256i lower[Edges ? Edges : max_edges], upper[Edges ? Edges : max_edges];
     __m256i held_lo = c_lo, held_hi = c_hi;
-    for (int e = 0; e < c.edges; ++e) {
-        own[e] = columns(e);
+#pragma GCC unroll 3
+    for (int e = 0; e < edges; ++e) {
         const bool rises = c.rising_edges >> e & 1;
         lower[e] = rises ? own[e] : c_lo;
         upper[e] = rises ? c_hi : own[e];
@@ -265,13 +281,12 @@ unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &out)
         out.band_lanes[e] = 0;
         if (!(c.candidates >> e & 1))
             continue;
-        const __m256i reach = columns(c.reach_line[e]);
         const bool rises = c.rising_edges >> e & 1;
         const int o1 = e == 2 ? 0 : e + 1, o2 = e == 0 ? 2 : e - 1;
         const __m256i band_lo =
-            _mm256_max_epi32(_mm256_max_epi32(rises ? reach : _mm256_add_epi32(own[e], ones), lower[o1]), lower[o2]);
+            _mm256_max_epi32(_mm256_max_epi32(rises ? reach[e] : _mm256_add_epi32(own[e], ones), lower[o1]), lower[o2]);
         const __m256i band_hi =
-            _mm256_min_epi32(_mm256_min_epi32(rises ? _mm256_sub_epi32(own[e], ones) : reach, upper[o1]), upper[o2]);
+            _mm256_min_epi32(_mm256_min_epi32(rises ? _mm256_sub_epi32(own[e], ones) : reach[e], upper[o1]), upper[o2]);
         _mm256_store_si256(reinterpret_cast<__m256i *>(out.band_lo[e]), band_lo);
         _mm256_store_si256(reinterpret_cast<__m256i *>(out.band_hi[e]), band_hi);
         const __m256i in_band = nonempty(band_lo, band_hi);
@@ -300,6 +315,21 @@ unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &out)
     for (int r = 0; r < rows; ++r)
         found |= (lanes >> (r * kk) & 1u) << r;
     return found;
+}
+
+}  // namespace
+
+unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &out)
+{
+    // Each line's crossings in one or two steps of four double lanes, the
+    // scalar's expressions lane by lane, kept in registers (no store of
+    // four columns read back as eight); none for lanes past the polygon's
+    // last row.
+    const int rows = std::min(rows_at_once(c.k), c.y_end - y);
+    const bool high = rows * c.k > 4;
+    if (c.edges == 3)
+        return high ? rows_runs<3, true>(c, y, rows, out) : rows_runs<3, false>(c, y, rows, out);
+    return high ? rows_runs<0, true>(c, y, rows, out) : rows_runs<0, false>(c, y, rows, out);
 }
 
 namespace {

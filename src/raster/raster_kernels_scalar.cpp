@@ -89,7 +89,8 @@ unsigned partial_rows_runs_scalar(const Crossings &c, int y, RowsRuns &out)
     unsigned rows = 0;
     for (int e = 0; e < 3; ++e)
         out.band_lanes[e] = 0;
-    for (int r = 0; r < rows_at_once(k); ++r) {
+    const int rows_here = std::min(rows_at_once(k), c.y_end - y);
+    for (int r = 0; r < rows_here; ++r) {
         const int l0 = r * k;
         int first = c.c_hi + 1, last = c.c_lo - 1, whole_first = c.c_lo, whole_last = c.c_hi;
         const auto extend = [&](int lo, int hi) {
