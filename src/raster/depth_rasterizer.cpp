@@ -838,33 +838,31 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // c < 2^32 / k, so its floor is c / k's; the columns here lie in [0,
     // k (width + 1)].
     rows.reciprocal = (std::uint64_t(1) << 32) / std::uint64_t(k) + 1;
-    // The triangle across an edge, set up only where a farther pixel holds
-    // a sample of its band (most edges have none).
-    struct Neighbours {
-        const DepthRasterizer *rasterizer;
-        PartialEdges *edges;
-    } neighbours{this, &p};
-    rows.set_up_across = [](void *context, int e) -> const raster::PartialAcross * {
-        const Neighbours &a = *static_cast<const Neighbours *>(context);
-        return a.rasterizer->set_up_across(*a.edges, e) ? &a.edges->neighbour[e].setup : nullptr;
-    };
-    rows.context = &neighbours;
     rows.asked = 0;
+    rows.resume_x8 = 0;
+    rows.wrote = false;
     const raster::PartialLayer layer{tiles_.data(),           partial_depth_.data(), partial_mask_lo_.data(),
                                      partial_mask_hi_.data(), tile_max_.data(),      farthest_bound_.data(),
                                      dirty_.data(),           partial_written_.data(), tiles_x_};
-    unsigned wrote = 0;
     // Rows a few at a time (raster::rows_at_once): their runs, then their
-    // tile rows, in one call each.
+    // tile rows in one call, which stops where it first needs a triangle
+    // across: set up only where a farther pixel holds a sample of its band
+    // (most edges have none).
     const int rows_at_once = raster::rows_at_once(k);
     for (int y_first = p.y0; y_first < p.y1; y_first += rows_at_once) {
         unsigned found = rows_runs(c, y_first, runs);
         if (p.y1 - y_first < rows_at_once)
             found &= (1u << (p.y1 - y_first)) - 1;
-        if (found)
-            wrote |= merge_rows(rows, runs, y_first, found, layer);
+        while (found) {
+            found = merge_rows(rows, runs, y_first, found, layer);
+            if (found) {
+                const int e = rows.wanted;
+                rows.across[e] = set_up_across(p, e) ? &p.neighbour[e].setup : nullptr;
+                rows.asked |= 1u << e;
+            }
+        }
     }
-    any_dirty_ = any_dirty_ || wrote != 0;
+    any_dirty_ = any_dirty_ || rows.wrote;
 }
 
 bool DepthRasterizer::add_partial(std::size_t index, std::uint64_t mask, float z)

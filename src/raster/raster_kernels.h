@@ -309,20 +309,25 @@ struct PartialRows {
     float za, zb, zc, zcap;
     double depth_error;
     float behind;
-    // 2^32 / k + 1: sample column c's depth pixel is c reciprocal >> 32
-    // (DepthRasterizer::merge_partial).
+    // 2^32 / k + 1: sample column c >= 0's depth pixel c / k is c
+    // reciprocal >> 32 (DepthRasterizer::merge_partial).
     std::uint64_t reciprocal;
-    // Edge e's triangle across (null: none), from set_up_across(context,
-    // e) the first time a farther pixel holds a sample of its band; bit e of
-    // `asked`: asked already.
-    const PartialAcross *(*set_up_across)(void *context, int e);
-    void *context;
+    // Edge e's triangle across (null: none), once bit e of `asked` is set.
     const PartialAcross *across[3];
     unsigned asked;
+    // The walk stops where a farther pixel first holds a sample of the
+    // band of an edge not asked about yet: it sets `wanted` to that edge
+    // and resume_x8 to that tile row, and returns the rows left, for the
+    // caller to set the triangle across up (DepthRasterizer::set_up_across)
+    // and call again. resume_x8 (0 at first): the tile row the first row
+    // left starts from.
+    int wanted, resume_x8;
+    bool wrote;   // set where a depth changed
 };
 
 // Rows y + r for bit r of `found` (partial_rows_runs' rows, each holding a
-// column), each in turn. Returns whether a depth changed.
+// column), each in turn. Returns the rows left where it stops for a
+// triangle across, else 0.
 unsigned merge_partial_rows_scalar(PartialRows &rows, const RowsRuns &runs, int y, unsigned found,
                                    const PartialLayer &layer);
 unsigned merge_partial_rows_avx2(PartialRows &rows, const RowsRuns &runs, int y, unsigned found,

@@ -363,41 +363,36 @@ inline unsigned lanes_holding(__m256i lo, __m256i hi)
            0xffu;
 }
 
-// Edge e's triangle across, set up the first time it is asked for.
-const PartialAcross *across_of(PartialRows &r, int e)
-{
-    if (!(r.asked >> e & 1)) {
-        r.across[e] = r.set_up_across(r.context, e);
-        r.asked |= 1u << e;
-    }
-    return r.across[e];
-}
-
 // merge_partial_rows_avx2 for divisor K, its sample loops unrolled.
 template <int K>
 unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigned found, const PartialLayer &b)
 {
     constexpr int k = K;
     constexpr unsigned row_lanes = (1u << k) - 1;
-    const auto pixel_of = [&r](int column) { return int(std::uint64_t(column) * r.reciprocal >> 32); };
+    // A sample column's depth pixel, the scalar loop's (columns are not
+    // negative: a shift, or a multiply by a constant).
+    const auto pixel_of = [](int column) { return int(unsigned(column) / unsigned(K)); };
     const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
     const __m256i lane_columns = _mm256_setr_epi32(0, k, 2 * k, 3 * k, 4 * k, 5 * k, 6 * k, 7 * k);
     const __m256 lane_x = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
     const __m256 za = _mm256_set1_ps(r.za), zcap = _mm256_set1_ps(r.zcap);
     const __m256i full_lo = _mm256_set1_epi32(int(r.full_lo)), full_hi = _mm256_set1_epi32(int(r.full_hi));
-    unsigned wrote = 0;
-    for (; found; found &= found - 1) {
+    int resume = r.resume_x8;
+    r.resume_x8 = 0;
+    for (; found; found &= found - 1, resume = 0) {
         const int row = __builtin_ctz(found), y = y_first + row, l = row * k;
         const float fy = float(y);
         const __m256 depth_term = _mm256_set1_ps(r.zb * fy + r.zc);
-        const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(b.tiles_x);
-        const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
+        // y >= 0: its tile row and row within the tile by shifts.
+        const std::size_t row_tiles = std::size_t(unsigned(y) / tile_size) * std::size_t(b.tiles_x);
+        const std::size_t row_offset = std::size_t(unsigned(y) % tile_size) * tile_size;
         const int skip0 = pixel_of(runs.whole_first[l] + k - 1) + 1, skip1 = pixel_of(runs.whole_last[l] + 1) - 2;
         const unsigned band_edges = unsigned((runs.band_lanes[0] >> l & row_lanes) != 0) |
                                     unsigned((runs.band_lanes[1] >> l & row_lanes) != 0) << 1 |
                                     unsigned((runs.band_lanes[2] >> l & row_lanes) != 0) << 2;
         const int last_pixel = pixel_of(runs.last[l]);
-        for (int x8 = pixel_of(runs.first[l]) / tile_size * tile_size; x8 <= last_pixel; x8 += tile_size) {
+        const int start = int(unsigned(pixel_of(runs.first[l])) / tile_size * tile_size);
+        for (int x8 = start > resume ? start : resume; x8 <= last_pixel; x8 += tile_size) {
             if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
                 continue;
             const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
@@ -417,13 +412,17 @@ unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigne
             __m256i lo, hi;
             run_masks<K>(runs.held_lo + l, runs.held_hi + l, first, lo, hi);
             unsigned taking = lanes_holding(lo, hi) & farther;
-            for (int e = 0; e < 3; ++e) {
-                if (!(band_edges >> e & 1))
-                    continue;
+            for (unsigned edges = band_edges; edges; edges &= edges - 1) {
+                const int e = __builtin_ctz(edges);
                 __m256i band_lo, band_hi;
                 run_masks<K>(runs.band_lo[e] + l, runs.band_hi[e] + l, first, band_lo, band_hi);
                 const unsigned lanes = lanes_holding(band_lo, band_hi) & farther;
-                const PartialAcross *n = lanes ? across_of(r, e) : nullptr;
+                if (lanes && !(r.asked >> e & 1)) {
+                    r.wanted = e;
+                    r.resume_x8 = x8;
+                    return found;
+                }
+                const PartialAcross *n = lanes ? r.across[e] : nullptr;
                 if (!n)
                     continue;
                 taking |= lanes;
@@ -497,13 +496,13 @@ unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigne
             _mm256_storeu_ps(b.depth + index, _mm256_blendv_ps(depth, farthest, nearer));
             if (_mm256_movemask_ps(nearer) != 0) {
                 b.dirty[tile] = 1;
-                wrote = 1;
+                r.wrote = true;
             }
             if (_mm256_movemask_ps(store) != 0)
                 b.partial_written[tile] = 1;
         }
     }
-    return wrote;
+    return 0;
 }
 
 }  // namespace

@@ -182,16 +182,6 @@ unsigned run_masks(const std::int32_t *run_lo, const std::int32_t *run_hi, int k
     return lanes;
 }
 
-// Edge e's triangle across, set up the first time it is asked for.
-const PartialAcross *across_of(PartialRows &r, int e)
-{
-    if (!(r.asked >> e & 1)) {
-        r.across[e] = r.set_up_across(r.context, e);
-        r.asked |= 1u << e;
-    }
-    return r.across[e];
-}
-
 // The samples of pixel (fx, fy) inside the triangle across n.
 void inside_across(const PartialAcross &n, const float *offset, int k, float fx, float fy, std::uint32_t &in_lo,
                    std::uint32_t &in_hi)
@@ -217,8 +207,9 @@ unsigned merge_partial_rows_scalar(PartialRows &r, const RowsRuns &runs, int y_f
     const int k = r.k;
     const unsigned row_lanes = (1u << k) - 1;
     const auto pixel_of = [&r](int column) { return int(std::uint64_t(column) * r.reciprocal >> 32); };
-    unsigned wrote = 0;
-    for (; found; found &= found - 1) {
+    int resume = r.resume_x8;
+    r.resume_x8 = 0;
+    for (; found; found &= found - 1, resume = 0) {
         const int row = __builtin_ctz(found), y = y_first + row, l = row * k;
         const float fy = float(y), depth_term = r.zb * fy + r.zc;
         const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(b.tiles_x);
@@ -228,7 +219,8 @@ unsigned merge_partial_rows_scalar(PartialRows &r, const RowsRuns &runs, int y_f
         for (int e = 0; e < 3; ++e)
             band_edges |= unsigned((runs.band_lanes[e] >> l & row_lanes) != 0) << e;
         const int last_pixel = pixel_of(runs.last[l]);
-        for (int x8 = pixel_of(runs.first[l]) / tile_size * tile_size; x8 <= last_pixel; x8 += tile_size) {
+        for (int x8 = std::max(pixel_of(runs.first[l]) / tile_size * tile_size, resume); x8 <= last_pixel;
+             x8 += tile_size) {
             if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
                 continue;
             const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
@@ -250,7 +242,12 @@ unsigned merge_partial_rows_scalar(PartialRows &r, const RowsRuns &runs, int y_f
                 if (!(band_edges >> e & 1))
                     continue;
                 const unsigned lanes = run_masks(runs.band_lo[e] + l, runs.band_hi[e] + l, k, x8, band) & farther;
-                const PartialAcross *n = lanes ? across_of(r, e) : nullptr;
+                if (lanes && !(r.asked >> e & 1)) {
+                    r.wanted = e;
+                    r.resume_x8 = x8;
+                    return found;
+                }
+                const PartialAcross *n = lanes ? r.across[e] : nullptr;
                 if (!n)
                     continue;
                 taking |= lanes;
@@ -294,12 +291,12 @@ unsigned merge_partial_rows_scalar(PartialRows &r, const RowsRuns &runs, int y_f
                 if (farthest < depth[lane]) {
                     depth[lane] = farthest;
                     b.dirty[tile] = 1;
-                    wrote = 1;
+                    r.wrote = true;
                 }
             }
         }
     }
-    return wrote;
+    return 0;
 }
 
 bool tile_behind_scalar(const float *tile, int c0, int c1, int r0, int r1, float z)

@@ -858,14 +858,17 @@ TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
                     farthest_bound.data(), dirty.data(), written.data(), tiles_x};
         }
     };
-    struct Asking {
-        const raster::PartialAcross *across[3];
-        int asked[3];
-    };
-    const auto ask = [](void *context, int e) {
-        Asking &a = *static_cast<Asking *>(context);
-        ++a.asked[e];
-        return a.across[e];
+    // The rows' walk as DepthRasterizer::merge_partial calls it: again
+    // after each stop, with the triangle across it asked for (some have
+    // none); how many times it asked for each.
+    const auto walk = [](decltype(&raster::merge_partial_rows_scalar) merge_rows, raster::PartialRows &rows,
+                         const raster::RowsRuns &runs, int y, unsigned found, const raster::PartialLayer &layer,
+                         const raster::PartialAcross *const *across, int *asked) {
+        while ((found = merge_rows(rows, runs, y, found, layer)) != 0) {
+            ++asked[rows.wanted];
+            rows.across[rows.wanted] = across[rows.wanted];
+            rows.asked |= 1u << rows.wanted;
+        }
     };
     long taken = 0, filled = 0, across_taken = 0;
     for (int trial = 0; trial < 3000; ++trial) {
@@ -931,7 +934,7 @@ TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
         rows.behind = chance(0.3f) ? unit(rng) : 0.0f;
         rows.reciprocal = (std::uint64_t(1) << 32) / std::uint64_t(k) + 1;
         raster::PartialAcross across[3];
-        Asking asking{};
+        const raster::PartialAcross *set_up[3];
         for (int e = 0; e < 3; ++e) {
             raster::PartialAcross &n = across[e];
             // Both edges through a sample of the band, or near one (the
@@ -952,20 +955,19 @@ TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
             n.depth.zb = (unit(rng) - 0.5f) * 0.02f;
             n.depth.zc = unit(rng);
             n.depth.zcap = 1.0f;
-            asking.across[e] = chance(0.8f) ? &n : nullptr;
+            set_up[e] = chance(0.8f) ? &n : nullptr;
         }
-        rows.set_up_across = ask;
         rows.asked = 0;
+        rows.resume_x8 = 0;
+        rows.wrote = false;
         raster::PartialRows scalar_rows = rows, avx2_rows = rows;
-        Asking scalar_asking = asking, avx2_asking = asking;
-        scalar_rows.context = &scalar_asking;
-        avx2_rows.context = &avx2_asking;
+        int scalar_asked[3] = {}, avx2_asked[3] = {};
         Layer b = a;
         const Layer before = a;
         const raster::PartialLayer scalar_layer = a.view(), avx2_layer = b.view();
-        const unsigned scalar_wrote = raster::merge_partial_rows_scalar(scalar_rows, runs, y, found, scalar_layer);
-        const unsigned avx2_wrote = raster::merge_partial_rows_avx2(avx2_rows, runs, y, found, avx2_layer);
-        ASSERT_EQ(scalar_wrote, avx2_wrote) << "trial " << trial;
+        walk(raster::merge_partial_rows_scalar, scalar_rows, runs, y, found, scalar_layer, set_up, scalar_asked);
+        walk(raster::merge_partial_rows_avx2, avx2_rows, runs, y, found, avx2_layer, set_up, avx2_asked);
+        ASSERT_EQ(scalar_rows.wrote, avx2_rows.wrote) << "trial " << trial;
         const auto same = [](const auto &x, const auto &y) {
             return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof x[0]) == 0;
         };
@@ -975,10 +977,10 @@ TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
         ASSERT_TRUE(same(a.dirty, b.dirty) && same(a.written, b.written)) << "trial " << trial;
         ASSERT_EQ(scalar_rows.asked, avx2_rows.asked) << "trial " << trial;
         for (int e = 0; e < 3; ++e) {
-            ASSERT_EQ(scalar_asking.asked[e], avx2_asking.asked[e]) << "trial " << trial;
-            ASSERT_LE(scalar_asking.asked[e], 1) << "a triangle across is set up once";
+            ASSERT_EQ(scalar_asked[e], avx2_asked[e]) << "trial " << trial;
+            ASSERT_LE(scalar_asked[e], 1) << "a triangle across is set up once";
         }
-        filled += scalar_wrote;
+        filled += scalar_rows.wrote;
         for (std::size_t i = 0; i < pixels; ++i)
             taken += a.mask_lo[i] != before.mask_lo[i] || a.mask_hi[i] != before.mask_hi[i];
         across_taken += scalar_rows.asked != 0;
