@@ -883,98 +883,53 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     const float behind = float(double(nearest) - depth_margin);
     const bool avx2 = isa_ == Isa::avx2;
     const auto rows_runs = avx2 ? raster::partial_rows_runs_avx2 : raster::partial_rows_runs_scalar;
-    const auto run_masks = avx2 ? raster::run_masks_avx2 : raster::run_masks_scalar;
-    const auto row_depth = avx2 ? raster::partial_row_depth_avx2 : raster::partial_row_depth_scalar;
-    const auto merge_row = avx2 ? raster::merge_partial_row_avx2 : raster::merge_partial_row_scalar;
+    const auto merge_rows = avx2 ? raster::merge_partial_rows_avx2 : raster::merge_partial_rows_scalar;
     raster::RowsRuns runs;
-    raster::PartialRow row;
-    row.k = k;
-    std::copy(sample_offset_, sample_offset_ + k, row.offset);
-    row.full_lo = std::uint32_t(full_mask_);
-    row.full_hi = std::uint32_t(full_mask_ >> 32);
-    row.za = s.za;
-    row.zcap = s.zcap;
+    raster::PartialRows rows;
+    rows.k = k;
+    std::copy(sample_offset_, sample_offset_ + k, rows.offset);
+    rows.full_lo = std::uint32_t(full_mask_);
+    rows.full_hi = std::uint32_t(full_mask_ >> 32);
+    rows.za = s.za;
+    rows.zb = s.zb;
+    rows.zc = s.zc;
+    rows.zcap = s.zcap;
     // The fill's depth: the farthest over all the pixel's samples, so over
     // those the polygon holds, widened by the transform's error and
     // rounded up.
-    row.depth_error = error.depth;
-    bool wrote = false;
-    // Rows a few at a time (raster::rows_at_once), each in turn.
-    const int rows_at_once = raster::rows_at_once(k);
-    const unsigned row_lanes = (1u << k) - 1;
+    rows.depth_error = error.depth;
+    rows.behind = behind;
     // Sample column c's depth pixel, c / k, by a multiply rather than a
     // division's latency on every row: with reciprocal = 2^32 / k + d, 0 <
     // d <= 1, c reciprocal / 2^32 exceeds c / k by less than 1 / k for 0 <=
     // c < 2^32 / k, so its floor is c / k's; the columns here lie in [0,
     // k (width + 1)].
-    const std::uint64_t reciprocal = (std::uint64_t(1) << 32) / std::uint64_t(k) + 1;
-    const auto pixel_of = [reciprocal](int column) { return int(std::uint64_t(column) * reciprocal >> 32); };
+    rows.reciprocal = (std::uint64_t(1) << 32) / std::uint64_t(k) + 1;
+    rows.asked = 0;
+    rows.resume_x8 = 0;
+    rows.wrote = false;
+    const raster::PartialLayer layer{tiles_.data(),           partial_depth_.data(), partial_mask_lo_.data(),
+                                     partial_mask_hi_.data(), tile_max_.data(),      farthest_bound_.data(),
+                                     dirty_.data(),           partial_written_.data(), tiles_x_};
+    // Rows a few at a time (raster::rows_at_once): their runs, then their
+    // tile rows in one call, which stops where it first needs a triangle
+    // across: set up only where a farther pixel holds a sample of its band
+    // (most edges have none).
+    const int rows_at_once = raster::rows_at_once(k);
     for (int y_first = p.y0; y_first < p.y1; y_first += rows_at_once) {
         unsigned found = rows_runs(c, y_first, runs);
         if (p.y1 - y_first < rows_at_once)
             found &= (1u << (p.y1 - y_first)) - 1;
-        for (; found; found &= found - 1) {
-            const int r = __builtin_ctz(found), y = y_first + r, l = r * k;
-            row.y = y;
-            row.depth_term = s.zb * float(y) + s.zc;
-            const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(tiles_x_);
-            const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
-            // Pixels every sample of which is held, between two such
-            // pixels: the fill has taken them (its margins are no wider
-            // than these).
-            const int skip0 = pixel_of(runs.whole_first[l] + k - 1) + 1, skip1 = pixel_of(runs.whole_last[l] + 1) - 2;
-            const unsigned band_edges = unsigned((runs.band_lanes[0] >> l & row_lanes) != 0) |
-                                        unsigned((runs.band_lanes[1] >> l & row_lanes) != 0) << 1 |
-                                        unsigned((runs.band_lanes[2] >> l & row_lanes) != 0) << 2;
-            // A tile row at a time (raster::merge_partial_row): the masks
-            // of its eight pixels from the runs, met with the triangles
-            // across, merged lane by lane.
-            const int last_pixel = pixel_of(runs.last[l]);
-            for (int x8 = pixel_of(runs.first[l]) / tile_size * tile_size; x8 <= last_pixel; x8 += tile_size) {
-                if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
-                    continue;
-                // A tile nearer everywhere than the polygon's nearest
-                // corner takes nothing from it (behind_everything, tile by
-                // tile), by its maximum where up to date (the partial layer
-                // writes tiles often, and taking a maximum costs more than
-                // the test saves), or else by the bound the fill keeps of it.
-                const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
-                if ((!dirty_[tile] && tile_max_[tile] < behind) || farthest_bound_[tile] < behind)
-                    continue;
-                row.x8 = x8;
-                const std::size_t index = tile * tile_pixels + row_offset;
-                // The pixels nearer than the polygon take nothing from it.
-                const unsigned farther = row_depth(row, &tiles_[index]);
-                if (!farther)
-                    continue;
-                unsigned taking = run_masks(runs.held_lo + l, runs.held_hi + l, k, x8, row.held) & farther;
-                row.across_count = 0;
-                for (int e = 0; e < 3; ++e) {
-                    if (!(band_edges >> e & 1))
-                        continue;
-                    const unsigned lanes =
-                        run_masks(runs.band_lo[e] + l, runs.band_hi[e] + l, k, x8, row.band[row.across_count]) &
-                        farther;
-                    if (lanes && set_up_across(p, e)) {
-                        row.across[row.across_count++] = &p.neighbour[e].setup;
-                        taking |= lanes;
-                    }
-                }
-                if (!taking)
-                    continue;
-                const raster::PartialTileRow t{&tiles_[index], &partial_depth_[index], &partial_mask_lo_[index],
-                                               &partial_mask_hi_[index]};
-                const unsigned changed = merge_row(row, t);
-                if (changed & 1) {
-                    dirty_[tile] = 1;
-                    wrote = true;
-                }
-                if (changed & 2)
-                    partial_written_[tile] = 1;
+        while (found) {
+            found = merge_rows(rows, runs, y_first, found, layer);
+            if (found) {
+                const int e = rows.wanted;
+                rows.across[e] = set_up_across(p, e) ? &p.neighbour[e].setup : nullptr;
+                rows.asked |= 1u << e;
             }
         }
     }
-    any_dirty_ = any_dirty_ || wrote;
+    any_dirty_ = any_dirty_ || rows.wrote;
 }
 
 bool DepthRasterizer::add_partial(std::size_t index, std::uint64_t mask, float z)

@@ -67,7 +67,7 @@
 // the samples held (merge_partial), with no sample tested alone; the
 // eight depth pixels of a tile row then take their masks, the triangles
 // across and the merge rule at once, in lanes, with no branch per pixel
-// (raster::merge_partial_row, scalar and AVX2 twins equal bit for bit).
+// (raster::merge_partial_rows, scalar and AVX2 twins equal bit for bit).
 //
 // The inner loops exist twice, scalar and AVX2 (chosen at run time, or by
 // the caller); both evaluate the same float expressions in the same order,
@@ -219,7 +219,7 @@ private:
     bool set_up_across(PartialEdges &edges, int e) const;
     bool set_up_neighbour(PartialEdges &edges, int e) const;
     // Adds sample mask `mask` held no farther than z to the pixel at
-    // `index` (tile layout), as raster::merge_partial_row's rule does
+    // `index` (tile layout), as raster::merge_partial_rows' rule does
     // (merge_nearest: another buffer's layer); returns whether its depth
     // changed.
     bool add_partial(std::size_t index, std::uint64_t mask, float z);
@@ -254,7 +254,7 @@ private:
     // merge_partial_coverage: per depth pixel (the tiles' layout), the
     // samples held by polygons not covering it wholly, and their farthest
     // depth; empty otherwise.
-    // The masks in two planes, bits 0-31 and 32-63 (raster::MaskRow).
+    // The masks in two planes, bits 0-31 and 32-63 (raster::PartialLayer).
     std::vector<std::uint32_t> partial_mask_lo_, partial_mask_hi_;
     std::uint64_t partial_mask(std::size_t index) const
     {

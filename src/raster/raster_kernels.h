@@ -184,17 +184,6 @@ inline float tile_farthest_depth(const PolygonSetup &s, const Band &band, int x8
 void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer);
 void fill_avx2(const PolygonSetup &s, const TileBuffer &buffer);
 
-// A tile row of merged partial coverage at once, as Masked Occlusion
-// Culling updates a tile row (Hasselgren, Andersson and Akenine-Moeller
-// 2016, its triangle rasterization): the eight depth pixels x8 .. x8 + 7 of one row, each
-// a lane, with no branch per pixel. A pixel's k x k sample mask (bit j k +
-// i: sample column i of sample row j) is held in two planes of 32 bits,
-// bits 0-31 and 32-63, so that masks, depths and compares are all eight
-// 32-bit lanes.
-struct MaskRow {
-    std::uint32_t lo[tile_size], hi[tile_size];
-};
-
 // Merged partial coverage (DepthRasterizer::merge_partial): where each
 // edge of a polygon crosses each row of samples of a row of depth pixels,
 // as the run of sample columns it holds. Sample column c (of depth pixel
@@ -269,11 +258,6 @@ struct RowsRuns {
 unsigned partial_rows_runs_scalar(const Crossings &c, int y, RowsRuns &runs);
 unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &runs);
 
-// The runs lo[j] .. hi[j] of sample rows j < k, in depth pixels x8 .. x8
-// + 7, as their masks; returns the lanes with a bit set (bit l: lane l).
-unsigned run_masks_scalar(const std::int32_t *lo, const std::int32_t *hi, int k, int x8, MaskRow &out);
-unsigned run_masks_avx2(const std::int32_t *lo, const std::int32_t *hi, int k, int x8, MaskRow &out);
-
 // The triangle across a shared edge (DepthRasterizer::set_up_across): a
 // sample (u, v) is inside it where fl(fl(ea u) + fl(eb v)) >= held for its
 // two other edges, and its depth over a depth pixel is depth's (as
@@ -284,40 +268,73 @@ struct PartialAcross {
     PolygonSetup depth;
 };
 
-// One tile row's update, in two steps. First each pixel's depth bound:
-// min(za X + depth_term, zcap) widened by depth_error and rounded up
-// (partial_next_up); a pixel whose depth is no farther than that takes
-// nothing (the bound only rises). Then each pixel's mask is `held` and, for
-// each triangle across, the samples of its band inside that triangle, and
-// its depth bound rises to each triangle across's that holds one of its
-// samples. A pixel with no sample or whose depth is no farther than the
-// bound takes nothing; else its mask joins the pixel's partial mask and
-// its partial depth becomes the farther of the two (its own where the mask
-// was empty), and where the joint mask fills, the pixel takes that depth
-// if nearer and the partial mask empties.
-struct PartialRow {
-    int x8, y, k;
-    float offset[8];            // sample offsets within a depth pixel
-    std::uint32_t full_lo, full_hi;
-    float za, depth_term, zcap;
-    double depth_error;
-    float z[tile_size];         // the first step's bounds
-    MaskRow held;
-    int across_count;
-    const PartialAcross *across[3];
-    MaskRow band[3];
-};
-struct PartialTileRow {
+// The partial layer as its rows' walk reads and writes it, tile by tile
+// (TileBuffer's layout): each pixel's depth, partial depth and partial
+// mask, the mask in two planes of 32 bits (bits 0-31 and 32-63 of the k x
+// k samples, bit j k + i sample column i of sample row j); per tile its
+// maximum (up to date where not dirty), the fill's bound of its farthest
+// depth, and whether a depth (dirty) or a partial mask was written.
+struct PartialLayer {
     float *depth, *partial_depth;
     std::uint32_t *mask_lo, *mask_hi;
+    const float *tile_max, *farthest_bound;
+    std::uint8_t *dirty, *partial_written;
+    int tiles_x;
 };
-// The first step: sets row.z, returns the lanes whose depth is farther.
-unsigned partial_row_depth_scalar(PartialRow &row, const float *depth);
-unsigned partial_row_depth_avx2(PartialRow &row, const float *depth);
-// The second: bit 0 of the result, a depth changed; bit 1, a partial mask
-// was stored.
-unsigned merge_partial_row_scalar(const PartialRow &row, const PartialTileRow &tile);
-unsigned merge_partial_row_avx2(const PartialRow &row, const PartialTileRow &tile);
+
+// A polygon's merged partial coverage, a row of depth pixels at a time,
+// as Masked Occlusion Culling updates a tile row (Hasselgren, Andersson and
+// Akenine-Moeller 2016, its triangle rasterization): each tile row the
+// row's runs cross, its eight depth pixels x8 .. x8 + 7 in lanes with no
+// branch per pixel, one call for the rows, the masks and depths in
+// registers from step to step.
+//
+// A tile row is passed over where every pixel's samples are all held
+// between two such pixels (the fill has taken them: its margins are no
+// wider than these), or where the tile is nearer everywhere than `behind`
+// (DepthRasterizer::behind_everything, tile by tile), by its maximum where
+// up to date, or else by the fill's bound. Otherwise each pixel's depth
+// bound is min(za X + (zb Y + zc), zcap) widened by depth_error and rounded
+// up (partial_next_up), and a pixel no farther than its depth takes nothing
+// (the bound only rises). A pixel's mask is its held runs' samples and,
+// for each edge with a triangle across whose band holds a sample of a
+// farther pixel, that band's samples inside the triangle across; its depth
+// bound rises to each such triangle's where that holds one of its samples.
+// A pixel with no sample or whose depth is no farther than the bound
+// takes nothing; else its mask joins its partial mask and its partial
+// depth becomes the farther of the two (its own where the mask was empty),
+// and where the joint mask fills, the pixel takes that depth if nearer and
+// the partial mask empties.
+struct PartialRows {
+    int k;
+    float offset[8];            // sample offsets within a depth pixel
+    std::uint32_t full_lo, full_hi;
+    float za, zb, zc, zcap;
+    double depth_error;
+    float behind;
+    // 2^32 / k + 1: sample column c >= 0's depth pixel c / k is c
+    // reciprocal >> 32 (DepthRasterizer::merge_partial).
+    std::uint64_t reciprocal;
+    // Edge e's triangle across (null: none), once bit e of `asked` is set.
+    const PartialAcross *across[3];
+    unsigned asked;
+    // The walk stops where a farther pixel first holds a sample of the
+    // band of an edge not asked about yet: it sets `wanted` to that edge
+    // and resume_x8 to that tile row, and returns the rows left, for the
+    // caller to set the triangle across up (DepthRasterizer::set_up_across)
+    // and call again. resume_x8 (0 at first): the tile row the first row
+    // left starts from.
+    int wanted, resume_x8;
+    bool wrote;   // set where a depth changed
+};
+
+// Rows y + r for bit r of `found` (partial_rows_runs' rows, each holding a
+// column), each in turn. Returns the rows left where it stops for a
+// triangle across, else 0.
+unsigned merge_partial_rows_scalar(PartialRows &rows, const RowsRuns &runs, int y, unsigned found,
+                                   const PartialLayer &layer);
+unsigned merge_partial_rows_avx2(PartialRows &rows, const RowsRuns &runs, int y, unsigned found,
+                                 const PartialLayer &layer);
 
 // std::nextafter(z, 2.0f), for merged coverage's depth bounds: the next float up (a NaN
 // or infinity stays; -0 becomes the least positive float, as 0 does).

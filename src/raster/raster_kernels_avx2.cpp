@@ -360,17 +360,16 @@ inline __m256 widened(__m256 z, double error)
 
 namespace {
 
-// run_masks_avx2 for divisor K, its loop over sample rows unrolled: the
-// shifts into place are constants, and the high plane is 0 where K K <= 32.
+// The runs lo[j] .. hi[j] of sample rows j < K in depth pixels x8 .. x8 +
+// 7 (first: each lane's first sample column, x8 K + lane K) as their
+// masks, the scalar loop's expressions (shifts by 32 or more give 0 in
+// both); the shifts into place are constants, and the high plane is 0
+// where K K <= 32.
 template <int K>
-unsigned run_masks_k(const std::int32_t *run_lo, const std::int32_t *run_hi, int x8, MaskRow &out)
+inline void run_masks(const std::int32_t *run_lo, const std::int32_t *run_hi, __m256i first, __m256i &lo, __m256i &hi)
 {
-    // Lane l: pixel x8 + l's first sample column; the scalar loop's
-    // expressions (shifts by 32 or more give 0 in both).
-    const __m256i first = _mm256_add_epi32(_mm256_set1_epi32(x8 * K), _mm256_setr_epi32(0, K, 2 * K, 3 * K, 4 * K,
-                                                                                         5 * K, 6 * K, 7 * K));
     const __m256i zero = _mm256_setzero_si256(), kk = _mm256_set1_epi32(K), one = _mm256_set1_epi32(1);
-    __m256i lo = zero, hi = zero;
+    lo = hi = zero;
     for (int j = 0; j < K; ++j) {
         const __m256i s = _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_set1_epi32(run_lo[j]), first), zero), kk);
         const __m256i t =
@@ -384,131 +383,171 @@ unsigned run_masks_k(const std::int32_t *run_lo, const std::int32_t *run_hi, int
         else if (b + K > 32)
             hi = _mm256_or_si256(hi, _mm256_srli_epi32(bits, 32 - b));
     }
-    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.lo), lo);
-    _mm256_storeu_si256(reinterpret_cast<__m256i *>(out.hi), hi);
-    return unsigned(~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero)))) & 0xffu;
 }
 
-}  // namespace
-
-unsigned run_masks_avx2(const std::int32_t *run_lo, const std::int32_t *run_hi, int k, int x8, MaskRow &out)
+// The lanes with a sample (bit l: lane l).
+inline unsigned lanes_holding(__m256i lo, __m256i hi)
 {
-    switch (k) {
-    case 1: return run_masks_k<1>(run_lo, run_hi, x8, out);
-    case 2: return run_masks_k<2>(run_lo, run_hi, x8, out);
-    case 3: return run_masks_k<3>(run_lo, run_hi, x8, out);
-    case 4: return run_masks_k<4>(run_lo, run_hi, x8, out);
-    case 5: return run_masks_k<5>(run_lo, run_hi, x8, out);
-    case 6: return run_masks_k<6>(run_lo, run_hi, x8, out);
-    case 7: return run_masks_k<7>(run_lo, run_hi, x8, out);
-    default: return run_masks_k<8>(run_lo, run_hi, x8, out);
-    }
+    return unsigned(~_mm256_movemask_ps(
+               _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), _mm256_setzero_si256())))) &
+           0xffu;
 }
 
-unsigned partial_row_depth_avx2(PartialRow &r, const float *depth)
-{
-    // float(x8 + lane), exactly, as the scalar loop converts it; std::min(z,
-    // zcap) is min_ps(zcap, z).
-    const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(r.x8)), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
-    const __m256 z = widened(_mm256_min_ps(_mm256_set1_ps(r.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(r.za), fx),
-                                                                                _mm256_set1_ps(r.depth_term))),
-                             r.depth_error);
-    _mm256_storeu_ps(r.z, z);
-    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, _mm256_loadu_ps(depth), _CMP_LT_OQ)));
-}
-
-namespace {
-
-// merge_partial_row_avx2 for divisor K, its sample loops unrolled.
+// merge_partial_rows_avx2 for divisor K, its sample loops unrolled.
 template <int K>
-unsigned merge_row_k(const PartialRow &r, const PartialTileRow &t)
+unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigned found, const PartialLayer &b)
 {
     constexpr int k = K;
-    const float fy = float(r.y);
-    const __m256i zero = _mm256_setzero_si256();
-    // float(x8 + lane), exactly, as the scalar loop converts it.
-    const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(r.x8)), _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7));
-    __m256i lo = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.held.lo));
-    __m256i hi = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.held.hi));
-    // std::min(z, zcap) is min_ps(zcap, z); std::max(a, b) is max_ps(b, a).
-    __m256 z = _mm256_loadu_ps(r.z);
-    for (int a = 0; a < r.across_count; ++a) {
-        const PartialAcross &n = *r.across[a];
-        const __m256 ea0 = _mm256_set1_ps(n.ea[0]), ea1 = _mm256_set1_ps(n.ea[1]);
-        const __m256 held0 = _mm256_set1_ps(n.held[0]), held1 = _mm256_set1_ps(n.held[1]);
-        __m256i in_lo = zero, in_hi = zero;
-        for (int j = 0; j < k; ++j) {
-            const float v = fy + r.offset[j];
-            const __m256 bv0 = _mm256_set1_ps(n.eb[0] * v), bv1 = _mm256_set1_ps(n.eb[1] * v);
-            for (int i = 0; i < k; ++i) {
-                const __m256 u = _mm256_add_ps(fx, _mm256_set1_ps(r.offset[i]));
-                const __m256 in = _mm256_and_ps(
-                    _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea0, u), bv0), held0, _CMP_GE_OQ),
-                    _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea1, u), bv1), held1, _CMP_GE_OQ));
-                const int b = j * k + i;
-                const __m256i bit = b < 32 ? _mm256_set1_epi32(int(1u << b)) : zero;
-                const __m256i bit_hi = b >= 32 ? _mm256_set1_epi32(int(1u << (b - 32))) : zero;
-                in_lo = _mm256_or_si256(in_lo, _mm256_and_si256(_mm256_castps_si256(in), bit));
-                in_hi = _mm256_or_si256(in_hi, _mm256_and_si256(_mm256_castps_si256(in), bit_hi));
+    constexpr unsigned row_lanes = (1u << k) - 1;
+    // A sample column's depth pixel, the scalar loop's (columns are not
+    // negative: a shift, or a multiply by a constant).
+    const auto pixel_of = [](int column) { return int(unsigned(column) / unsigned(K)); };
+    const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
+    const __m256i lane_columns = _mm256_setr_epi32(0, k, 2 * k, 3 * k, 4 * k, 5 * k, 6 * k, 7 * k);
+    const __m256 lane_x = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256 za = _mm256_set1_ps(r.za), zcap = _mm256_set1_ps(r.zcap);
+    const __m256i full_lo = _mm256_set1_epi32(int(r.full_lo)), full_hi = _mm256_set1_epi32(int(r.full_hi));
+    int resume = r.resume_x8;
+    r.resume_x8 = 0;
+    for (; found; found &= found - 1, resume = 0) {
+        const int row = __builtin_ctz(found), y = y_first + row, l = row * k;
+        const float fy = float(y);
+        const __m256 depth_term = _mm256_set1_ps(r.zb * fy + r.zc);
+        // y >= 0: its tile row and row within the tile by shifts.
+        const std::size_t row_tiles = std::size_t(unsigned(y) / tile_size) * std::size_t(b.tiles_x);
+        const std::size_t row_offset = std::size_t(unsigned(y) % tile_size) * tile_size;
+        const int skip0 = pixel_of(runs.whole_first[l] + k - 1) + 1, skip1 = pixel_of(runs.whole_last[l] + 1) - 2;
+        const unsigned band_edges = unsigned((runs.band_lanes[0] >> l & row_lanes) != 0) |
+                                    unsigned((runs.band_lanes[1] >> l & row_lanes) != 0) << 1 |
+                                    unsigned((runs.band_lanes[2] >> l & row_lanes) != 0) << 2;
+        const int last_pixel = pixel_of(runs.last[l]);
+        const int start = int(unsigned(pixel_of(runs.first[l])) / tile_size * tile_size);
+        for (int x8 = start > resume ? start : resume; x8 <= last_pixel; x8 += tile_size) {
+            if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
+                continue;
+            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
+            if ((!b.dirty[tile] && b.tile_max[tile] < r.behind) || b.farthest_bound[tile] < r.behind)
+                continue;
+            const std::size_t index = tile * tile_pixels + row_offset;
+            // float(x8 + lane), exactly, as the scalar loop converts it;
+            // std::min(z, zcap) is min_ps(zcap, z); std::max(a, b) is
+            // max_ps(b, a).
+            const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(x8)), lane_x);
+            __m256 z = widened(_mm256_min_ps(zcap, _mm256_add_ps(_mm256_mul_ps(za, fx), depth_term)), r.depth_error);
+            const __m256 depth = _mm256_loadu_ps(b.depth + index);
+            const unsigned farther = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, depth, _CMP_LT_OQ)));
+            if (!farther)
+                continue;
+            const __m256i first = _mm256_add_epi32(_mm256_set1_epi32(x8 * k), lane_columns);
+            __m256i lo, hi;
+            run_masks<K>(runs.held_lo + l, runs.held_hi + l, first, lo, hi);
+            unsigned taking = lanes_holding(lo, hi) & farther;
+            for (unsigned edges = band_edges; edges; edges &= edges - 1) {
+                const int e = __builtin_ctz(edges);
+                __m256i band_lo, band_hi;
+                run_masks<K>(runs.band_lo[e] + l, runs.band_hi[e] + l, first, band_lo, band_hi);
+                const unsigned lanes = lanes_holding(band_lo, band_hi) & farther;
+                if (lanes && !(r.asked >> e & 1)) {
+                    r.wanted = e;
+                    r.resume_x8 = x8;
+                    return found;
+                }
+                const PartialAcross *n = lanes ? r.across[e] : nullptr;
+                if (!n)
+                    continue;
+                taking |= lanes;
+                // Within the band beyond a shared edge, inside the triangle
+                // across: held, at the farther of the two triangles' depths.
+                const __m256 ea0 = _mm256_set1_ps(n->ea[0]), ea1 = _mm256_set1_ps(n->ea[1]);
+                const __m256 held0 = _mm256_set1_ps(n->held[0]), held1 = _mm256_set1_ps(n->held[1]);
+                __m256i in_lo = zero, in_hi = zero;
+                for (int j = 0; j < k; ++j) {
+                    const float v = fy + r.offset[j];
+                    const __m256 bv0 = _mm256_set1_ps(n->eb[0] * v), bv1 = _mm256_set1_ps(n->eb[1] * v);
+                    for (int i = 0; i < k; ++i) {
+                        const __m256 u = _mm256_add_ps(fx, _mm256_set1_ps(r.offset[i]));
+                        const __m256 in = _mm256_and_ps(
+                            _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea0, u), bv0), held0, _CMP_GE_OQ),
+                            _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(ea1, u), bv1), held1, _CMP_GE_OQ));
+                        const int bit = j * k + i;
+                        if (bit < 32)
+                            in_lo = _mm256_or_si256(
+                                in_lo, _mm256_and_si256(_mm256_castps_si256(in), _mm256_set1_epi32(int(1u << bit))));
+                        else
+                            in_hi = _mm256_or_si256(in_hi, _mm256_and_si256(_mm256_castps_si256(in),
+                                                                            _mm256_set1_epi32(int(1u << (bit - 32)))));
+                    }
+                }
+                in_lo = _mm256_and_si256(in_lo, band_lo);
+                in_hi = _mm256_and_si256(in_hi, band_hi);
+                lo = _mm256_or_si256(lo, in_lo);
+                hi = _mm256_or_si256(hi, in_hi);
+                const PolygonSetup &d = n->depth;
+                const __m256 across_z = widened(
+                    _mm256_min_ps(_mm256_set1_ps(d.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(d.za), fx),
+                                                                        _mm256_set1_ps(d.zb * fy + d.zc))),
+                    n->depth_error);
+                const __m256 some =
+                    _mm256_castsi256_ps(_mm256_xor_si256(_mm256_cmpeq_epi32(_mm256_or_si256(in_lo, in_hi), zero), ones));
+                z = _mm256_blendv_ps(z, _mm256_max_ps(across_z, z), some);
             }
+            if (!taking)
+                continue;
+            const __m256i held_none = _mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero);
+            const __m256 take = _mm256_andnot_ps(_mm256_castsi256_ps(held_none), _mm256_cmp_ps(z, depth, _CMP_LT_OQ));
+            if (_mm256_movemask_ps(take) == 0)
+                continue;
+            std::uint32_t *const mask_lo = b.mask_lo + index, *const mask_hi = b.mask_hi + index;
+            float *const partial_depth = b.partial_depth + index;
+            const __m256i old_lo = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(mask_lo));
+            const __m256i old_hi = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(mask_hi));
+            const __m256 old_depth = _mm256_loadu_ps(partial_depth);
+            const __m256 open =
+                _mm256_castsi256_ps(_mm256_xor_si256(_mm256_cmpeq_epi32(_mm256_or_si256(old_lo, old_hi), zero), ones));
+            const __m256 farthest = _mm256_blendv_ps(z, _mm256_max_ps(z, old_depth), open);
+            lo = _mm256_or_si256(lo, old_lo);
+            hi = _mm256_or_si256(hi, old_hi);
+            const __m256 full = _mm256_castsi256_ps(
+                _mm256_and_si256(_mm256_cmpeq_epi32(lo, full_lo), _mm256_cmpeq_epi32(hi, full_hi)));
+            // Taken and not full: the joint mask and the farther depth
+            // stored. Taken and full: the mask empties, and the depth is
+            // kept where nearer.
+            const __m256 store = _mm256_andnot_ps(full, take), fills = _mm256_and_ps(full, take);
+            const __m256 nearer = _mm256_and_ps(fills, _mm256_cmp_ps(farthest, depth, _CMP_LT_OQ));
+            const __m256i stored_lo = _mm256_andnot_si256(_mm256_castps_si256(full), lo);
+            const __m256i stored_hi = _mm256_andnot_si256(_mm256_castps_si256(full), hi);
+            _mm256_storeu_si256(reinterpret_cast<__m256i *>(mask_lo),
+                                _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_lo),
+                                                                     _mm256_castsi256_ps(stored_lo), take)));
+            _mm256_storeu_si256(reinterpret_cast<__m256i *>(mask_hi),
+                                _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_hi),
+                                                                     _mm256_castsi256_ps(stored_hi), take)));
+            _mm256_storeu_ps(partial_depth, _mm256_blendv_ps(old_depth, farthest, store));
+            _mm256_storeu_ps(b.depth + index, _mm256_blendv_ps(depth, farthest, nearer));
+            if (_mm256_movemask_ps(nearer) != 0) {
+                b.dirty[tile] = 1;
+                r.wrote = true;
+            }
+            if (_mm256_movemask_ps(store) != 0)
+                b.partial_written[tile] = 1;
         }
-        in_lo = _mm256_and_si256(in_lo, _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.band[a].lo)));
-        in_hi = _mm256_and_si256(in_hi, _mm256_loadu_si256(reinterpret_cast<const __m256i *>(r.band[a].hi)));
-        lo = _mm256_or_si256(lo, in_lo);
-        hi = _mm256_or_si256(hi, in_hi);
-        const PolygonSetup &d = n.depth;
-        const __m256 across_z = widened(
-            _mm256_min_ps(_mm256_set1_ps(d.zcap), _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(d.za), fx),
-                                                                _mm256_set1_ps(d.zb * fy + d.zc))),
-            n.depth_error);
-        const __m256 some = _mm256_castsi256_ps(
-            _mm256_xor_si256(_mm256_cmpeq_epi32(_mm256_or_si256(in_lo, in_hi), zero), _mm256_set1_epi32(-1)));
-        z = _mm256_blendv_ps(z, _mm256_max_ps(across_z, z), some);
     }
-    const __m256 depth = _mm256_loadu_ps(t.depth);
-    const __m256i held_none = _mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero);
-    const __m256 take = _mm256_andnot_ps(_mm256_castsi256_ps(held_none), _mm256_cmp_ps(z, depth, _CMP_LT_OQ));
-    const int take_bits = _mm256_movemask_ps(take);
-    if (take_bits == 0)
-        return 0;
-    const __m256i old_lo = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(t.mask_lo));
-    const __m256i old_hi = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(t.mask_hi));
-    const __m256 old_depth = _mm256_loadu_ps(t.partial_depth);
-    const __m256 open = _mm256_castsi256_ps(
-        _mm256_xor_si256(_mm256_cmpeq_epi32(_mm256_or_si256(old_lo, old_hi), zero), _mm256_set1_epi32(-1)));
-    const __m256 farthest = _mm256_blendv_ps(z, _mm256_max_ps(z, old_depth), open);
-    lo = _mm256_or_si256(lo, old_lo);
-    hi = _mm256_or_si256(hi, old_hi);
-    const __m256 full = _mm256_castsi256_ps(_mm256_and_si256(_mm256_cmpeq_epi32(lo, _mm256_set1_epi32(int(r.full_lo))),
-                                                             _mm256_cmpeq_epi32(hi, _mm256_set1_epi32(int(r.full_hi)))));
-    // Taken and not full: the joint mask and the farther depth stored.
-    // Taken and full: the mask empties, and the depth is kept where nearer.
-    const __m256 store = _mm256_andnot_ps(full, take), fills = _mm256_and_ps(full, take);
-    const __m256 nearer = _mm256_and_ps(fills, _mm256_cmp_ps(farthest, depth, _CMP_LT_OQ));
-    const __m256i stored_lo = _mm256_andnot_si256(_mm256_castps_si256(full), lo);
-    const __m256i stored_hi = _mm256_andnot_si256(_mm256_castps_si256(full), hi);
-    _mm256_storeu_si256(reinterpret_cast<__m256i *>(t.mask_lo),
-                        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_lo), _mm256_castsi256_ps(stored_lo), take)));
-    _mm256_storeu_si256(reinterpret_cast<__m256i *>(t.mask_hi),
-                        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(old_hi), _mm256_castsi256_ps(stored_hi), take)));
-    _mm256_storeu_ps(t.partial_depth, _mm256_blendv_ps(old_depth, farthest, store));
-    _mm256_storeu_ps(t.depth, _mm256_blendv_ps(depth, farthest, nearer));
-    return (_mm256_movemask_ps(nearer) != 0 ? 1u : 0u) | (_mm256_movemask_ps(store) != 0 ? 2u : 0u);
+    return 0;
 }
 
 }  // namespace
 
-unsigned merge_partial_row_avx2(const PartialRow &r, const PartialTileRow &t)
+unsigned merge_partial_rows_avx2(PartialRows &r, const RowsRuns &runs, int y, unsigned found, const PartialLayer &b)
 {
     switch (r.k) {
-    case 1: return merge_row_k<1>(r, t);
-    case 2: return merge_row_k<2>(r, t);
-    case 3: return merge_row_k<3>(r, t);
-    case 4: return merge_row_k<4>(r, t);
-    case 5: return merge_row_k<5>(r, t);
-    case 6: return merge_row_k<6>(r, t);
-    case 7: return merge_row_k<7>(r, t);
-    default: return merge_row_k<8>(r, t);
+    case 1: return merge_rows_k<1>(r, runs, y, found, b);
+    case 2: return merge_rows_k<2>(r, runs, y, found, b);
+    case 3: return merge_rows_k<3>(r, runs, y, found, b);
+    case 4: return merge_rows_k<4>(r, runs, y, found, b);
+    case 5: return merge_rows_k<5>(r, runs, y, found, b);
+    case 6: return merge_rows_k<6>(r, runs, y, found, b);
+    case 7: return merge_rows_k<7>(r, runs, y, found, b);
+    default: return merge_rows_k<8>(r, runs, y, found, b);
     }
 }
 

@@ -154,9 +154,14 @@ inline std::uint32_t shift_right(std::uint32_t x, int n) { return n < 32 ? x >> 
 // z widened by `error` and rounded up (DepthRasterizer::merge_partial's depth bound).
 inline float widened(float z, double error) { return partial_next_up(float(double(z) + error)); }
 
-}  // namespace
+// Eight pixels' masks, a lane each.
+struct MaskRow {
+    std::uint32_t lo[tile_size], hi[tile_size];
+};
 
-unsigned run_masks_scalar(const std::int32_t *run_lo, const std::int32_t *run_hi, int k, int x8, MaskRow &out)
+// The runs lo[j] .. hi[j] of sample rows j < k in depth pixels x8 .. x8 +
+// 7 as their masks; returns the lanes with a sample.
+unsigned run_masks(const std::int32_t *run_lo, const std::int32_t *run_hi, int k, int x8, MaskRow &out)
 {
     unsigned lanes = 0;
     for (int lane = 0; lane < tile_size; ++lane) {
@@ -178,71 +183,121 @@ unsigned run_masks_scalar(const std::int32_t *run_lo, const std::int32_t *run_hi
     return lanes;
 }
 
-unsigned partial_row_depth_scalar(PartialRow &r, const float *depth)
+// The samples of pixel (fx, fy) inside the triangle across n.
+void inside_across(const PartialAcross &n, const float *offset, int k, float fx, float fy, std::uint32_t &in_lo,
+                   std::uint32_t &in_hi)
 {
-    unsigned lanes = 0;
-    for (int lane = 0; lane < tile_size; ++lane) {
-        r.z[lane] = widened(std::min(r.za * float(r.x8 + lane) + r.depth_term, r.zcap), r.depth_error);
-        lanes |= unsigned(r.z[lane] < depth[lane]) << lane;
+    in_lo = in_hi = 0;
+    for (int j = 0; j < k; ++j) {
+        const float v = fy + offset[j];
+        for (int i = 0; i < k; ++i) {
+            const float u = fx + offset[i];
+            const bool in = n.ea[0] * u + n.eb[0] * v >= n.held[0] && n.ea[1] * u + n.eb[1] * v >= n.held[1];
+            const int b = j * k + i;
+            in_lo |= shift_left(std::uint32_t(in), b);
+            in_hi |= shift_left(std::uint32_t(in), b >= 32 ? b - 32 : 32);
+        }
     }
-    return lanes;
 }
 
-unsigned merge_partial_row_scalar(const PartialRow &r, const PartialTileRow &t)
+}  // namespace
+
+unsigned merge_partial_rows_scalar(PartialRows &r, const RowsRuns &runs, int y_first, unsigned found,
+                                   const PartialLayer &b)
 {
     const int k = r.k;
-    const float fy = float(r.y);
-    unsigned wrote = 0;
-    for (int lane = 0; lane < tile_size; ++lane) {
-        const float fx = float(r.x8 + lane);
-        std::uint32_t lo = r.held.lo[lane], hi = r.held.hi[lane];
-        float z = r.z[lane];
-        for (int a = 0; a < r.across_count; ++a) {
-            // Within the band beyond a shared edge, inside the triangle
-            // across: held, at the farther of the two triangles' depths.
-            const PartialAcross &n = *r.across[a];
-            std::uint32_t in_lo = 0, in_hi = 0;
-            for (int j = 0; j < k; ++j) {
-                const float v = fy + r.offset[j];
-                for (int i = 0; i < k; ++i) {
-                    const float u = fx + r.offset[i];
-                    const bool in = n.ea[0] * u + n.eb[0] * v >= n.held[0] && n.ea[1] * u + n.eb[1] * v >= n.held[1];
-                    const int b = j * k + i;
-                    in_lo |= shift_left(std::uint32_t(in), b);
-                    in_hi |= shift_left(std::uint32_t(in), b >= 32 ? b - 32 : 32);
+    const unsigned row_lanes = (1u << k) - 1;
+    const auto pixel_of = [&r](int column) { return int(std::uint64_t(column) * r.reciprocal >> 32); };
+    int resume = r.resume_x8;
+    r.resume_x8 = 0;
+    for (; found; found &= found - 1, resume = 0) {
+        const int row = __builtin_ctz(found), y = y_first + row, l = row * k;
+        const float fy = float(y), depth_term = r.zb * fy + r.zc;
+        const std::size_t row_tiles = std::size_t(y / tile_size) * std::size_t(b.tiles_x);
+        const std::size_t row_offset = std::size_t(y % tile_size) * tile_size;
+        const int skip0 = pixel_of(runs.whole_first[l] + k - 1) + 1, skip1 = pixel_of(runs.whole_last[l] + 1) - 2;
+        unsigned band_edges = 0;
+        for (int e = 0; e < 3; ++e)
+            band_edges |= unsigned((runs.band_lanes[e] >> l & row_lanes) != 0) << e;
+        const int last_pixel = pixel_of(runs.last[l]);
+        for (int x8 = std::max(pixel_of(runs.first[l]) / tile_size * tile_size, resume); x8 <= last_pixel;
+             x8 += tile_size) {
+            if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
+                continue;
+            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
+            if ((!b.dirty[tile] && b.tile_max[tile] < r.behind) || b.farthest_bound[tile] < r.behind)
+                continue;
+            const std::size_t index = tile * tile_pixels + row_offset;
+            float *const depth = b.depth + index;
+            float z[tile_size];
+            unsigned farther = 0;
+            for (int lane = 0; lane < tile_size; ++lane) {
+                z[lane] = widened(std::min(r.za * float(x8 + lane) + depth_term, r.zcap), r.depth_error);
+                farther |= unsigned(z[lane] < depth[lane]) << lane;
+            }
+            if (!farther)
+                continue;
+            MaskRow mask, band;
+            unsigned taking = run_masks(runs.held_lo + l, runs.held_hi + l, k, x8, mask) & farther;
+            for (int e = 0; e < 3; ++e) {
+                if (!(band_edges >> e & 1))
+                    continue;
+                const unsigned lanes = run_masks(runs.band_lo[e] + l, runs.band_hi[e] + l, k, x8, band) & farther;
+                if (lanes && !(r.asked >> e & 1)) {
+                    r.wanted = e;
+                    r.resume_x8 = x8;
+                    return found;
+                }
+                const PartialAcross *n = lanes ? r.across[e] : nullptr;
+                if (!n)
+                    continue;
+                taking |= lanes;
+                // Within the band beyond a shared edge, inside the triangle
+                // across: held, at the farther of the two triangles' depths.
+                const PolygonSetup &d = n->depth;
+                for (int lane = 0; lane < tile_size; ++lane) {
+                    const float fx = float(x8 + lane);
+                    std::uint32_t in_lo, in_hi;
+                    inside_across(*n, r.offset, k, fx, fy, in_lo, in_hi);
+                    in_lo &= band.lo[lane];
+                    in_hi &= band.hi[lane];
+                    mask.lo[lane] |= in_lo;
+                    mask.hi[lane] |= in_hi;
+                    const float across_z = widened(std::min(d.za * fx + (d.zb * fy + d.zc), d.zcap), n->depth_error);
+                    z[lane] = (in_lo | in_hi) != 0 ? std::max(z[lane], across_z) : z[lane];
                 }
             }
-            in_lo &= r.band[a].lo[lane];
-            in_hi &= r.band[a].hi[lane];
-            lo |= in_lo;
-            hi |= in_hi;
-            const PolygonSetup &d = n.depth;
-            const float across_z = widened(std::min(d.za * fx + (d.zb * fy + d.zc), d.zcap), n.depth_error);
-            z = (in_lo | in_hi) != 0 ? std::max(z, across_z) : z;
-        }
-        const float depth = t.depth[lane];
-        if (!((lo | hi) != 0 && z < depth))
-            continue;
-        const std::uint32_t old_lo = t.mask_lo[lane], old_hi = t.mask_hi[lane];
-        const float farthest = (old_lo | old_hi) != 0 ? std::max(t.partial_depth[lane], z) : z;
-        lo |= old_lo;
-        hi |= old_hi;
-        if (lo != r.full_lo || hi != r.full_hi) {
-            t.mask_lo[lane] = lo;
-            t.mask_hi[lane] = hi;
-            t.partial_depth[lane] = farthest;
-            wrote |= 2;
-            continue;
-        }
-        // Every sample is held no farther than `farthest`; the layer
-        // starts again empty, whether or not it was nearer.
-        t.mask_lo[lane] = t.mask_hi[lane] = 0;
-        if (farthest < depth) {
-            t.depth[lane] = farthest;
-            wrote |= 1;
+            if (!taking)
+                continue;
+            std::uint32_t *const mask_lo = b.mask_lo + index, *const mask_hi = b.mask_hi + index;
+            float *const partial_depth = b.partial_depth + index;
+            for (int lane = 0; lane < tile_size; ++lane) {
+                std::uint32_t lo = mask.lo[lane], hi = mask.hi[lane];
+                if (!((lo | hi) != 0 && z[lane] < depth[lane]))
+                    continue;
+                const std::uint32_t old_lo = mask_lo[lane], old_hi = mask_hi[lane];
+                const float farthest = (old_lo | old_hi) != 0 ? std::max(partial_depth[lane], z[lane]) : z[lane];
+                lo |= old_lo;
+                hi |= old_hi;
+                if (lo != r.full_lo || hi != r.full_hi) {
+                    mask_lo[lane] = lo;
+                    mask_hi[lane] = hi;
+                    partial_depth[lane] = farthest;
+                    b.partial_written[tile] = 1;
+                    continue;
+                }
+                // Every sample is held no farther than `farthest`; the layer
+                // starts again empty, whether or not it was nearer.
+                mask_lo[lane] = mask_hi[lane] = 0;
+                if (farthest < depth[lane]) {
+                    depth[lane] = farthest;
+                    b.dirty[tile] = 1;
+                    r.wrote = true;
+                }
+            }
         }
     }
-    return wrote;
+    return 0;
 }
 
 bool tile_behind_scalar(const float *tile, int c0, int c1, int r0, int r1, float z)

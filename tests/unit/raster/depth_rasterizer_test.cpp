@@ -19,6 +19,7 @@
 #include "gl/gl_headers.h"
 #include "gl/offscreen_context.h"
 #include "raster/occludee_kernels.h"
+#include "raster/raster_kernels.h"
 
 using namespace occu;
 
@@ -830,6 +831,165 @@ TEST(DepthRasterizer, ScalarAndAvx2AgreeWithMergedCoverageFarFromTheOrigin)
                 << "offset " << offset << " trial " << trial;
         }
     }
+}
+
+// The partial layer's walk of a polygon's rows (raster::merge_partial_rows)
+// in AVX2 lanes equals its scalar twin bit for bit, on runs, buffers and
+// triangles across drawn at random for divisors 1-8 (masks of up to 64
+// samples): the same depths, partial masks and depths, tiles marked, and
+// triangles across asked for.
+TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
+{
+    if (!DepthRasterizer::avx2_supported())
+        GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
+    constexpr int tiles_x = 5, tiles_y = 3, width = tiles_x * raster::tile_size;
+    constexpr std::size_t tiles = std::size_t(tiles_x) * tiles_y, pixels = tiles * raster::tile_pixels;
+    std::mt19937 rng(71);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const auto chance = [&](float p) { return unit(rng) < p; };
+    const auto between = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    struct Layer {
+        std::vector<float> depth, partial_depth, tile_max, farthest_bound;
+        std::vector<std::uint32_t> mask_lo, mask_hi;
+        std::vector<std::uint8_t> dirty, written;
+        raster::PartialLayer view()
+        {
+            return {depth.data(), partial_depth.data(), mask_lo.data(),  mask_hi.data(), tile_max.data(),
+                    farthest_bound.data(), dirty.data(), written.data(), tiles_x};
+        }
+    };
+    // The rows' walk as DepthRasterizer::merge_partial calls it: again
+    // after each stop, with the triangle across it asked for (some have
+    // none); how many times it asked for each.
+    const auto walk = [](decltype(&raster::merge_partial_rows_scalar) merge_rows, raster::PartialRows &rows,
+                         const raster::RowsRuns &runs, int y, unsigned found, const raster::PartialLayer &layer,
+                         const raster::PartialAcross *const *across, int *asked) {
+        while ((found = merge_rows(rows, runs, y, found, layer)) != 0) {
+            ++asked[rows.wanted];
+            rows.across[rows.wanted] = across[rows.wanted];
+            rows.asked |= 1u << rows.wanted;
+        }
+    };
+    long taken = 0, filled = 0, across_taken = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int k = 1 + trial % 8, at_once = raster::rows_at_once(k);
+        const std::uint64_t full = k == 8 ? ~std::uint64_t(0) : (std::uint64_t(1) << (k * k)) - 1;
+        Layer a;
+        a.depth.resize(pixels);
+        a.partial_depth.resize(pixels);
+        a.mask_lo.resize(pixels);
+        a.mask_hi.resize(pixels);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            a.depth[i] = chance(0.5f) ? 1.0f : unit(rng);
+            const std::uint64_t mask = chance(0.5f) ? 0 : (std::uint64_t(rng()) << 32 | rng()) & full;
+            a.mask_lo[i] = std::uint32_t(mask);
+            a.mask_hi[i] = std::uint32_t(mask >> 32);
+            a.partial_depth[i] = unit(rng);
+        }
+        for (std::size_t t = 0; t < tiles; ++t) {
+            const float farthest = *std::max_element(a.depth.begin() + std::ptrdiff_t(t * raster::tile_pixels),
+                                                     a.depth.begin() + std::ptrdiff_t((t + 1) * raster::tile_pixels));
+            a.dirty.push_back(chance(0.5f));
+            a.tile_max.push_back(chance(0.8f) ? farthest : unit(rng));
+            a.farthest_bound.push_back(chance(0.8f) ? 1.0f : farthest);
+            a.written.push_back(0);
+        }
+        // Runs along the rows, within the buffer's columns, ragged per
+        // sample row and held or in a band in some of them.
+        raster::RowsRuns runs{};
+        const int columns = width * k;
+        for (int l = 0; l < 8; ++l) {
+            const int lo = between(-k, columns), hi = between(lo - 2, lo + between(0, 2 * width * k / 3));
+            runs.held_lo[l] = lo;
+            runs.held_hi[l] = chance(0.1f) ? lo - 1 : hi;
+            for (int e = 0; e < 3; ++e) {
+                runs.band_lo[e][l] = hi + 1 - between(0, 3 * k);
+                runs.band_hi[e][l] = runs.band_lo[e][l] + between(-1, 3 * k);
+            }
+        }
+        for (int e = 0; e < 3; ++e)
+            runs.band_lanes[e] = chance(0.7f) ? unsigned(rng()) & 0xffu : 0;
+        for (int r = 0; r < at_once; ++r) {
+            const int l = r * k;
+            runs.first[l] = between(0, columns - 1);
+            runs.last[l] = between(runs.first[l], columns - 1);
+            runs.whole_first[l] = between(runs.first[l], runs.last[l]);
+            runs.whole_last[l] = chance(0.2f) ? runs.whole_first[l] - 1 : between(runs.whole_first[l], runs.last[l]);
+        }
+        const int y = between(0, tiles_y * raster::tile_size - at_once);
+        const unsigned found = unsigned(between(1, (1 << at_once) - 1));
+        // A polygon nearly facing the eye, and up to three triangles
+        // across, some of them none.
+        raster::PartialRows rows{};
+        rows.k = k;
+        for (int i = 0; i < k; ++i)
+            rows.offset[i] = float((i + 0.5) / k);
+        rows.full_lo = std::uint32_t(full);
+        rows.full_hi = std::uint32_t(full >> 32);
+        rows.za = (unit(rng) - 0.5f) * 0.02f;
+        rows.zb = (unit(rng) - 0.5f) * 0.02f;
+        rows.zc = unit(rng);
+        rows.zcap = chance(0.5f) ? 1.0f : unit(rng);
+        rows.depth_error = chance(0.5f) ? 0.0 : 1e-6 * unit(rng);
+        rows.behind = chance(0.3f) ? unit(rng) : 0.0f;
+        rows.reciprocal = (std::uint64_t(1) << 32) / std::uint64_t(k) + 1;
+        raster::PartialAcross across[3];
+        const raster::PartialAcross *set_up[3];
+        for (int e = 0; e < 3; ++e) {
+            raster::PartialAcross &n = across[e];
+            // Both edges through a sample of the band, or near one (the
+            // test is >=: a sample on both edges is inside).
+            const int r = between(0, at_once - 1), j = between(0, k - 1), l = r * k + j;
+            runs.band_lanes[e] |= 1u << l;
+            const int c0 = std::max(runs.band_lo[e][l], 0), c = between(c0, std::max(runs.band_hi[e][l], c0));
+            const float u = float(c / k) + rows.offset[c % k], v = float(y + r) + rows.offset[j];
+            for (int i = 0; i < 2; ++i) {
+                n.ea[i] = unit(rng) - 0.5f;
+                n.eb[i] = unit(rng) - 0.5f;
+                n.held[i] = n.ea[i] * u + n.eb[i] * v;
+                if (chance(0.3f))
+                    n.held[i] += (unit(rng) - 0.5f) * 4.0f;
+            }
+            n.depth_error = 1e-6;
+            n.depth.za = (unit(rng) - 0.5f) * 0.02f;
+            n.depth.zb = (unit(rng) - 0.5f) * 0.02f;
+            n.depth.zc = unit(rng);
+            n.depth.zcap = 1.0f;
+            set_up[e] = chance(0.8f) ? &n : nullptr;
+        }
+        rows.asked = 0;
+        rows.resume_x8 = 0;
+        rows.wrote = false;
+        raster::PartialRows scalar_rows = rows, avx2_rows = rows;
+        int scalar_asked[3] = {}, avx2_asked[3] = {};
+        Layer b = a;
+        const Layer before = a;
+        const raster::PartialLayer scalar_layer = a.view(), avx2_layer = b.view();
+        walk(raster::merge_partial_rows_scalar, scalar_rows, runs, y, found, scalar_layer, set_up, scalar_asked);
+        walk(raster::merge_partial_rows_avx2, avx2_rows, runs, y, found, avx2_layer, set_up, avx2_asked);
+        ASSERT_EQ(scalar_rows.wrote, avx2_rows.wrote) << "trial " << trial;
+        const auto same = [](const auto &x, const auto &y) {
+            return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof x[0]) == 0;
+        };
+        ASSERT_TRUE(same(a.depth, b.depth)) << "trial " << trial << " (divisor " << k << ")";
+        ASSERT_TRUE(same(a.partial_depth, b.partial_depth)) << "trial " << trial << " (divisor " << k << ")";
+        ASSERT_TRUE(same(a.mask_lo, b.mask_lo) && same(a.mask_hi, b.mask_hi)) << "trial " << trial << " (divisor " << k << ")";
+        ASSERT_TRUE(same(a.dirty, b.dirty) && same(a.written, b.written)) << "trial " << trial;
+        ASSERT_EQ(scalar_rows.asked, avx2_rows.asked) << "trial " << trial;
+        for (int e = 0; e < 3; ++e) {
+            ASSERT_EQ(scalar_asked[e], avx2_asked[e]) << "trial " << trial;
+            ASSERT_LE(scalar_asked[e], 1) << "a triangle across is set up once";
+        }
+        filled += scalar_rows.wrote;
+        for (std::size_t i = 0; i < pixels; ++i)
+            taken += a.mask_lo[i] != before.mask_lo[i] || a.mask_hi[i] != before.mask_hi[i];
+        across_taken += scalar_rows.asked != 0;
+    }
+    // The cases the comparison must cover: masks taken, pixels filled,
+    // triangles across asked for.
+    EXPECT_GT(taken, 10000);
+    EXPECT_GT(filled, 100);
+    EXPECT_GT(across_taken, 500);
 }
 
 // Two buffers of merged coverage joined: what either half's samples hold
