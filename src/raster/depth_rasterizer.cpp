@@ -1119,17 +1119,22 @@ std::size_t DepthRasterizer::first_shown(const TriangleCorners *triangles, std::
         for (int l = 0; l < raster::occludee_lanes; ++l)
             for (int i = 0; i < 3; ++i)
                 corners[l][i] = &triangles[first + std::size_t(std::min(l, lanes - 1))][i]->x;
+        // A lone triangle (the one a leaf showed last, a cluster's last)
+        // takes its corners as the lanes instead.
         const raster::OccludeeVerdicts verdicts =
-            isa_ == Isa::avx2
-                ? raster::occludee_triangles_avx2(&m[0][0], &magnitude[0][0], product_error, corners, sx, sy,
-                                                  edge_margin / k, depth_margin, p)
-                : raster::occludee_triangles_scalar(&m[0][0], &magnitude[0][0], product_error, corners, sx, sy,
-                                                    edge_margin / k, depth_margin, p);
-        occludee_setup(p);
+            isa_ != Isa::avx2 ? raster::occludee_triangles_scalar(&m[0][0], &magnitude[0][0], product_error, corners,
+                                                                  sx, sy, edge_margin / k, depth_margin, p)
+            : lanes == 1      ? raster::occludee_triangle_avx2(&m[0][0], &magnitude[0][0], product_error, corners[0],
+                                                               sx, sy, edge_margin / k, depth_margin, p)
+                              : raster::occludee_triangles_avx2(&m[0][0], &magnitude[0][0], product_error, corners, sx,
+                                                                sy, edge_margin / k, depth_margin, p);
+        const unsigned used = (1u << lanes) - 1;
+        if (((verdicts.shows | verdicts.skipped) & used) != used)
+            occludee_setup(p);
         for (int l = 0; l < lanes; ++l) {
             if (verdicts.shows >> l & 1)
                 return first + std::size_t(l);
-            if ((verdicts.skipped | p.away) >> l & 1)
+            if (verdicts.skipped >> l & 1 || p.away >> l & 1)
                 continue;
             if (!polygon_behind(p, l))
                 return first + std::size_t(l);

@@ -80,6 +80,14 @@ OccludeeVerdicts occludee_triangles_scalar(const double *m, const double *magnit
                                            const float *const corners[occludee_lanes][3], double sx, double sy,
                                            double edge_grow, double depth_margin, OccludeePolygons &out);
 
+// One triangle's corners as lanes (lane 3 repeats corner 2), the rest as
+// occludee_triangles_avx2 with every lane holding that triangle: a lone
+// triangle in one pass instead of three. Its scalar twin is
+// occludee_triangles_scalar with the triangle in every lane.
+OccludeeVerdicts occludee_triangle_avx2(const double *m, const double *magnitude, double product_error,
+                                        const float *const corners[3], double sx, double sy, double edge_grow,
+                                        double depth_margin, OccludeePolygons &out);
+
 // A box's eight corners (Aabb::corner's order: bit 0 max x, bit 1 max y,
 // bit 2 max z; lo and hi its min and max) through the view-projection matrix
 // as double columns m0..m3, glm's order, each corner a lane: window

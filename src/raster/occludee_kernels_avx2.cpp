@@ -3,6 +3,7 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
 #include <limits>
 
 #include "raster/raster_kernels.h"
@@ -93,9 +94,84 @@ OccludeeVerdicts occludee_triangles_avx2(const double *m, const double *magnitud
     return verdicts;
 }
 
-void occludee_setup_avx2(OccludeePolygons &p, double width, double height, double depth_margin)
+OccludeeVerdicts occludee_triangle_avx2(const double *m, const double *magnitude, double product_error,
+                                        const float *const corners[3], double sx, double sy, double edge_grow,
+                                        double depth_margin, OccludeePolygons &out)
 {
-    const int n = p.corners;
+    constexpr unsigned every_lane = (1u << occludee_lanes) - 1;
+    // Lane i is corner i; lane 3 repeats corner 2, so that it changes no
+    // side beyond.
+    const auto lanes = [&](int a) {
+        return _mm256_setr_pd(corners[0][a], corners[1][a], corners[2][a], corners[2][a]);
+    };
+    const __m256d x = lanes(0), y = lanes(1), z = lanes(2);
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    const __m256d ax = _mm256_andnot_pd(sign, x), ay = _mm256_andnot_pd(sign, y), az = _mm256_andnot_pd(sign, z);
+    const __m256d error = _mm256_set1_pd(product_error);
+    __m256d c[4], b[4];
+    for (int r = 0; r < 4; ++r) {
+        c[r] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[r]), x), _mm256_mul_pd(_mm256_set1_pd(m[4 + r]), y)),
+                             _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[8 + r]), z), _mm256_set1_pd(m[12 + r])));
+        b[r] = _mm256_mul_pd(error, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(magnitude[r]), ax),
+                                                                _mm256_mul_pd(_mm256_set1_pd(magnitude[4 + r]), ay)),
+                                                  _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(magnitude[8 + r]), az),
+                                                                _mm256_set1_pd(magnitude[12 + r]))));
+    }
+    out.corners = 3;
+    const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
+    const __m256d largest = _mm256_set1_pd(std::numeric_limits<double>::max());
+    const __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(c[0], c[1]), c[2]), c[3]);
+    const __m256d minus_w = _mm256_xor_pd(c[3], sign);
+    const __m256d unknown = _mm256_or_pd(_mm256_cmp_pd(_mm256_andnot_pd(sign, sum), largest, _CMP_NLE_UQ),
+                                         _mm256_or_pd(_mm256_cmp_pd(c[3], zero, _CMP_NGT_UQ),
+                                                      _mm256_cmp_pd(c[2], minus_w, _CMP_LT_OQ)));
+    if (_mm256_movemask_pd(unknown) != 0)
+        return {every_lane, 0};
+    const auto every = [](__m256d mask) { return _mm256_movemask_pd(mask) == 15; };
+    if (every(_mm256_cmp_pd(c[0], c[3], _CMP_GT_OQ)) || every(_mm256_cmp_pd(c[0], minus_w, _CMP_LT_OQ)) ||
+        every(_mm256_cmp_pd(c[1], c[3], _CMP_GT_OQ)) || every(_mm256_cmp_pd(c[1], minus_w, _CMP_LT_OQ)) ||
+        every(_mm256_cmp_pd(c[2], c[3], _CMP_GT_OQ)))
+        return {0, every_lane};
+    const __m256d nx = _mm256_div_pd(c[0], c[3]), ny = _mm256_div_pd(c[1], c[3]), nz = _mm256_div_pd(c[2], c[3]);
+    double wx[4], wy[4], wz[4], ex[4], ey[4], ez[4];
+    _mm256_storeu_pd(wx, _mm256_mul_pd(_mm256_add_pd(nx, one), _mm256_set1_pd(sx)));
+    _mm256_storeu_pd(wy, _mm256_mul_pd(_mm256_add_pd(ny, one), _mm256_set1_pd(sy)));
+    _mm256_storeu_pd(wz, _mm256_add_pd(_mm256_mul_pd(nz, half), half));
+    double window = std::numeric_limits<double>::infinity(), depth = window;
+    if (_mm256_movemask_pd(_mm256_cmp_pd(c[3], b[3], _CMP_NGT_UQ)) == 0) {
+        const __m256d w = _mm256_sub_pd(c[3], b[3]);
+        _mm256_storeu_pd(ex, _mm256_div_pd(_mm256_mul_pd(_mm256_set1_pd(sx),
+                                                         _mm256_add_pd(b[0], _mm256_mul_pd(_mm256_andnot_pd(sign, nx), b[3]))), w));
+        _mm256_storeu_pd(ey, _mm256_div_pd(_mm256_mul_pd(_mm256_set1_pd(sy),
+                                                         _mm256_add_pd(b[1], _mm256_mul_pd(_mm256_andnot_pd(sign, ny), b[3]))), w));
+        _mm256_storeu_pd(ez, _mm256_div_pd(_mm256_mul_pd(half, _mm256_add_pd(b[2], _mm256_mul_pd(_mm256_andnot_pd(sign, nz), b[3]))), w));
+        // The scalar order of the maxima, corner by corner.
+        window = depth = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            window = std::max({window, ex[i], ey[i]});
+            depth = std::max(depth, ez[i]);
+        }
+    }
+    if (!(window < 1e6 && depth < 1.0))
+        return {every_lane, 0};
+    // Every lane holds the triangle, as the lanes version's lanes past
+    // the end do.
+    for (int i = 0; i < 3; ++i) {
+        _mm256_storeu_pd(out.x[i], _mm256_set1_pd(wx[i]));
+        _mm256_storeu_pd(out.y[i], _mm256_set1_pd(wy[i]));
+        _mm256_storeu_pd(out.z[i], _mm256_set1_pd(wz[i] - depth));
+    }
+    _mm256_storeu_pd(out.floor_z, _mm256_set1_pd(std::min({wz[0] - depth, wz[1] - depth, wz[2] - depth}) - depth_margin));
+    _mm256_storeu_pd(out.grow, _mm256_set1_pd(edge_grow + window));
+    return {0, 0};
+}
+
+namespace {
+
+// The setup for n corners, its loops unrolled.
+template <int n>
+void setup_lanes(OccludeePolygons &p, double width, double height, double depth_margin)
+{
     const __m256d sign = _mm256_set1_pd(-0.0), zero = _mm256_setzero_pd();
     const auto abs = [&](__m256d v) { return _mm256_andnot_pd(sign, v); };
     const __m256d grow = load(p.grow);
@@ -161,6 +237,16 @@ void occludee_setup_avx2(OccludeePolygons &p, double width, double height, doubl
     _mm256_storeu_pd(p.za, _mm256_blendv_pd(zero, za, planar));
     _mm256_storeu_pd(p.zb, _mm256_blendv_pd(zero, zb, planar));
     _mm256_storeu_pd(p.zc, _mm256_blendv_pd(load(p.floor_z), zc, planar));
+}
+
+}  // namespace
+
+void occludee_setup_avx2(OccludeePolygons &p, double width, double height, double depth_margin)
+{
+    if (p.corners == 3)
+        setup_lanes<3>(p, width, height, depth_margin);
+    else
+        setup_lanes<4>(p, width, height, depth_margin);
 }
 
 bool box_corners_window_avx2(const double *m, const float lo[3], const float hi[3], double sx, double sy,

@@ -532,8 +532,8 @@ bool same_double(double a, double b)
 
 // The triangle test's corner stage (window position, sides beyond, the
 // bound of GL's transform error, the polygon's inputs from them), four
-// triangles a call, one a lane, in AVX2 equals its scalar twin bit for
-// bit: near the origin and up to 1e6 m from it (where the error bound grows
+// triangles a call, one a lane, and a lone triangle, its corners the
+// lanes, in AVX2 equal their scalar twin bit for bit: near the origin and up to 1e6 m from it (where the error bound grows
 // to pixels), beyond the far plane and the sides, across the near plane and
 // with a corner that is not finite.
 TEST(DepthRasterizer, ScalarAndAvx2OccludeeTrianglesAgreeBitForBit)
@@ -544,7 +544,7 @@ TEST(DepthRasterizer, ScalarAndAvx2OccludeeTrianglesAgreeBitForBit)
     const double depth_margin = 1.0 / (1 << 20);
     std::mt19937 rng(61);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-    int tested = 0, skipped = 0, shows = 0;
+    int tested = 0, skipped = 0, shows = 0, alone_tested = 0;
     for (int i = 0; i < 5000; ++i) {
         Camera c;
         const float scale = std::pow(10.0f, float(i % 7));
@@ -593,10 +593,36 @@ TEST(DepthRasterizer, ScalarAndAvx2OccludeeTrianglesAgreeBitForBit)
                             same_double(a.z[k][l], b.z[k][l]))
                     << "call " << i << " lane " << l << " corner " << k;
         }
+        // Each triangle alone, its corners as the lanes: as the scalar
+        // kernel with the triangle in every lane.
+        for (int l = 0; l < raster::occludee_lanes; ++l) {
+            const float *alone[raster::occludee_lanes][3];
+            for (int j = 0; j < raster::occludee_lanes; ++j)
+                std::copy(corners[l], corners[l] + 3, alone[j]);
+            raster::OccludeePolygons one{}, lone{};
+            const raster::OccludeeVerdicts vone = raster::occludee_triangles_scalar(
+                &m[0][0], &magnitude[0][0], product_error, alone, sx, sy, edge_grow, depth_margin, one);
+            const raster::OccludeeVerdicts vlone = raster::occludee_triangle_avx2(
+                &m[0][0], &magnitude[0][0], product_error, corners[l], sx, sy, edge_grow, depth_margin, lone);
+            ASSERT_EQ(vone.shows, vlone.shows) << "call " << i << " triangle " << l << " alone";
+            ASSERT_EQ(vone.skipped, vlone.skipped) << "call " << i << " triangle " << l << " alone";
+            if (vone.shows | vone.skipped)
+                continue;
+            ++alone_tested;
+            for (int j = 0; j < raster::occludee_lanes; ++j) {
+                ASSERT_TRUE(same_double(one.floor_z[j], lone.floor_z[j]) && same_double(one.grow[j], lone.grow[j]))
+                    << "call " << i << " triangle " << l << " alone, lane " << j;
+                for (int k = 0; k < 3; ++k)
+                    ASSERT_TRUE(same_double(one.x[k][j], lone.x[k][j]) && same_double(one.y[k][j], lone.y[k][j]) &&
+                                same_double(one.z[k][j], lone.z[k][j]))
+                        << "call " << i << " triangle " << l << " alone, lane " << j << " corner " << k;
+            }
+        }
     }
     EXPECT_GT(tested, 5000);    // corners compared
     EXPECT_GT(skipped, 2000);   // with every corner beyond a side
     EXPECT_GT(shows, 2000);     // and triangles across the near plane or not finite
+    EXPECT_GT(alone_tested, 5000);
 }
 
 // The polygons' setup in lanes (facing, reach, edges, plane) equals its
