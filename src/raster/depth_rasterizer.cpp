@@ -1104,134 +1104,94 @@ bool DepthRasterizer::faces_occluded(const Aabb &box, float z_near) const
     }
     // The box's content can be nearer than its faces nowhere, and nearer
     // than its nearest corner nowhere: both bounds less the depth margin.
+    // The six faces in two sets of lanes, the second set up only where
+    // the first four are hidden.
     const double floor_z = double(z_near) - depth_margin;
     if (any_dirty_)
         update_tile_maxima();
-    for (const auto &face : aabb_faces) {
-        glm::dvec2 p[4];
-        double z[4];
-        for (int i = 0; i < 4; ++i) {
-            p[i] = {window_x[face[i]], window_y[face[i]]};
-            z[i] = corner_depth[face[i]];
+    raster::OccludeePolygons p;
+    p.corners = 4;
+    constexpr int faces = int(std::size(aabb_faces));
+    for (int first = 0; first < faces; first += raster::occludee_lanes) {
+        for (int l = 0; l < raster::occludee_lanes; ++l) {
+            const auto &face = aabb_faces[std::min(first + l, faces - 1)];
+            for (int i = 0; i < 4; ++i) {
+                p.x[i][l] = window_x[face[i]];
+                p.y[i][l] = window_y[face[i]];
+                p.z[i][l] = corner_depth[face[i]];
+            }
+            p.floor_z[l] = floor_z;
+            p.grow[l] = edge_margin / k;
         }
+        occludee_setup(p);
         // A face facing away is skipped: the faces that face the eye cover
         // the box's silhouette.
-        if (!polygon_behind(p, z, 4, floor_z))
-            return false;
+        for (int l = 0; l < std::min(raster::occludee_lanes, faces - first); ++l)
+            if (!(p.away >> l & 1) && !polygon_behind(p, l))
+                return false;
     }
     return true;
 }
 
-bool DepthRasterizer::triangles_occluded(const glm::vec3 *positions, const std::uint32_t *indices,
-                                         std::size_t count) const
+std::size_t DepthRasterizer::first_shown(const TriangleCorners *triangles, std::size_t count) const
 {
     const double k = options_.divisor;
     const double sx = 0.5 * double(frame_width_) / k, sy = 0.5 * double(frame_height_) / k;
     const glm::dmat4 &m = view_projection_double_, &magnitude = view_projection_magnitude_;
     if (any_dirty_)
         update_tile_maxima();
-    for (std::size_t t = 0; t < count; ++t) {
+    raster::OccludeePolygons p;
+    for (std::size_t first = 0; first < count; first += raster::occludee_lanes) {
         // Each corner's window position, and the bound of GL's float error
         // from its clip coordinates: add_transform_error's, each row's sum
         // of magnitudes taken as one product of magnitudes (|m| |p|; only
         // the order of the additions differs, far below product_error's
-        // slack).
-        const float *const corner[3] = {&positions[indices[3 * t]].x, &positions[indices[3 * t + 1]].x,
-                                        &positions[indices[3 * t + 2]].x};
-        raster::OccludeeCorners q;
-        if (isa_ == Isa::avx2) {
-            if (!raster::occludee_corners_avx2(&m[0][0], &magnitude[0][0], product_error, corner, sx, sy, q))
-                return false;   // across the near plane, around the eye, or unknown: not shown hidden
-        } else if (!raster::occludee_corners_scalar(&m[0][0], &magnitude[0][0], product_error, corner, sx, sy, q)) {
-            return false;
+        // slack). Lanes past the end repeat the last triangle.
+        const int lanes = int(std::min<std::size_t>(raster::occludee_lanes, count - first));
+        const float *corners[raster::occludee_lanes][3];
+        for (int l = 0; l < raster::occludee_lanes; ++l)
+            for (int i = 0; i < 3; ++i)
+                corners[l][i] = &triangles[first + std::size_t(std::min(l, lanes - 1))][i]->x;
+        // A lone triangle (the one a leaf showed last, a cluster's last)
+        // takes its corners as the lanes instead.
+        const raster::OccludeeVerdicts verdicts =
+            isa_ != Isa::avx2 ? raster::occludee_triangles_scalar(&m[0][0], &magnitude[0][0], product_error, corners,
+                                                                  sx, sy, edge_margin / k, depth_margin, p)
+            : lanes == 1      ? raster::occludee_triangle_avx2(&m[0][0], &magnitude[0][0], product_error, corners[0],
+                                                               sx, sy, edge_margin / k, depth_margin, p)
+                              : raster::occludee_triangles_avx2(&m[0][0], &magnitude[0][0], product_error, corners, sx,
+                                                                sy, edge_margin / k, depth_margin, p);
+        const unsigned used = (1u << lanes) - 1;
+        if (((verdicts.shows | verdicts.skipped) & used) != used)
+            occludee_setup(p);
+        for (int l = 0; l < lanes; ++l) {
+            if (verdicts.shows >> l & 1)
+                return first + std::size_t(l);
+            if (verdicts.skipped >> l & 1 || p.away >> l & 1)
+                continue;
+            if (!polygon_behind(p, l))
+                return first + std::size_t(l);
         }
-        const glm::dvec2 p[3] = {{q.x[0], q.y[0]}, {q.x[1], q.y[1]}, {q.x[2], q.y[2]}};
-        double z[3] = {q.z[0], q.z[1], q.z[2]};
-        const unsigned out_all = q.beyond;   // beyond one side of the frustum with every corner: GL draws none of it
-        const TransformError error{q.window, q.depth};   // how far GL's transform may move it
-        if (out_all)
-            continue;
-        // Never nearer than its nearest corner, less the depth margin and
-        // what GL's transform may move it by.
-        if (!(error.window < 1e6 && error.depth < 1.0))
-            return false;
-        for (double &zi : z)
-            zi -= error.depth;
-        const double floor_z = std::min({z[0], z[1], z[2]}) - depth_margin;
-        if (!polygon_behind(p, z, 3, floor_z, error.window))
-            return false;
     }
-    return true;
+    return count;
 }
 
-bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *corner_z, int n, double floor_z,
-                                     double grow_more) const
+void DepthRasterizer::occludee_setup(raster::OccludeePolygons &p) const
 {
-    // How far GL may put each corner from ours, in buffer pixels.
-    const double k = options_.divisor;
-    const double grow = edge_margin / k + grow_more;
-    // Twice the signed area, and how much moving each corner by `grow`
-    // each way can change it: its derivative by corner i is the
-    // perpendicular of the diagonal between i's neighbours, and the
-    // products of two moves add at most 2 n grow^2.
-    double area = 0.0, area_error = 2.0 * n * grow * grow;
-    glm::dvec2 lo(1e300), hi(-1e300);
-    for (int i = 0; i < n; ++i) {
-        const glm::dvec2 &a = corners[i], &b = corners[i + 1 < n ? i + 1 : 0];
-        const glm::dvec2 &before = corners[i > 0 ? i - 1 : n - 1];
-        area += a.x * b.y - b.x * a.y;
-        area_error += grow * (std::abs(b.x - before.x) + std::abs(b.y - before.y));
-        lo = glm::min(lo, a);
-        hi = glm::max(hi, a);
-    }
-    // Faces away where GL's corners must face away too: GL culls it. A
-    // polygon nearly edge-on to the eye faces whichever way GL's rounded
-    // and snapped corners say, so it is tested as facing the eye (its
-    // corners taken counter-clockwise) and at its nearest corner's depth
-    // throughout, its plane being as uncertain as its facing.
-    if (area < -area_error)
-        return true;
-    const bool edge_on = area <= area_error;
-    glm::dvec2 p[max_edges];
-    double z[max_edges];
-    for (int i = 0; i < n; ++i) {
-        const int from = area < 0.0 ? n - 1 - i : i;
-        p[i] = corners[from];
-        z[i] = corner_z[from];
-    }
-    // Every depth pixel whose square the polygon reaches, grown by the
-    // edge margin.
-    const double x_lo = std::max(-1.0, std::floor(lo.x - grow)), y_lo = std::max(-1.0, std::floor(lo.y - grow));
-    const double x_hi = std::min(double(width_), std::floor(hi.x + grow)), y_hi = std::min(double(height_), std::floor(hi.y + grow));
-    const int x0 = std::max(0, int(x_lo)), y0 = std::max(0, int(y_lo));
-    const int x1 = std::min(width_, int(x_hi) + 1);
-    const int y1 = std::min(height_, int(y_hi) + 1);
+    if (isa_ == Isa::avx2)
+        raster::occludee_setup_avx2(p, double(width_), double(height_), depth_margin);
+    else
+        raster::occludee_setup_scalar(p, double(width_), double(height_), depth_margin);
+}
+
+bool DepthRasterizer::polygon_behind(const raster::OccludeePolygons &p, int lane) const
+{
+    const int x0 = std::max(0, int(p.x_lo[lane])), y0 = std::max(0, int(p.y_lo[lane]));
+    const int x1 = std::min(width_, int(p.x_hi[lane]) + 1);
+    const int y1 = std::min(height_, int(p.y_hi[lane]) + 1);
     if (x0 >= x1 || y0 >= y1)
         return true;
-    // Outward edges: the largest E over a pixel's square, at the corner on
-    // the edge's inside, >= -margin.
-    raster::OccludeeEdges q;
-    q.edges = n;
-    for (int e = 0; e < n; ++e) {
-        const glm::dvec2 &a = p[e], &b = p[e + 1 < n ? e + 1 : 0];
-        q.ea[e] = a.y - b.y;
-        q.eb[e] = b.x - a.x;
-        q.ec[e] = -(q.ea[e] * a.x + q.eb[e] * a.y) + std::max(q.ea[e], 0.0) + std::max(q.eb[e], 0.0) +
-                  (std::abs(q.ea[e]) + std::abs(q.eb[e])) * grow;
-    }
-    // The polygon's plane, its smallest value over a pixel's square.
-    const glm::dvec2 u = p[1] - p[0], v = p[2] - p[0];
-    const double twice = u.x * v.y - u.y * v.x;
-    q.za = 0.0;
-    q.zb = 0.0;
-    q.zc = floor_z;
-    q.floor_z = floor_z;
-    if (twice > 0.0 && !edge_on) {
-        const double du = z[1] - z[0], dv = z[2] - z[0];
-        q.za = (du * v.y - dv * u.y) / twice;
-        q.zb = (dv * u.x - du * v.x) / twice;
-        q.zc = z[0] - q.za * p[0].x - q.zb * p[0].y + std::min(q.za, 0.0) + std::min(q.zb, 0.0) - depth_margin;
-    }
+    const double za = p.za[lane], zb = p.zb[lane], zc = p.zc[lane], floor_z = p.floor_z[lane];
     // Tile by tile: a tile whose farthest depth is nearer than the
     // polygon's nearest over the tile settles all its pixels at once.
     for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
@@ -1239,25 +1199,25 @@ bool DepthRasterizer::polygon_behind(const glm::dvec2 *corners, const double *co
             const int tx0 = std::max(x0, tx * tile_size), tx1 = std::min(x1, (tx + 1) * tile_size);
             const int ty0 = std::max(y0, ty * tile_size), ty1 = std::min(y1, (ty + 1) * tile_size);
             const double tile_nearest =
-                std::max(floor_z, q.za * (q.za < 0.0 ? tx1 - 1 : tx0) + q.zb * (q.zb < 0.0 ? ty1 - 1 : ty0) + q.zc);
+                std::max(floor_z, za * (za < 0.0 ? tx1 - 1 : tx0) + zb * (zb < 0.0 ? ty1 - 1 : ty0) + zc);
             const std::size_t t = std::size_t(ty) * std::size_t(tiles_x_) + std::size_t(tx);
             if (double(tile_max_[t]) < tile_nearest)
                 continue;
             const float *tile = tiles_.data() + t * tile_pixels;
             if (isa_ == Isa::avx2) {
                 const int x8 = tx * tile_size, y8 = ty * tile_size;
-                if (!raster::tile_pixels_behind_avx2(q, tile, x8, y8, tx0 - x8, tx1 - x8, ty0 - y8, ty1 - y8))
+                if (!raster::tile_pixels_behind_avx2(p, lane, tile, x8, y8, tx0 - x8, tx1 - x8, ty0 - y8, ty1 - y8))
                     return false;
                 continue;
             }
             for (int y = ty0; y < ty1; ++y)
                 for (int x = tx0; x < tx1; ++x) {
                     bool inside = true;
-                    for (int e = 0; e < n && inside; ++e)
-                        inside = q.ea[e] * x + q.eb[e] * y + q.ec[e] >= 0.0;
+                    for (int e = 0; e < p.corners && inside; ++e)
+                        inside = p.ea[e][lane] * x + p.eb[e][lane] * y + p.ec[e][lane] >= 0.0;
                     if (!inside)
                         continue;
-                    const double nearest = std::max(floor_z, q.za * x + q.zb * y + q.zc);
+                    const double nearest = std::max(floor_z, za * x + zb * y + zc);
                     if (!(double(tile[(y % tile_size) * tile_size + x % tile_size]) < nearest))
                         return false;
                 }

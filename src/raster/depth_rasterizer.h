@@ -78,6 +78,7 @@
 // triangles that need clipping take.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -91,6 +92,7 @@ namespace occu {
 
 namespace raster {
 struct PolygonSetup;
+struct OccludeePolygons;
 }
 
 class DepthRasterizer {
@@ -155,16 +157,20 @@ public:
     // The second step alone, for a caller that has tested the rectangle
     // already (or an equivalent, such as a Z-pyramid of this buffer).
     bool faces_occluded(const Aabb &box, float z_near) const;
-    // Whether every triangle (three indices into `positions` each) that
-    // may face the eye is hidden as faces_occluded hides a box's faces:
-    // every depth pixel whose square it reaches nearer than its nearest
-    // depth there (and than its nearest corner). Only a triangle that
-    // faces away by more than GL's rounding of its corners can change is
-    // left out (GL culls it); one nearly edge-on faces whichever way GL's
-    // rounded corners say, and is tested. Tighter than the box of the
-    // triangles: a leaf tested by what it draws. False when a triangle
-    // reaches in front of the near plane.
-    bool triangles_occluded(const glm::vec3 *positions, const std::uint32_t *indices, std::size_t count) const;
+    // A triangle by its three corners.
+    using TriangleCorners = std::array<const glm::vec3 *, 3>;
+    // The first of `count` triangles that is not hidden, `count` when all
+    // are; a triangle that may face the eye is hidden as faces_occluded
+    // hides a box's faces: every depth pixel whose square it reaches
+    // nearer than its nearest depth there (and than its nearest corner).
+    // Only a triangle that faces away by more than GL's rounding of its
+    // corners can change is left out (GL culls it); one nearly edge-on
+    // faces whichever way GL's rounded corners say, and is tested. Tighter
+    // than the box of the triangles: a leaf tested by what it draws. A
+    // triangle reaching in front of the near plane is not hidden. The
+    // triangles are set up four at a time in lanes, then walked in order
+    // up to the first that shows.
+    std::size_t first_shown(const TriangleCorners *triangles, std::size_t count) const;
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -229,14 +235,13 @@ private:
     // inside the buffer, not empty) is nearer than z, by the tiles'
     // maxima; brings those tiles' maxima up to date.
     bool all_nearer(int x0, int y0, int x1, int y1, float z) const;
-    // Whether every depth pixel whose square the convex polygon (window
-    // coordinates of the buffer, n <= 4 corners, counter-clockwise where
-    // it faces the eye; window depths corner_z) reaches is nearer than the
-    // polygon there, and than floor_z; true for a polygon facing away by
-    // more than GL's corners may differ from these (the edge margin and
-    // grow_more): GL culls it. One that may face either way is tested.
-    bool polygon_behind(const glm::dvec2 *corners, const double *corner_z, int n, double floor_z,
-                        double grow_more = 0.0) const;
+    // Whether every depth pixel whose square lane `lane` of `p` (set up by
+    // raster::occludee_setup_*, not facing away) reaches is nearer than the
+    // polygon there, and than its floor_z: its reach tile by tile, a tile
+    // whose farthest depth is nearer than the polygon's nearest over it
+    // settled at once.
+    bool polygon_behind(const raster::OccludeePolygons &p, int lane) const;
+    void occludee_setup(raster::OccludeePolygons &p) const;   // the ISA's kernel
 
     Isa isa_;
     Options options_;

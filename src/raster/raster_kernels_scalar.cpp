@@ -6,10 +6,6 @@
 #include <cmath>
 #include <limits>
 
-#include <glm/glm.hpp>
-
-#include "raster/occludee_kernels.h"
-
 namespace occu::raster {
 
 void fill_scalar(const PolygonSetup &s, const TileBuffer &buffer)
@@ -306,39 +302,6 @@ bool tile_behind_scalar(const float *tile, int c0, int c1, int r0, int r1, float
         for (int c = c0; c < c1; ++c)
             if (!(tile[r * tile_size + c] < z))
                 return false;
-    return true;
-}
-
-bool occludee_corners_scalar(const double *matrix, const double *magnitudes, double product_error,
-                             const float *const corners[3], double sx, double sy, OccludeeCorners &out)
-{
-    glm::dmat4 m, magnitude;
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) {
-            m[c][r] = matrix[4 * c + r];
-            magnitude[c][r] = magnitudes[4 * c + r];
-        }
-    out.beyond = 63;
-    out.window = out.depth = 0.0;
-    for (int i = 0; i < 3; ++i) {
-        const glm::dvec3 p(corners[i][0], corners[i][1], corners[i][2]);
-        const glm::dvec4 c = m * glm::dvec4(p, 1.0), b = product_error * (magnitude * glm::dvec4(glm::abs(p), 1.0));
-        if (!std::isfinite(c.x + c.y + c.z + c.w) || !(c.w > 0.0) || c.z < -c.w)
-            return false;
-        out.beyond &= unsigned(c.x > c.w) << 0 | unsigned(c.x < -c.w) << 1 | unsigned(c.y > c.w) << 2 |
-                      unsigned(c.y < -c.w) << 3 | unsigned(c.z > c.w) << 4;
-        const glm::dvec3 ndc = glm::dvec3(c) / c.w;
-        out.x[i] = (ndc.x + 1.0) * sx;
-        out.y[i] = (ndc.y + 1.0) * sy;
-        out.z[i] = ndc.z * 0.5 + 0.5;
-        if (!(c.w > b.w)) {
-            out.window = out.depth = std::numeric_limits<double>::infinity();
-            continue;
-        }
-        const double w = c.w - b.w;
-        out.window = std::max({out.window, sx * (b.x + std::abs(ndc.x) * b.w) / w, sy * (b.y + std::abs(ndc.y) * b.w) / w});
-        out.depth = std::max(out.depth, 0.5 * (b.z + std::abs(ndc.z) * b.w) / w);
-    }
     return true;
 }
 

@@ -86,11 +86,21 @@ public:
                 if (footprint && raster_.occluded(cluster.box, footprint->rect, footprint->window_z_near - 1e-6f))
                     continue;
             }
+            // The cluster's triangles at once (the rasterizer sets them up
+            // in lanes), up to the first that shows.
+            std::uint32_t which[cluster_triangles];
+            DepthRasterizer::TriangleCorners corners[cluster_triangles];
+            std::size_t count = 0;
             for (std::uint32_t i = n.first_triangle + cluster.first; i < n.first_triangle + cluster.first + cluster.count; ++i)
-                if (order_[i] != shown && !triangle_occluded(order_[i])) {
-                    shown = order_[i];
-                    return false;
+                if (order_[i] != shown) {
+                    which[count] = order_[i];
+                    corners[count++] = triangle_corners(order_[i]);
                 }
+            const std::size_t first = raster_.first_shown(corners, count);
+            if (first < count) {
+                shown = which[first];
+                return false;
+            }
         }
         shown = none;
         return true;
@@ -98,9 +108,16 @@ public:
 
     bool triangle_occluded(std::uint32_t triangle) const
     {
+        const DepthRasterizer::TriangleCorners corners = triangle_corners(triangle);
+        return raster_.first_shown(&corners, 1) == 1;
+    }
+
+    DepthRasterizer::TriangleCorners triangle_corners(std::uint32_t triangle) const
+    {
         const TriangleRef &t = hierarchy_.triangles()[triangle];
         const Mesh &mesh = scene_.meshes[t.mesh];
-        return raster_.triangles_occluded(mesh.positions.data(), mesh.indices.data() + t.first_index, 1);
+        const std::uint32_t *index = mesh.indices.data() + t.first_index;
+        return {&mesh.positions[index[0]], &mesh.positions[index[1]], &mesh.positions[index[2]]};
     }
 
     // Each leaf's triangles split into clusters of at most

@@ -37,6 +37,13 @@ Camera test_camera()
     return c;
 }
 
+// Whether the occludee test hides the triangle v[0], v[1], v[2].
+bool triangle_hidden(const DepthRasterizer &r, const glm::vec3 *v)
+{
+    const DepthRasterizer::TriangleCorners corners{&v[0], &v[1], &v[2]};
+    return r.first_shown(&corners, 1) == 1;
+}
+
 struct Polygons {
     std::vector<glm::vec3> positions;
     std::vector<std::uint32_t> triangles, quads;   // indices, 3 and 4 each
@@ -379,8 +386,7 @@ TEST_P(DepthRasterizerAgainstGl, TriangleTestHidesOnlyTrianglesGlHides)
             glm::vec3 v[3];
             for (glm::vec3 &x : v)
                 x = c + glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f} * (0.2f + unit(rng) * 3.0f);
-            const std::uint32_t indices[3] = {0, 1, 2};
-            const bool hidden = r.triangles_occluded(v, indices, 1);
+            const bool hidden = triangle_hidden(r, v);
             Aabb bounds = Aabb::of(v[0], v[0]);
             bounds.expand(v[1]);
             bounds.expand(v[2]);
@@ -501,9 +507,8 @@ TEST(DepthRasterizer, ScalarAndAvx2OccludeeTestsAgree)
             glm::vec3 v[3];
             for (glm::vec3 &x : v)
                 x = c + glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f} * (0.2f + unit(rng) * 3.0f);
-            const std::uint32_t indices[3] = {0, 1, 2};
-            const bool a = scalar.triangles_occluded(v, indices, 1);
-            ASSERT_EQ(a, avx2.triangles_occluded(v, indices, 1)) << "trial " << trial << " triangle " << t;
+            const bool a = triangle_hidden(scalar, v);
+            ASSERT_EQ(a, triangle_hidden(avx2, v)) << "trial " << trial << " triangle " << t;
             (a ? hidden : shown)++;
             Aabb box = Aabb::of(v[0], v[0]);
             box.expand(v[1]);
@@ -520,21 +525,28 @@ TEST(DepthRasterizer, ScalarAndAvx2OccludeeTestsAgree)
     EXPECT_GT(boxes_shown, 100);
 }
 
+// Equal bits, or both NaN (a NaN's payload is not compared).
+bool same_double(double a, double b)
+{
+    return std::memcmp(&a, &b, sizeof a) == 0 || (a != a && b != b);
+}
+
 // The triangle test's corner stage (window position, sides beyond, the
-// bound of GL's transform error) in AVX2 lanes equals its scalar twin bit
-// for bit: near the origin and up to 1e6 m from it (where the error bound
-// grows to pixels), beyond the far plane and the sides, across the near
-// plane and with a corner that is not finite.
-TEST(DepthRasterizer, ScalarAndAvx2OccludeeCornersAgreeBitForBit)
+// bound of GL's transform error, the polygon's inputs from them), four
+// triangles a call, one a lane, and a lone triangle, its corners the
+// lanes, in AVX2 equal their scalar twin bit for bit: near the origin and up to 1e6 m from it (where the error bound grows
+// to pixels), beyond the far plane and the sides, across the near plane and
+// with a corner that is not finite.
+TEST(DepthRasterizer, ScalarAndAvx2OccludeeTrianglesAgreeBitForBit)
 {
     if (!DepthRasterizer::avx2_supported())
         GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
-    const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
     const double product_error = 8.0 * std::numeric_limits<float>::epsilon();
+    const double depth_margin = 1.0 / (1 << 20);
     std::mt19937 rng(61);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-    int shown = 0, beyond = 0, unknown = 0;
-    for (int i = 0; i < 20000; ++i) {
+    int tested = 0, skipped = 0, shows = 0, alone_tested = 0;
+    for (int i = 0; i < 5000; ++i) {
         Camera c;
         const float scale = std::pow(10.0f, float(i % 7));
         c.position = glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
@@ -545,35 +557,183 @@ TEST(DepthRasterizer, ScalarAndAvx2OccludeeCornersAgreeBitForBit)
         glm::dmat4 magnitude;
         for (int k = 0; k < 4; ++k)
             magnitude[k] = glm::abs(m[k]);
-        glm::vec3 v[3];
-        const glm::vec3 centre = c.position + glm::vec3(unit(rng), unit(rng), unit(rng)) * 120.0f;
-        for (glm::vec3 &x : v)
-            x = centre + glm::vec3(unit(rng), unit(rng), unit(rng)) * 10.0f;
-        if (i % 101 == 0)
-            v[i % 3].y = std::numeric_limits<float>::quiet_NaN();
-        const float *const corners[3] = {&v[0].x, &v[1].x, &v[2].x};
-        const double sx = 128.0 / (1 + i % 4), sy = 96.0 / (1 + i % 4);
-        raster::OccludeeCorners a{}, b{};
-        const bool known = raster::occludee_corners_scalar(&m[0][0], &magnitude[0][0], product_error, corners, sx, sy, a);
-        ASSERT_EQ(known, raster::occludee_corners_avx2(&m[0][0], &magnitude[0][0], product_error, corners, sx, sy, b))
-            << "triangle " << i;
-        if (!known) {
-            ++unknown;
-            continue;
+        glm::vec3 v[raster::occludee_lanes][3];
+        const float *corners[raster::occludee_lanes][3];
+        for (int l = 0; l < raster::occludee_lanes; ++l) {
+            // Half of them ahead of the eye, the others anywhere near it.
+            const glm::vec3 ahead = glm::normalize(c.target - c.position) * (50.0f + 45.0f * unit(rng));
+            const glm::vec3 centre = c.position + (l % 2 ? glm::vec3(unit(rng), unit(rng), unit(rng)) * 120.0f
+                                                         : ahead + glm::vec3(unit(rng), unit(rng), unit(rng)) * 10.0f);
+            for (int k = 0; k < 3; ++k) {
+                v[l][k] = centre + glm::vec3(unit(rng), unit(rng), unit(rng)) * 10.0f;
+                corners[l][k] = &v[l][k].x;
+            }
+            if ((4 * i + l) % 101 == 0)
+                v[l][i % 3].y = std::numeric_limits<float>::quiet_NaN();
         }
-        ++shown;
-        ASSERT_EQ(a.beyond, b.beyond) << "triangle " << i;
-        beyond += a.beyond != 0;
-        ASSERT_TRUE(same(a.window, b.window)) << "triangle " << i << ": " << a.window << " " << b.window;
-        ASSERT_TRUE(same(a.depth, b.depth)) << "triangle " << i << ": " << a.depth << " " << b.depth;
-        for (int k = 0; k < 3; ++k) {
-            ASSERT_TRUE(same(a.x[k], b.x[k]) && same(a.y[k], b.y[k]) && same(a.z[k], b.z[k]))
-                << "triangle " << i << " corner " << k;
+        const double sx = 128.0 / (1 + i % 4), sy = 96.0 / (1 + i % 4), edge_grow = 1.0 / 16.0 / (1 + i % 4);
+        raster::OccludeePolygons a{}, b{};
+        const raster::OccludeeVerdicts va = raster::occludee_triangles_scalar(
+            &m[0][0], &magnitude[0][0], product_error, corners, sx, sy, edge_grow, depth_margin, a);
+        const raster::OccludeeVerdicts vb = raster::occludee_triangles_avx2(
+            &m[0][0], &magnitude[0][0], product_error, corners, sx, sy, edge_grow, depth_margin, b);
+        ASSERT_EQ(va.shows, vb.shows) << "call " << i;
+        ASSERT_EQ(va.skipped, vb.skipped) << "call " << i;
+        ASSERT_EQ(a.corners, 3);
+        ASSERT_EQ(b.corners, 3);
+        for (int l = 0; l < raster::occludee_lanes; ++l) {
+            if ((va.shows | va.skipped) >> l & 1) {
+                (va.shows >> l & 1 ? shows : skipped)++;
+                continue;
+            }
+            ++tested;
+            ASSERT_TRUE(same_double(a.floor_z[l], b.floor_z[l])) << "call " << i << " lane " << l;
+            ASSERT_TRUE(same_double(a.grow[l], b.grow[l])) << "call " << i << " lane " << l;
+            for (int k = 0; k < 3; ++k)
+                ASSERT_TRUE(same_double(a.x[k][l], b.x[k][l]) && same_double(a.y[k][l], b.y[k][l]) &&
+                            same_double(a.z[k][l], b.z[k][l]))
+                    << "call " << i << " lane " << l << " corner " << k;
+        }
+        // Each triangle alone, its corners as the lanes: as the scalar
+        // kernel with the triangle in every lane.
+        for (int l = 0; l < raster::occludee_lanes; ++l) {
+            const float *alone[raster::occludee_lanes][3];
+            for (int j = 0; j < raster::occludee_lanes; ++j)
+                std::copy(corners[l], corners[l] + 3, alone[j]);
+            raster::OccludeePolygons one{}, lone{};
+            const raster::OccludeeVerdicts vone = raster::occludee_triangles_scalar(
+                &m[0][0], &magnitude[0][0], product_error, alone, sx, sy, edge_grow, depth_margin, one);
+            const raster::OccludeeVerdicts vlone = raster::occludee_triangle_avx2(
+                &m[0][0], &magnitude[0][0], product_error, corners[l], sx, sy, edge_grow, depth_margin, lone);
+            ASSERT_EQ(vone.shows, vlone.shows) << "call " << i << " triangle " << l << " alone";
+            ASSERT_EQ(vone.skipped, vlone.skipped) << "call " << i << " triangle " << l << " alone";
+            if (vone.shows | vone.skipped)
+                continue;
+            ++alone_tested;
+            for (int j = 0; j < raster::occludee_lanes; ++j) {
+                ASSERT_TRUE(same_double(one.floor_z[j], lone.floor_z[j]) && same_double(one.grow[j], lone.grow[j]))
+                    << "call " << i << " triangle " << l << " alone, lane " << j;
+                for (int k = 0; k < 3; ++k)
+                    ASSERT_TRUE(same_double(one.x[k][j], lone.x[k][j]) && same_double(one.y[k][j], lone.y[k][j]) &&
+                                same_double(one.z[k][j], lone.z[k][j]))
+                        << "call " << i << " triangle " << l << " alone, lane " << j << " corner " << k;
+            }
         }
     }
-    EXPECT_GT(shown, 3000);     // corners compared
-    EXPECT_GT(beyond, 1000);    // with every corner beyond a side
-    EXPECT_GT(unknown, 1000);   // and triangles across the near plane or not finite
+    EXPECT_GT(tested, 5000);    // corners compared
+    EXPECT_GT(skipped, 2000);   // with every corner beyond a side
+    EXPECT_GT(shows, 2000);     // and triangles across the near plane or not finite
+    EXPECT_GT(alone_tested, 5000);
+}
+
+// The polygons' setup in lanes (facing, reach, edges, plane) equals its
+// scalar twin bit for bit, every lane: triangles and quads of either
+// winding, large and sub-pixel, nearly edge-on (within and just beyond the
+// area's uncertainty), off the buffer, far from it and not finite.
+TEST(DepthRasterizer, ScalarAndAvx2OccludeeSetupsAgreeBitForBit)
+{
+    if (!DepthRasterizer::avx2_supported())
+        GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
+    const double depth_margin = 1.0 / (1 << 20);
+    std::mt19937 rng(67);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int away = 0, planar = 0, flat = 0;
+    for (int i = 0; i < 20000; ++i) {
+        raster::OccludeePolygons a{};
+        a.corners = 3 + i % 2;
+        const double size = std::pow(10.0, unit(rng) * 6.0 - 3.0);   // 1e-3 to 1e3 depth pixels
+        for (int l = 0; l < raster::occludee_lanes; ++l) {
+            const double cx = unit(rng) * 160.0 - 16.0, cy = unit(rng) * 120.0 - 12.0;
+            const double angle = unit(rng) * 6.3, squash = unit(rng) < 0.3 ? std::pow(10.0, -8.0 * unit(rng)) : 1.0;
+            const double direction = unit(rng) < 0.5 ? 1.0 : -1.0;
+            for (int k = 0; k < a.corners; ++k) {
+                // Points on an ellipse in increasing or decreasing angle,
+                // squashed to nearly a line for some.
+                const double t = angle + direction * (6.28 / a.corners) * (k + 0.4 * unit(rng));
+                a.x[k][l] = cx + size * std::cos(t);
+                a.y[k][l] = cy + size * squash * std::sin(t);
+                a.z[k][l] = unit(rng);
+            }
+            if ((4 * i + l) % 97 == 0)
+                a.x[l % a.corners][l] = (i % 2 ? 1.0 : -1.0) * std::numeric_limits<double>::infinity();
+            if ((4 * i + l) % 89 == 0)
+                a.y[l % a.corners][l] = std::numeric_limits<double>::quiet_NaN();
+            a.floor_z[l] = unit(rng) - 0.1;
+            a.grow[l] = 1.0 / 16.0 / (1 + i % 4) + (unit(rng) < 0.5 ? 0.0 : unit(rng) * 4.0);
+        }
+        raster::OccludeePolygons b = a;
+        raster::occludee_setup_scalar(a, 128.0 / (1 + i % 4), 96.0 / (1 + i % 4), depth_margin);
+        raster::occludee_setup_avx2(b, 128.0 / (1 + i % 4), 96.0 / (1 + i % 4), depth_margin);
+        ASSERT_EQ(a.away, b.away) << "call " << i;
+        for (int l = 0; l < raster::occludee_lanes; ++l) {
+            const std::string where = "call " + std::to_string(i) + " lane " + std::to_string(l);
+            ASSERT_TRUE(same_double(a.x_lo[l], b.x_lo[l]) && same_double(a.y_lo[l], b.y_lo[l]) &&
+                        same_double(a.x_hi[l], b.x_hi[l]) && same_double(a.y_hi[l], b.y_hi[l]))
+                << where;
+            for (int e = 0; e < a.corners; ++e)
+                ASSERT_TRUE(same_double(a.ea[e][l], b.ea[e][l]) && same_double(a.eb[e][l], b.eb[e][l]) &&
+                            same_double(a.ec[e][l], b.ec[e][l]))
+                    << where << " edge " << e << ": " << a.ec[e][l] << " " << b.ec[e][l];
+            ASSERT_TRUE(same_double(a.za[l], b.za[l]) && same_double(a.zb[l], b.zb[l]) && same_double(a.zc[l], b.zc[l]))
+                << where << ": " << a.zc[l] << " " << b.zc[l];
+            if (a.away >> l & 1)
+                ++away;
+            else
+                (a.za[l] == 0.0 && a.zb[l] == 0.0 ? flat : planar)++;
+        }
+    }
+    EXPECT_GT(away, 8000);     // facing away
+    EXPECT_GT(planar, 8000);   // set up with their plane
+    EXPECT_GT(flat, 8000);      // nearly edge-on: at floor_z throughout
+}
+
+// A batch of triangles (a cluster's) answers as its triangles one at a
+// time: the first that shows, in either path, against buffers of random
+// occluders; batches of 1 to 16, so that lanes past the end of a batch and
+// sets of four after the first are tested.
+TEST(DepthRasterizer, ScalarAndAvx2FirstShownAgreeWithOneAtATime)
+{
+    if (!DepthRasterizer::avx2_supported())
+        GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
+    const glm::mat4 vp = test_camera().view_projection();
+    std::mt19937 rng(71);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    DepthRasterizer scalar(DepthRasterizer::Isa::scalar), avx2(DepthRasterizer::Isa::avx2);
+    int all_hidden = 0, past_the_first_four = 0, at_the_first = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        const Polygons p = random_polygons(rng, 40);
+        const DepthRasterizer::Options o{1 + trial % 4, true, trial % 2 == 1};
+        rasterize(scalar, p, vp, o);
+        rasterize(avx2, p, vp, o);
+        for (int batch = 0; batch < 60; ++batch) {
+            // Neighbours behind the occluders, some among or before them.
+            const std::size_t count = 1 + std::size_t(batch % 16);
+            const glm::vec3 c{unit(rng) * 8 - 4, unit(rng) * 8 - 4, -2.0f - unit(rng) * 11};
+            std::vector<glm::vec3> v(3 * count);
+            std::vector<DepthRasterizer::TriangleCorners> corners(count);
+            for (std::size_t t = 0; t < count; ++t) {
+                const glm::vec3 at = c + glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f} * 2.0f;
+                const float size = unit(rng) < 0.1f ? 3.0f : 0.4f;
+                for (int k = 0; k < 3; ++k)
+                    v[3 * t + std::size_t(k)] =
+                        at + glm::vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f} * size;
+                corners[t] = {&v[3 * t], &v[3 * t + 1], &v[3 * t + 2]};
+            }
+            std::size_t one_at_a_time = count;
+            for (std::size_t t = 0; t < count && one_at_a_time == count; ++t)
+                if (!triangle_hidden(scalar, &v[3 * t]))
+                    one_at_a_time = t;
+            const std::size_t a = scalar.first_shown(corners.data(), count);
+            ASSERT_EQ(a, avx2.first_shown(corners.data(), count)) << "trial " << trial << " batch " << batch;
+            ASSERT_EQ(a, one_at_a_time) << "trial " << trial << " batch " << batch;
+            all_hidden += a == count;
+            past_the_first_four += a >= 4 && a < count;
+            at_the_first += a == 0;
+        }
+    }
+    EXPECT_GT(all_hidden, 1000);
+    EXPECT_GT(past_the_first_four, 100);
+    EXPECT_GT(at_the_first, 300);
 }
 
 TEST(DepthRasterizer, RectangleTestEqualsAScanOfTheBuffer)
@@ -1053,7 +1213,6 @@ TEST(DepthRasterizer, TriangleTestHidesNoTriangleGlDrawsNearlyEdgeOn)
                                  {7.36762619f, 2.84800005f, -0.666489601f}};
     // In the sliver's plane, its short edge 86 times as long.
     const glm::vec3 wide[3] = {sliver[0], sliver[2] + (sliver[1] - sliver[2]) * 86.0f, sliver[2]};
-    const std::uint32_t indices[3] = {0, 1, 2};
     Camera eye48;
     eye48.position = {11.7529497f, 2.9672823f, -6.65772533f};
     eye48.target = {11.0419703f, 3.1715579f, -5.9848361f};
@@ -1097,7 +1256,7 @@ TEST(DepthRasterizer, TriangleTestHidesNoTriangleGlDrawsNearlyEdgeOn)
             for (std::size_t i = 0; i < pixels.size(); i += 4)
                 shown += pixels[i] != 0;
             r.begin(c.view_projection(), width, height, {5, true, true});
-            const bool called_hidden = r.triangles_occluded(v, indices, 1);
+            const bool called_hidden = triangle_hidden(r, v);
             drawn += shown > 0;
             hidden += called_hidden;
             if (shown > 0 && called_hidden && !wrongly_hidden++)
