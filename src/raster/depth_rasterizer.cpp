@@ -918,8 +918,6 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     const int rows_at_once = raster::rows_at_once(k);
     for (int y_first = p.y0; y_first < p.y1; y_first += rows_at_once) {
         unsigned found = rows_runs(c, y_first, runs);
-        if (p.y1 - y_first < rows_at_once)
-            found &= (1u << (p.y1 - y_first)) - 1;
         while (found) {
             found = merge_rows(rows, runs, y_first, found, layer);
             if (found) {
