@@ -253,8 +253,9 @@ struct RowsRuns {
 // where rising, the first column held, clamped to [c_lo, c_hi + 1] (c_hi
 // + 1: none); else the last, clamped to [c_lo - 1, c_hi] (c_lo - 1: none),
 // a NaN crossing holding none; then the runs they bound. Returns bit r
-// where row y + r has a run holding a column (first <= last); the lanes of
-// rows from y_end on are not computed (their contents mean nothing).
+// where row y + r has a run holding a column (first <= last), none for
+// rows from y_end on, whose lanes are not computed (their contents mean
+// nothing).
 unsigned partial_rows_runs_scalar(const Crossings &c, int y, RowsRuns &runs);
 unsigned partial_rows_runs_avx2(const Crossings &c, int y, RowsRuns &runs);
 
