@@ -1152,6 +1152,47 @@ TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
     EXPECT_GT(across_taken, 500);
 }
 
+// merge_partial walks the rows the crossing kernel reports: none from
+// y_end on, whose lanes hold rows past the polygon. Level lines that hold
+// every column make every row below y_end report, so the answer is known
+// exactly for each divisor and each count of rows left.
+TEST(DepthRasterizer, CrossingKernelsReportEveryRowBelowTheLastAndNoneFromIt)
+{
+    for (int k = 1; k <= 8; ++k) {
+        double lane_row[8], lane_offset[8];
+        const int at_once = raster::rows_at_once(k);
+        for (int l = 0; l < 8; ++l) {
+            lane_row[l] = l < at_once * k ? l / k : 0;
+            lane_offset[l] = (l % k + 0.5) / k;
+        }
+        raster::Crossings c{};
+        c.c_lo = 0;
+        c.c_hi = 8 * k - 1;
+        c.k = k;
+        c.lane_row = lane_row;
+        c.lane_offset = lane_offset;
+        c.edges = 3;
+        c.candidates = 0;
+        c.rising_edges = 7;
+        for (int e = 0; e < 3; ++e) {
+            c.start[e] = 1.0;
+            c.slope[e] = 0.0;
+            c.rising[e] = true;
+            c.level[e] = true;
+        }
+        const int y = 5;
+        for (int left = 1; left <= at_once; ++left) {
+            c.y_end = y + left;
+            const unsigned expected = (1u << left) - 1;
+            raster::RowsRuns runs;
+            EXPECT_EQ(raster::partial_rows_runs_scalar(c, y, runs), expected) << "k " << k << ", rows left " << left;
+            if (DepthRasterizer::avx2_supported())
+                EXPECT_EQ(raster::partial_rows_runs_avx2(c, y, runs), expected)
+                    << "k " << k << ", rows left " << left;
+        }
+    }
+}
+
 // Two buffers of merged coverage joined: what either half's samples hold
 // fuses, and the join still covers only what GL covers.
 TEST(DepthRasterizer, MergedCoverageJoinsAcrossBuffers)
