@@ -14,6 +14,24 @@ namespace {
 
 __m256d load(const double *lanes) { return _mm256_loadu_pd(lanes); }
 
+// A corner per lane in clip space, c = m (x, y, z, 1), and per row the
+// bound of its rounding, b = error (|m| (|x|, |y|, |z|, 1)), in the
+// scalar's order of operations (no fused multiply-add).
+void clip_and_bound(const double *m, const double *magnitude, __m256d error, __m256d x, __m256d y, __m256d z,
+                    __m256d c[4], __m256d b[4])
+{
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    const __m256d ax = _mm256_andnot_pd(sign, x), ay = _mm256_andnot_pd(sign, y), az = _mm256_andnot_pd(sign, z);
+    for (int r = 0; r < 4; ++r) {
+        c[r] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[r]), x), _mm256_mul_pd(_mm256_set1_pd(m[4 + r]), y)),
+                             _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[8 + r]), z), _mm256_set1_pd(m[12 + r])));
+        b[r] = _mm256_mul_pd(error, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(magnitude[r]), ax),
+                                                                _mm256_mul_pd(_mm256_set1_pd(magnitude[4 + r]), ay)),
+                                                  _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(magnitude[8 + r]), az),
+                                                                _mm256_set1_pd(magnitude[12 + r]))));
+    }
+}
+
 }  // namespace
 
 OccludeeVerdicts occludee_triangles_avx2(const double *m, const double *magnitude, double product_error,
@@ -37,17 +55,8 @@ OccludeeVerdicts occludee_triangles_avx2(const double *m, const double *magnitud
         const auto lanes = [&](int a) {
             return _mm256_cvtps_pd(_mm_setr_ps(corners[0][i][a], corners[1][i][a], corners[2][i][a], corners[3][i][a]));
         };
-        const __m256d x = lanes(0), y = lanes(1), z = lanes(2);
-        const __m256d ax = _mm256_andnot_pd(sign, x), ay = _mm256_andnot_pd(sign, y), az = _mm256_andnot_pd(sign, z);
         __m256d c[4], b[4];
-        for (int r = 0; r < 4; ++r) {
-            c[r] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[r]), x), _mm256_mul_pd(_mm256_set1_pd(m[4 + r]), y)),
-                                 _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[8 + r]), z), _mm256_set1_pd(m[12 + r])));
-            b[r] = _mm256_mul_pd(error, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(magnitude[r]), ax),
-                                                                    _mm256_mul_pd(_mm256_set1_pd(magnitude[4 + r]), ay)),
-                                                      _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(magnitude[8 + r]), az),
-                                                                    _mm256_set1_pd(magnitude[12 + r]))));
-        }
+        clip_and_bound(m, magnitude, error, lanes(0), lanes(1), lanes(2), c, b);
         const __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(c[0], c[1]), c[2]), c[3]);
         const __m256d minus_w = _mm256_xor_pd(c[3], sign);
         unknown = _mm256_or_pd(unknown, _mm256_or_pd(_mm256_cmp_pd(_mm256_andnot_pd(sign, sum), largest, _CMP_NLE_UQ),
@@ -104,19 +113,9 @@ OccludeeVerdicts occludee_triangle_avx2(const double *m, const double *magnitude
     const auto lanes = [&](int a) {
         return _mm256_setr_pd(corners[0][a], corners[1][a], corners[2][a], corners[2][a]);
     };
-    const __m256d x = lanes(0), y = lanes(1), z = lanes(2);
     const __m256d sign = _mm256_set1_pd(-0.0);
-    const __m256d ax = _mm256_andnot_pd(sign, x), ay = _mm256_andnot_pd(sign, y), az = _mm256_andnot_pd(sign, z);
-    const __m256d error = _mm256_set1_pd(product_error);
     __m256d c[4], b[4];
-    for (int r = 0; r < 4; ++r) {
-        c[r] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[r]), x), _mm256_mul_pd(_mm256_set1_pd(m[4 + r]), y)),
-                             _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(m[8 + r]), z), _mm256_set1_pd(m[12 + r])));
-        b[r] = _mm256_mul_pd(error, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(magnitude[r]), ax),
-                                                                _mm256_mul_pd(_mm256_set1_pd(magnitude[4 + r]), ay)),
-                                                  _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(magnitude[8 + r]), az),
-                                                                _mm256_set1_pd(magnitude[12 + r]))));
-    }
+    clip_and_bound(m, magnitude, _mm256_set1_pd(product_error), lanes(0), lanes(1), lanes(2), c, b);
     out.corners = 3;
     const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
     const __m256d largest = _mm256_set1_pd(std::numeric_limits<double>::max());
