@@ -37,6 +37,19 @@ choice::ChoiceView view_of(const Frame &frame)
     return v;
 }
 
+// View `view` of a test's sixteen: a random eye and direction, a narrow
+// or wide field, a near or farther near plane.
+Camera random_camera(std::mt19937 &rng, int view)
+{
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    Camera camera;
+    camera.position = glm::vec3(10.0f * unit(rng), 10.0f * unit(rng), 10.0f * unit(rng));
+    camera.target = camera.position + glm::vec3(unit(rng), unit(rng), unit(rng));
+    camera.fovy_degrees = view % 2 ? 60.0f : 120.0f;
+    camera.near_plane = view % 3 ? 0.1f : 2.0f;
+    return camera;
+}
+
 bool same_bits(const choice::LaneScores &a, const choice::LaneScores &b)
 {
     return a.keep == b.keep && std::memcmp(a.score, b.score, sizeof a.score) == 0 &&
@@ -73,12 +86,7 @@ TEST(ChoiceKernels, ScalarAndAvx2AgreeBitForBit)
         EXPECT_EQ(first % 8, 0u) << "a group not starting a block";
     int compared = 0, kept = 0, dropped = 0;
     for (int view = 0; view < 16; ++view) {
-        Camera camera;
-        camera.position = glm::vec3(10.0f * unit(rng), 10.0f * unit(rng), 10.0f * unit(rng));
-        camera.target = camera.position + glm::vec3(unit(rng), unit(rng), unit(rng));
-        camera.fovy_degrees = view % 2 ? 60.0f : 120.0f;
-        camera.near_plane = view % 3 ? 0.1f : 2.0f;
-        const Frame frame(camera, 64, 48);
+        const Frame frame(random_camera(rng, view), 64, 48);
         const choice::ChoiceView v = view_of(frame);
         std::vector<std::uint32_t> gather(8);
         for (const auto &[group_slot, group_count] : groups)
@@ -140,12 +148,7 @@ TEST(ChoiceKernels, BoxBoundsAndSidesAgreeBitForBitAndWithTheFrustum)
     const bool avx2 = DepthRasterizer::avx2_supported();
     int compared = 0, outside = 0, crossing = 0, inside = 0;
     for (int view = 0; view < 16; ++view) {
-        Camera camera;
-        camera.position = glm::vec3(10.0f * unit(rng), 10.0f * unit(rng), 10.0f * unit(rng));
-        camera.target = camera.position + glm::vec3(unit(rng), unit(rng), unit(rng));
-        camera.fovy_degrees = view % 2 ? 60.0f : 120.0f;
-        camera.near_plane = view % 3 ? 0.1f : 2.0f;
-        const Frame frame(camera, 64, 48);
+        const Frame frame(random_camera(rng, view), 64, 48);
         const choice::ChoiceView v = view_of(frame);
         for (std::uint32_t first = 0; first < std::uint32_t(boxes); first += 1 + first % 8) {
             const int count = int(std::min<std::uint32_t>(1 + first % 8, std::uint32_t(boxes) - first));
