@@ -87,14 +87,15 @@ public:
                     continue;
             }
             // The cluster's triangles at once (the rasterizer sets them up
-            // in lanes), up to the first that shows.
+            // in lanes), up to the first that shows: one block of corners.
             std::uint32_t which[cluster_triangles];
             DepthRasterizer::TriangleCorners corners[cluster_triangles];
             std::size_t count = 0;
-            for (std::uint32_t i = n.first_triangle + cluster.first; i < n.first_triangle + cluster.first + cluster.count; ++i)
-                if (order_[i] != shown) {
-                    which[count] = order_[i];
-                    corners[count++] = triangle_corners(order_[i]);
+            const std::uint32_t begin = n.first_triangle + cluster.first, end = begin + cluster.count;
+            for (std::uint32_t i = begin; i < end; ++i)
+                if (i != shown) {
+                    which[count] = i;
+                    corners[count++] = slot_corners(i);
                 }
             const std::size_t first = raster_.first_shown(corners, count);
             if (first < count) {
@@ -106,18 +107,16 @@ public:
         return true;
     }
 
-    bool triangle_occluded(std::uint32_t triangle) const
+    bool triangle_occluded(std::uint32_t slot) const
     {
-        const DepthRasterizer::TriangleCorners corners = triangle_corners(triangle);
+        const DepthRasterizer::TriangleCorners corners = slot_corners(slot);
         return raster_.first_shown(&corners, 1) == 1;
     }
 
-    DepthRasterizer::TriangleCorners triangle_corners(std::uint32_t triangle) const
+    DepthRasterizer::TriangleCorners slot_corners(std::uint32_t slot) const
     {
-        const TriangleRef &t = hierarchy_.triangles()[triangle];
-        const Mesh &mesh = scene_.meshes[t.mesh];
-        const std::uint32_t *index = mesh.indices.data() + t.first_index;
-        return {&mesh.positions[index[0]], &mesh.positions[index[1]], &mesh.positions[index[2]]};
+        const glm::vec3 *c = corners_.data() + 3 * std::size_t(slot);
+        return {c, c + 1, c + 2};
     }
 
     // Each leaf's triangles split into clusters of at most
@@ -128,7 +127,7 @@ public:
     {
         const auto &triangles = hierarchy_.triangles();
         const auto &nodes = hierarchy_.nodes();
-        order_.resize(triangles.size());
+        std::vector<std::uint32_t> order(triangles.size());
         last_shown_.assign(nodes.size(), none);
         first_cluster_.assign(nodes.size() + 1, 0);
         std::vector<float> area(triangles.size());
@@ -147,10 +146,10 @@ public:
                 bounds[i] = Aabb::of(a, b);
                 bounds[i].expand(c);
             }
-            order_[i] = i;
+            order[i] = i;
         }
         const auto split = [&](auto &self, std::uint32_t leaf_first, std::uint32_t begin, std::uint32_t end) -> void {
-            const auto b = order_.begin() + begin, e = order_.begin() + end;
+            const auto b = order.begin() + begin, e = order.begin() + end;
             if (end - begin > cluster_triangles) {
                 Aabb spread;
                 for (auto i = b; i != e; ++i)
@@ -159,7 +158,7 @@ public:
                 const glm::vec3 size = spread.empty() ? glm::vec3(0.0f) : spread.extent();
                 const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
                 const std::uint32_t middle = begin + (end - begin) / 2;
-                std::nth_element(b, order_.begin() + middle, e, [&](std::uint32_t x, std::uint32_t y) {
+                std::nth_element(b, order.begin() + middle, e, [&](std::uint32_t x, std::uint32_t y) {
                     return centre[x][axis] < centre[y][axis];
                 });
                 self(self, leaf_first, begin, middle);
@@ -184,6 +183,17 @@ public:
                 split(split, n.first_triangle, n.first_triangle, n.first_triangle + n.triangle_count);
         }
         first_cluster_[nodes.size()] = std::uint32_t(clusters_.size());
+        // Each slot's corners in the test's order, one block a cluster: the
+        // test reads them in turn rather than through the triangle's mesh
+        // and indices.
+        corners_.resize(3 * std::size_t(triangles.size()));
+        for (std::size_t i = 0; i < order.size(); ++i) {
+            const TriangleRef &t = triangles[order[i]];
+            const Mesh &mesh = scene_.meshes[t.mesh];
+            const std::uint32_t *index = mesh.indices.data() + t.first_index;
+            for (int c = 0; c < 3; ++c)
+                corners_[3 * i + std::size_t(c)] = mesh.positions[index[c]];
+        }
     }
 
     void rendered(std::uint32_t node) override
@@ -212,18 +222,19 @@ private:
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
     std::optional<DepthOccluders> occluders_;
-    // occludee=triangles: the hierarchy's triangles, each leaf's by
-    // cluster; each leaf's clusters (first_cluster_[node] to
-    // first_cluster_[node + 1]; none for an inner node), their triangles
-    // at first .. first + count of the leaf's; the triangle that last
-    // showed in each leaf, or none.
+    // occludee=triangles: the hierarchy's triangles in slots, each leaf's
+    // (its first_triangle .. + triangle_count) by cluster, the corners of
+    // slot s at corners_[3 s .. 3 s + 2]; each leaf's clusters
+    // (first_cluster_[node] to first_cluster_[node + 1]; none for an inner
+    // node), their slots at first .. first + count of the leaf's; the slot
+    // of the triangle that last showed in each leaf, or none.
     struct TriangleCluster {
         Aabb box;   // empty: a corner is not finite
         std::uint32_t first, count;
     };
     static constexpr std::uint32_t cluster_triangles = 16;
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::uint32_t> order_;
+    std::vector<glm::vec3> corners_;
     std::vector<TriangleCluster> clusters_;
     std::vector<std::uint32_t> first_cluster_;
     std::vector<std::uint32_t> last_shown_;
