@@ -11,6 +11,7 @@
 #include "occluders/sources.h"
 #include "raster/depth_rasterizer.h"
 #include "spatial/hierarchy.h"
+#include "strategies/leone_occluder_skins/triangle_clusters.h"
 
 namespace occu::strategies {
 
@@ -28,8 +29,10 @@ public:
         options_.merge_partial_coverage = merges_partial_coverage(settings, int(settings.integer("map-divisor")));
         if (settings.text("occluders") != "drawn")
             occluders_.emplace(context.scene, settings, &context.hierarchy);
-        if (triangle_test_)
-            build_clusters();
+        if (triangle_test_) {
+            clusters_.emplace(context.scene, context.hierarchy);
+            last_shown_.assign(context.hierarchy.nodes().size(), none);
+        }
     }
 
     void begin_frame(const Frame &frame) override
@@ -78,24 +81,24 @@ public:
         if (raster_.faces_occluded(t.box, z))
             return true;
         const Frame &f = *frame_;
-        const HierarchyNode &n = hierarchy_.nodes()[t.node];
-        for (std::uint32_t c = first_cluster_[t.node]; c < first_cluster_[t.node + 1]; ++c) {
-            const TriangleCluster &cluster = clusters_[c];
-            if (!cluster.box.empty()) {
-                const auto footprint = f.footprint(cluster.box);
-                if (footprint && raster_.occluded(cluster.box, footprint->rect, footprint->window_z_near - 1e-6f))
+        const std::uint32_t leaf_first = hierarchy_.nodes()[t.node].first_triangle;
+        for (const TriangleClusters::Cluster *cluster = clusters_->begin(t.node); cluster != clusters_->end(t.node);
+             ++cluster) {
+            if (!cluster->box.empty()) {
+                const auto footprint = f.footprint(cluster->box);
+                if (footprint && raster_.occluded(cluster->box, footprint->rect, footprint->window_z_near - 1e-6f))
                     continue;
             }
             // The cluster's triangles at once (the rasterizer sets them up
             // in lanes), up to the first that shows: one block of corners.
-            std::uint32_t which[cluster_triangles];
-            DepthRasterizer::TriangleCorners corners[cluster_triangles];
+            std::uint32_t which[TriangleClusters::cluster_triangles];
+            DepthRasterizer::TriangleCorners corners[TriangleClusters::cluster_triangles];
             std::size_t count = 0;
-            const std::uint32_t begin = n.first_triangle + cluster.first, end = begin + cluster.count;
-            for (std::uint32_t i = begin; i < end; ++i)
-                if (i != shown) {
-                    which[count] = i;
-                    corners[count++] = slot_corners(i);
+            const std::uint32_t begin = leaf_first + cluster->first, end = begin + cluster->count;
+            for (std::uint32_t slot = begin; slot < end; ++slot)
+                if (slot != shown) {
+                    which[count] = slot;
+                    corners[count++] = slot_corners(slot);
                 }
             const std::size_t first = raster_.first_shown(corners, count);
             if (first < count) {
@@ -115,85 +118,8 @@ public:
 
     DepthRasterizer::TriangleCorners slot_corners(std::uint32_t slot) const
     {
-        const glm::vec3 *c = corners_.data() + 3 * std::size_t(slot);
+        const glm::vec3 *c = clusters_->corners(slot);
         return {c, c + 1, c + 2};
-    }
-
-    // Each leaf's triangles split into clusters of at most
-    // cluster_triangles neighbours (halved at the median of their centres
-    // along the widest axis), each cluster's largest first; a cluster with
-    // a corner that is not finite has no box (its triangles are tested).
-    void build_clusters()
-    {
-        const auto &triangles = hierarchy_.triangles();
-        const auto &nodes = hierarchy_.nodes();
-        std::vector<std::uint32_t> order(triangles.size());
-        last_shown_.assign(nodes.size(), none);
-        first_cluster_.assign(nodes.size() + 1, 0);
-        std::vector<float> area(triangles.size());
-        std::vector<glm::vec3> centre(triangles.size());
-        std::vector<Aabb> bounds(triangles.size());
-        for (std::uint32_t i = 0; i < triangles.size(); ++i) {
-            const Mesh &mesh = scene_.meshes[triangles[i].mesh];
-            const std::uint32_t *idx = mesh.indices.data() + triangles[i].first_index;
-            const glm::vec3 &a = mesh.positions[idx[0]], &b = mesh.positions[idx[1]], &c = mesh.positions[idx[2]];
-            const float twice = glm::length(glm::cross(b - a, c - a));
-            area[i] = std::isfinite(twice) ? twice : 0.0f;
-            // A triangle with a corner that is not finite sorts last, boxless.
-            centre[i] = glm::vec3(std::numeric_limits<float>::infinity());
-            if (std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)) {
-                centre[i] = (a + b + c) / 3.0f;
-                bounds[i] = Aabb::of(a, b);
-                bounds[i].expand(c);
-            }
-            order[i] = i;
-        }
-        const auto split = [&](auto &self, std::uint32_t leaf_first, std::uint32_t begin, std::uint32_t end) -> void {
-            const auto b = order.begin() + begin, e = order.begin() + end;
-            if (end - begin > cluster_triangles) {
-                Aabb spread;
-                for (auto i = b; i != e; ++i)
-                    if (!bounds[*i].empty())
-                        spread.expand(centre[*i]);
-                const glm::vec3 size = spread.empty() ? glm::vec3(0.0f) : spread.extent();
-                const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
-                const std::uint32_t middle = begin + (end - begin) / 2;
-                std::nth_element(b, order.begin() + middle, e, [&](std::uint32_t x, std::uint32_t y) {
-                    return centre[x][axis] < centre[y][axis];
-                });
-                self(self, leaf_first, begin, middle);
-                self(self, leaf_first, middle, end);
-                return;
-            }
-            std::stable_sort(b, e, [&](std::uint32_t x, std::uint32_t y) { return area[x] > area[y]; });
-            TriangleCluster cluster{{}, begin - leaf_first, end - begin};
-            bool finite = true;
-            for (auto i = b; i != e; ++i) {
-                finite = finite && !bounds[*i].empty();
-                cluster.box.expand(bounds[*i]);
-            }
-            if (!finite)
-                cluster.box = Aabb{};
-            clusters_.push_back(cluster);
-        };
-        for (std::uint32_t node = 0; node < nodes.size(); ++node) {
-            first_cluster_[node] = std::uint32_t(clusters_.size());
-            const HierarchyNode &n = nodes[node];
-            if (n.leaf() && n.triangle_count > 0)
-                split(split, n.first_triangle, n.first_triangle, n.first_triangle + n.triangle_count);
-        }
-        first_cluster_[nodes.size()] = std::uint32_t(clusters_.size());
-        // Each slot's corners in the test's order, one block a cluster: the
-        // test reads them in turn rather than through the triangle's mesh
-        // and indices.
-        corners_.resize(3 * std::size_t(triangles.size()));
-        for (std::size_t i = 0; i < order.size(); ++i) {
-            const TriangleRef &t = triangles[order[i]];
-            const Mesh &mesh = scene_.meshes[t.mesh];
-            const std::uint32_t *index = mesh.indices.data() + t.first_index;
-            for (int c = 0; c < 3; ++c)
-                corners_[3 * i + std::size_t(c)] = mesh.positions[index[c]];
-        }
     }
 
     void rendered(std::uint32_t node) override
@@ -222,21 +148,10 @@ private:
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
     std::optional<DepthOccluders> occluders_;
-    // occludee=triangles: the hierarchy's triangles in slots, each leaf's
-    // (its first_triangle .. + triangle_count) by cluster, the corners of
-    // slot s at corners_[3 s .. 3 s + 2]; each leaf's clusters
-    // (first_cluster_[node] to first_cluster_[node + 1]; none for an inner
-    // node), their slots at first .. first + count of the leaf's; the slot
-    // of the triangle that last showed in each leaf, or none.
-    struct TriangleCluster {
-        Aabb box;   // empty: a corner is not finite
-        std::uint32_t first, count;
-    };
-    static constexpr std::uint32_t cluster_triangles = 16;
+    // occludee=triangles: each leaf's triangles by cluster, and the slot
+    // of the one that last showed in each leaf, or none.
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    std::vector<glm::vec3> corners_;
-    std::vector<TriangleCluster> clusters_;
-    std::vector<std::uint32_t> first_cluster_;
+    std::optional<TriangleClusters> clusters_;
     std::vector<std::uint32_t> last_shown_;
     std::optional<Frame> frame_;
     CullerStats stats_;
