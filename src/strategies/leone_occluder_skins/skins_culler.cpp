@@ -31,7 +31,7 @@ public:
             occluders_.emplace(context.scene, settings, &context.hierarchy);
         if (triangle_test_) {
             clusters_.emplace(context.scene, context.hierarchy);
-            last_shown_.assign(context.hierarchy.nodes().size(), none);
+            last_shown_.assign(context.hierarchy.nodes().size(), ShownTriangle{});
         }
     }
 
@@ -75,9 +75,12 @@ public:
     {
         if (raster_.occluded(rect, z))
             return true;
-        std::uint32_t &shown = last_shown_[t.node];
-        if (shown != none && !triangle_occluded(shown))
-            return false;
+        ShownTriangle &shown = last_shown_[t.node];
+        if (shown.slot != none) {
+            const DepthRasterizer::TriangleCorners corners = {&shown.corners[0], &shown.corners[1], &shown.corners[2]};
+            if (raster_.first_shown(&corners, 1) == 0)
+                return false;
+        }
         if (raster_.faces_occluded(t.box, z))
             return true;
         const Frame &f = *frame_;
@@ -96,24 +99,19 @@ public:
             std::size_t count = 0;
             const std::uint32_t begin = leaf_first + cluster->first, end = begin + cluster->count;
             for (std::uint32_t slot = begin; slot < end; ++slot)
-                if (slot != shown) {
+                if (slot != shown.slot) {
                     which[count] = slot;
                     corners[count++] = slot_corners(slot);
                 }
             const std::size_t first = raster_.first_shown(corners, count);
             if (first < count) {
-                shown = which[first];
+                shown.slot = which[first];
+                std::copy_n(clusters_->corners(shown.slot), 3, shown.corners);
                 return false;
             }
         }
-        shown = none;
+        shown.slot = none;
         return true;
-    }
-
-    bool triangle_occluded(std::uint32_t slot) const
-    {
-        const DepthRasterizer::TriangleCorners corners = slot_corners(slot);
-        return raster_.first_shown(&corners, 1) == 1;
     }
 
     DepthRasterizer::TriangleCorners slot_corners(std::uint32_t slot) const
@@ -148,11 +146,18 @@ private:
     DepthRasterizer::Options options_;
     DepthRasterizer raster_;
     std::optional<DepthOccluders> occluders_;
-    // occludee=triangles: each leaf's triangles by cluster, and the slot
-    // of the one that last showed in each leaf, or none.
+    // occludee=triangles: each leaf's triangles by cluster, and the one
+    // that last showed in each leaf: its slot (or none) and a copy of its
+    // corners, tested first at the leaf's next test, where a visible leaf's
+    // test mostly ends, without a read of the slots (megabytes on a city,
+    // a cache miss a leaf).
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    struct ShownTriangle {
+        glm::vec3 corners[3];
+        std::uint32_t slot = none;
+    };
     std::optional<TriangleClusters> clusters_;
-    std::vector<std::uint32_t> last_shown_;
+    std::vector<ShownTriangle> last_shown_;
     std::optional<Frame> frame_;
     CullerStats stats_;
 };
