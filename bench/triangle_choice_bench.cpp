@@ -7,7 +7,7 @@
 //
 //   occu-bench-choice [--scene S] [--route R] [--frames N] [--size WxH]
 //                     [--budget N] [--rounds N] [--leaf-triangles N|auto]
-//                     [--raster none|whole|merged] [--divisor N]
+//                     [--raster none|whole|merged] [--divisor N] [--evict MB]
 //
 // Each round walks the route with occluders made afresh (the choice keeps
 // last frame's triangles, so the first frame of each round is a cold one
@@ -19,6 +19,10 @@
 // choice and its rasterization as the strategies draw them (into a CPU
 // depth buffer of --divisor, 2 by default as at 512x512, with that
 // coverage rule), and the digest is of every frame's depth buffer.
+// --evict MB writes that many megabytes before each frame, untimed, as
+// the walkthrough's drawing does between two choices, so that the choice
+// finds its data out of the caches near the core as it does there
+// (0, the default: back to back, its data in them).
 // Counting instructions: valgrind --tool=callgrind --rounds 1
 // --toggle-collect='occu::TriangleOccluders::choose*' (the choice), or
 // with --raster 'occu::TriangleOccluders::render*' (both).
@@ -54,6 +58,7 @@ struct Options {
     std::string raster = "none";
     int divisor = 2;
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
+    long evict_mb = 0;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -63,7 +68,7 @@ struct Options {
         std::fprintf(stderr, "occu-bench-choice: %s\n", error.c_str());
     std::fprintf(to, "usage: occu-bench-choice [--scene S] [--route R] [--frames N] [--size WxH] [--budget N]\n"
                      "                         [--rounds N] [--leaf-triangles N|auto] [--raster none|whole|merged]\n"
-                     "                         [--divisor N]\n");
+                     "                         [--divisor N] [--evict MB]\n");
     std::exit(error.empty() ? 0 : 2);
 }
 
@@ -92,6 +97,7 @@ int main(int argc, char **argv)
         else if (a == "--rounds") o.rounds = int(integer_option(a, v, 1, 1000));
         else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
         else if (a == "--divisor") o.divisor = int(integer_option(a, v, 1, 8));
+        else if (a == "--evict") o.evict_mb = integer_option(a, v, 0, 4096);
         else if (a == "--raster") {
             if (v != "none" && v != "whole" && v != "merged")
                 usage("--raster wants none, whole or merged, got '" + v + "'");
@@ -125,6 +131,11 @@ int main(int argc, char **argv)
         options.divisor = o.divisor;
         options.merge_partial_coverage = o.raster == "merged";
         std::vector<float> depth;
+        std::vector<std::uint64_t> evicted(std::size_t(o.evict_mb) << 17);
+        const auto evict = [&]() {
+            for (std::uint64_t &word : evicted)
+                word += 1;
+        };
 
         double best = 0;
         std::size_t chosen = 0;
@@ -136,6 +147,7 @@ int main(int argc, char **argv)
             Digest round_set, round_order;
             std::vector<std::uint32_t> sorted;
             for (const Frame &f : frames) {
+                evict();
                 if (rasterize) {
                     raster.begin(f.view_projection, f.width, f.height, options);
                     const auto start = std::chrono::steady_clock::now();
