@@ -30,6 +30,16 @@ struct TriangleLanes {
     float at(int field, std::uint32_t slot) const { return blocks[slot / 8 * block_floats + std::size_t(field) * 8 + slot % 8]; }
 };
 
+// Copies slot `from` of `t` to slot `to` of `blocks`, laid out as
+// TriangleLanes' and holding that slot's block.
+inline void copy_slot(const TriangleLanes &t, std::uint32_t from, float *blocks, std::uint32_t to)
+{
+    const float *source = t.blocks + from / 8 * block_floats + from % 8;
+    float *target = blocks + to / 8 * block_floats + to % 8;
+    for (int field = 0; field < fields; ++field)
+        target[field * 8] = source[field * 8];
+}
+
 // The same, owned: start_group(), its triangles' add() in order, ...,
 // then finish().
 class TriangleArrays {
