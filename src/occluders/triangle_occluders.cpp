@@ -146,14 +146,23 @@ void TriangleOccluders::take(float score, std::uint32_t t, std::uint32_t slot, f
     // The best `budget_` in a min-heap: its top, once full, is the score
     // to beat.
     const auto smaller_first = [](const Chosen &a, const Chosen &b) { return a.score > b.score; };
-    const Chosen c{score, t, slot, nearest_w};
-    if (full()) {
+    if (full())
         std::pop_heap(chosen_.begin(), chosen_.end(), smaller_first);
-        chosen_.back() = c;
-    } else {
-        chosen_.push_back(c);
+    else
+        chosen_.emplace_back();
+    // std::push_heap of the new one at the back, the same sift up (a parent
+    // that scores more moves down into the hole), written out so that the
+    // new one stays in registers: std::push_heap reads it back from the
+    // memory just written field by field, a store-forwarding stall.
+    std::size_t hole = chosen_.size() - 1;
+    while (hole > 0) {
+        const std::size_t parent = (hole - 1) / 2;
+        if (!(chosen_[parent].score > score))
+            break;
+        chosen_[hole] = chosen_[parent];
+        hole = parent;
     }
-    std::push_heap(chosen_.begin(), chosen_.end(), smaller_first);
+    chosen_[hole] = Chosen{score, t, slot, nearest_w};
 }
 
 void TriangleOccluders::scan(const Group &g, float per_area, float nearest_w, unsigned planes)
