@@ -49,12 +49,14 @@ TriangleArrays::~TriangleArrays()
 void TriangleArrays::finish()
 {
     blocks_.resize((slots_ + 7) / 8 * block_floats, 0.0f);
-    if (mapping_ || blocks_.empty())
+    // Below one huge page the TLB reaches over the blocks anyway, and a
+    // huge page would hold mostly nothing.
+    constexpr std::size_t huge = std::size_t(2) << 20;
+    if (mapping_ || blocks_.size() * sizeof(float) < huge)
         return;
     // A fresh mapping, 2 MiB aligned inside, asked for huge pages before
     // its first touch (a page touched before is not one); where refused,
     // the blocks stay where they are.
-    constexpr std::size_t huge = std::size_t(2) << 20;
     const std::size_t bytes = (blocks_.size() * sizeof(float) + huge - 1) / huge * huge;
     void *mapping = mmap(nullptr, bytes + huge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (mapping == MAP_FAILED)
