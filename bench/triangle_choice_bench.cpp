@@ -7,7 +7,8 @@
 //
 //   occu-bench-choice [--scene S] [--route R] [--frames N] [--size WxH]
 //                     [--budget N] [--rounds N] [--leaf-triangles N|auto]
-//                     [--raster none|whole|merged] [--divisor N]
+//                     [--raster none|whole|merged] [--divisor N] [--evict MB]
+//                     [--clock wall|thread]
 //
 // Each round walks the route with occluders made afresh (the choice keeps
 // last frame's triangles, so the first frame of each round is a cold one
@@ -19,6 +20,12 @@
 // choice and its rasterization as the strategies draw them (into a CPU
 // depth buffer of --divisor, 2 by default as at 512x512, with that
 // coverage rule), and the digest is of every frame's depth buffer.
+// --evict MB writes that many megabytes before each frame, untimed, as
+// the walkthrough's drawing does between two choices, so that the choice
+// finds its data out of the caches near the core as it does there
+// (0, the default: back to back, its data in them). --clock thread
+// times the choice by the thread's CPU time rather than the wall clock's:
+// on a machine shared with other work, the time it was not run is left out.
 // Counting instructions: valgrind --tool=callgrind --rounds 1
 // --toggle-collect='occu::TriangleOccluders::choose*' (the choice), or
 // with --raster 'occu::TriangleOccluders::render*' (both).
@@ -26,6 +33,7 @@
 //   scene,route,frames,budget,raster,triangles_a_frame,us_a_frame,set_digest,order_digest,buffer_digest
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -54,6 +62,8 @@ struct Options {
     std::string raster = "none";
     int divisor = 2;
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
+    long evict_mb = 0;
+    bool thread_clock = false;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -63,7 +73,7 @@ struct Options {
         std::fprintf(stderr, "occu-bench-choice: %s\n", error.c_str());
     std::fprintf(to, "usage: occu-bench-choice [--scene S] [--route R] [--frames N] [--size WxH] [--budget N]\n"
                      "                         [--rounds N] [--leaf-triangles N|auto] [--raster none|whole|merged]\n"
-                     "                         [--divisor N]\n");
+                     "                         [--divisor N] [--evict MB] [--clock wall|thread]\n");
     std::exit(error.empty() ? 0 : 2);
 }
 
@@ -92,6 +102,12 @@ int main(int argc, char **argv)
         else if (a == "--rounds") o.rounds = int(integer_option(a, v, 1, 1000));
         else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
         else if (a == "--divisor") o.divisor = int(integer_option(a, v, 1, 8));
+        else if (a == "--evict") o.evict_mb = integer_option(a, v, 0, 4096);
+        else if (a == "--clock") {
+            if (v != "wall" && v != "thread")
+                usage("--clock wants wall or thread, got '" + v + "'");
+            o.thread_clock = v == "thread";
+        }
         else if (a == "--raster") {
             if (v != "none" && v != "whole" && v != "merged")
                 usage("--raster wants none, whole or merged, got '" + v + "'");
@@ -125,6 +141,18 @@ int main(int argc, char **argv)
         options.divisor = o.divisor;
         options.merge_partial_coverage = o.raster == "merged";
         std::vector<float> depth;
+        const auto now = [&]() {
+            if (!o.thread_clock)
+                return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+            timespec t;
+            clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+            return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+        };
+        std::vector<std::uint64_t> evicted(std::size_t(o.evict_mb) << 17);
+        const auto evict = [&]() {
+            for (std::uint64_t &word : evicted)
+                word += 1;
+        };
 
         double best = 0;
         std::size_t chosen = 0;
@@ -136,11 +164,12 @@ int main(int argc, char **argv)
             Digest round_set, round_order;
             std::vector<std::uint32_t> sorted;
             for (const Frame &f : frames) {
+                evict();
                 if (rasterize) {
                     raster.begin(f.view_projection, f.width, f.height, options);
-                    const auto start = std::chrono::steady_clock::now();
+                    const double start = now();
                     count += occluders.render(f, raster);
-                    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    seconds += now() - start;
                     raster.read(depth);
                     for (float d : depth) {
                         std::uint32_t bits;
@@ -149,9 +178,9 @@ int main(int argc, char **argv)
                     }
                     continue;
                 }
-                const auto start = std::chrono::steady_clock::now();
+                const double start = now();
                 const std::vector<std::uint32_t> &indices = occluders.choose(f);
-                seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                seconds += now() - start;
                 count += indices.size() / 3;
                 sorted.assign(indices.begin(), indices.end());
                 for (std::uint32_t i : sorted)

@@ -3,8 +3,13 @@
 // twin is choice_kernels_avx2.cpp.
 #include "occluders/choice_kernels.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
+
+#include <sys/mman.h>
 
 namespace occu::choice {
 
@@ -26,6 +31,45 @@ void TriangleArrays::add(const glm::vec3 *corners, const glm::vec3 &normal, floa
     }
     lane[Field::twice_area * 8] = twice_area;
     slot_of_.push_back(slots_++);
+}
+
+TriangleArrays::TriangleArrays(TriangleArrays &&other) noexcept
+    : slots_(other.slots_), blocks_(std::move(other.blocks_)), mapped_(std::exchange(other.mapped_, nullptr)),
+      mapping_(std::exchange(other.mapping_, nullptr)), mapping_bytes_(std::exchange(other.mapping_bytes_, 0)),
+      slot_of_(std::move(other.slot_of_))
+{
+}
+
+TriangleArrays::~TriangleArrays()
+{
+    if (mapping_)
+        munmap(mapping_, mapping_bytes_);
+}
+
+void TriangleArrays::finish()
+{
+    blocks_.resize((slots_ + 7) / 8 * block_floats, 0.0f);
+    // Below one huge page the TLB reaches over the blocks anyway, and a
+    // huge page would hold mostly nothing.
+    constexpr std::size_t huge = std::size_t(2) << 20;
+    if (mapping_ || blocks_.size() * sizeof(float) < huge)
+        return;
+    // A fresh mapping, 2 MiB aligned inside, asked for huge pages before
+    // its first touch (a page touched before is not one); where refused,
+    // the blocks stay where they are.
+    const std::size_t bytes = (blocks_.size() * sizeof(float) + huge - 1) / huge * huge;
+    void *mapping = mmap(nullptr, bytes + huge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (mapping == MAP_FAILED)
+        return;
+    const std::uintptr_t aligned = (reinterpret_cast<std::uintptr_t>(mapping) + huge - 1) / huge * huge;
+#ifdef MADV_HUGEPAGE
+    madvise(reinterpret_cast<void *>(aligned), bytes, MADV_HUGEPAGE);
+#endif
+    mapping_ = mapping;
+    mapping_bytes_ = bytes + huge;
+    mapped_ = reinterpret_cast<float *>(aligned);
+    std::copy(blocks_.begin(), blocks_.end(), mapped_);
+    blocks_ = {};
 }
 
 namespace {

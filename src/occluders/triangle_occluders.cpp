@@ -55,22 +55,23 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
     };
     if (hierarchy) {
         const auto &nodes = hierarchy->nodes();
-        leaf_group_.assign(nodes.size(), ~0u);
-        node_largest_.assign(nodes.size(), 0.0f);
+        openings_.assign(nodes.size(), Opening{});
         for (std::size_t n = 0; n < nodes.size(); ++n) {
             const HierarchyNode &node = nodes[n];
-            if (!node.leaf())
+            if (!node.leaf()) {
+                openings_[n].group = {node.first_child, node.child_count, inner_node};
                 continue;
+            }
             for (std::uint32_t i = node.first_triangle; i < node.first_triangle + node.occluder_triangles; ++i)
                 refs.emplace_back(hierarchy->triangles()[i].mesh, hierarchy->triangles()[i].first_index);
-            node_largest_[n] = add_group();
-            if (node_largest_[n] > 0.0f)
-                leaf_group_[n] = std::uint32_t(groups_.size() - 1);
+            openings_[n].largest = add_group();
+            if (openings_[n].largest > 0.0f)
+                openings_[n].group = groups_.back();
         }
         // Children follow their parents in the node array.
         for (std::size_t n = nodes.size(); n-- > 0;)
             for (std::uint32_t c = 0; c < nodes[n].child_count; ++c)
-                node_largest_[n] = std::max(node_largest_[n], node_largest_[nodes[n].first_child + c]);
+                openings_[n].largest = std::max(openings_[n].largest, openings_[nodes[n].first_child + c].largest);
         const std::size_t stride = nodes.size() + 8;
         node_box_coordinates_.assign(6 * stride, 0.0f);
         for (int axis = 0; axis < 3; ++axis) {
@@ -138,21 +139,30 @@ float TriangleOccluders::bound_per_area(const Aabb &box, float &nearest_w) const
     return std::max(scale / (v.near * v.near * v.near), 1.0f / (v.near * v.near));
 }
 
-void TriangleOccluders::take(float score, std::uint32_t t, float nearest_w)
+void TriangleOccluders::take(float score, std::uint32_t t, std::uint32_t slot, float nearest_w)
 {
     if (full() && !(score > smallest_chosen()))
         return;
     // The best `budget_` in a min-heap: its top, once full, is the score
     // to beat.
     const auto smaller_first = [](const Chosen &a, const Chosen &b) { return a.score > b.score; };
-    const Chosen c{score, t, nearest_w};
-    if (full()) {
+    if (full())
         std::pop_heap(chosen_.begin(), chosen_.end(), smaller_first);
-        chosen_.back() = c;
-    } else {
-        chosen_.push_back(c);
+    else
+        chosen_.emplace_back();
+    // std::push_heap of the new one at the back, the same sift up (a parent
+    // that scores more moves down into the hole), written out so that the
+    // new one stays in registers: std::push_heap reads it back from the
+    // memory just written field by field, a store-forwarding stall.
+    std::size_t hole = chosen_.size() - 1;
+    while (hole > 0) {
+        const std::size_t parent = (hole - 1) / 2;
+        if (!(chosen_[parent].score > score))
+            break;
+        chosen_[hole] = chosen_[parent];
+        hole = parent;
     }
-    std::push_heap(chosen_.begin(), chosen_.end(), smaller_first);
+    chosen_[hole] = Chosen{score, t, slot, nearest_w};
 }
 
 void TriangleOccluders::scan(const Group &g, float per_area, float nearest_w, unsigned planes)
@@ -183,8 +193,30 @@ void TriangleOccluders::scan(const Group &g, float per_area, float nearest_w, un
             const float most = lanes.most[i];
             if (beyond_near && (!(most > 0.0f) || (full() && !(most > smallest_chosen() * nearest_cubed))))
                 continue;
-            take(lanes.score[i], t, lanes.nearest_w[i]);
+            take(lanes.score[i], t, slot + std::uint32_t(i), lanes.nearest_w[i]);
         }
+    }
+}
+
+void TriangleOccluders::prefetch_best() const
+{
+    if (candidates_.empty())
+        return;
+    const Group &g = candidates_.front().open;
+    if (g.slot != inner_node) {
+        const char *block = reinterpret_cast<const char *>(lanes_.blocks + g.slot / 8 * choice::block_floats);
+        constexpr std::size_t block_bytes = choice::block_floats * sizeof(float);
+        for (std::size_t byte = 0; byte < block_bytes; byte += 64)
+            __builtin_prefetch(block + byte);
+        __builtin_prefetch(block + block_bytes - 1);
+        __builtin_prefetch(&taken_again_[g.first]);
+    } else {
+        for (int axis = 0; axis < 3; ++axis) {
+            __builtin_prefetch(node_boxes_.min[axis] + g.first);
+            __builtin_prefetch(node_boxes_.max[axis] + g.first);
+        }
+        __builtin_prefetch(&openings_[g.first]);
+        __builtin_prefetch(&openings_[g.first + g.count - 1]);
     }
 }
 
@@ -197,13 +229,13 @@ void TriangleOccluders::offer(std::uint32_t first, std::uint32_t count, unsigned
         const int in_batch = int(std::min<std::uint32_t>(8, count - done));
         bound_boxes_(node_boxes_, batch, in_batch, view_, planes, lanes);
         for (int i = 0; i < in_batch; ++i) {
-            const std::uint32_t n = batch + std::uint32_t(i);
-            if (!(node_largest_[n] > 0.0f))
+            const Opening &o = openings_[batch + std::uint32_t(i)];
+            if (!(o.largest > 0.0f))
                 continue;
-            const float bound = node_largest_[n] * lanes.per_area[i];
+            const float bound = o.largest * lanes.per_area[i];
             if ((full() && !(bound > smallest_chosen())) || (lanes.outside >> i & 1u))
                 continue;
-            candidates_.push_back({bound, n, lanes.crossing[i], lanes.per_area[i], lanes.nearest_w[i]});
+            candidates_.push_back({bound, o.group, lanes.crossing[i], lanes.per_area[i], lanes.nearest_w[i]});
             std::push_heap(candidates_.begin(), candidates_.end(), smaller_bound);
         }
     }
@@ -223,17 +255,16 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     view_.near = std::max(frame.camera.near_plane, 1e-6f);
     std::copy(frame.frustum.planes().begin(), frame.frustum.planes().end(), view_.planes);
     // Last frame's choice first: the smallest score to beat starts high.
-    seed_slots_.resize(last_chosen_.size());
-    for (std::size_t i = 0; i < last_chosen_.size(); ++i)
-        seed_slots_[i] = arrays_.slot(last_chosen_[i]);
+    const choice::TriangleLanes last{last_chosen_blocks_.data()};
     choice::LaneScores lanes;
     for (std::size_t first = 0; first < last_chosen_.size(); first += 8) {
         const int count = int(std::min<std::size_t>(8, last_chosen_.size() - first));
-        score_lanes_(lanes_, &seed_slots_[first], 0, count, view_, Frustum::all_planes, lanes);
+        score_lanes_(last, nullptr, std::uint32_t(first), count, view_, Frustum::all_planes, lanes);
         for (int i = 0; i < count; ++i) {
-            taken_again_[last_chosen_[first + i]] = 1;
+            const std::uint32_t t = last_chosen_[first + std::size_t(i)];
+            taken_again_[t] = 1;
             if (lanes.keep & (1u << i))
-                take(lanes.score[i], last_chosen_[first + i], lanes.nearest_w[i]);
+                take(lanes.score[i], t, last_slots_[first + std::size_t(i)], lanes.nearest_w[i]);
         }
     }
     if (!hierarchy_) {
@@ -245,7 +276,6 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
         }
     } else {
         // The nodes best bound first; a leaf is scanned when it comes up.
-        const auto &nodes = hierarchy_->nodes();
         const auto smaller_bound = [](const Candidate &a, const Candidate &b) { return a.bound < b.bound; };
         candidates_.clear();
         offer(0, 1, Frustum::all_planes);
@@ -255,11 +285,11 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
                 break;
             std::pop_heap(candidates_.begin(), candidates_.end(), smaller_bound);
             candidates_.pop_back();
-            const HierarchyNode &node = nodes[c.node];
-            if (node.leaf())
-                scan(groups_[leaf_group_[c.node]], c.per_area, c.nearest_w, c.planes);
+            prefetch_best();
+            if (c.open.slot != inner_node)
+                scan(c.open, c.per_area, c.nearest_w, c.planes);
             else
-                offer(node.first_child, node.child_count, c.planes);
+                offer(c.open.first, c.open.count, c.planes);
         }
     }
     for (std::uint32_t t : last_chosen_)
@@ -267,10 +297,14 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     // Nearest first (by the nearest corner's clip w), as a z-buffer fills.
     std::sort(chosen_.begin(), chosen_.end(), [](const Chosen &a, const Chosen &b) { return a.nearest_w < b.nearest_w; });
     last_chosen_.resize(chosen_.size());
+    last_slots_.resize(chosen_.size());
+    last_chosen_blocks_.resize((chosen_.size() + 7) / 8 * choice::block_floats, 0.0f);
     drawn_indices_.resize(3 * chosen_.size());
     for (std::size_t i = 0; i < chosen_.size(); ++i) {
         const std::uint32_t t = chosen_[i].triangle;
         last_chosen_[i] = t;
+        last_slots_[i] = chosen_[i].slot;
+        choice::copy_slot(lanes_, chosen_[i].slot, last_chosen_blocks_.data(), std::uint32_t(i));
         for (std::uint32_t v = 0; v < 3; ++v)
             drawn_indices_[3 * i + v] = 3 * t + v;
     }

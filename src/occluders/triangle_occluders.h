@@ -78,29 +78,42 @@ private:
         std::uint32_t first = 0, count = 0;   // in corners_ / 3, the largest world area first
         std::uint32_t slot = 0;               // its first in arrays_
     };
+    // What opening a hierarchy node takes, kept by node so that offer()
+    // reads a node's children side by side: a leaf's group, or for an
+    // inner node its children (first, count) and slot inner_node. The
+    // choice reads no HierarchyNode, whose scattered reads cost a cache
+    // miss a node opened.
+    static constexpr std::uint32_t inner_node = ~0u;
+    struct Opening {
+        float largest = 0.0f;   // its subtree's largest twice world area (0: no occluder triangle)
+        Group group;
+    };
     // A node to open, or a leaf to scan: the most a triangle in it may
     // score, and the frustum planes its box reaches across.
     struct Candidate {
         float bound;
-        std::uint32_t node;
+        Group open;   // as Opening's
         unsigned planes;
         float per_area, nearest_w;   // bound_per_area's, for a leaf's scan
     };
     struct Chosen {
         float score;
-        std::uint32_t triangle;
-        float nearest_w;   // its corners' smallest clip w
+        std::uint32_t triangle, slot;   // in corners_ / 3, in arrays_
+        float nearest_w;                // its corners' smallest clip w
     };
     // The most a triangle in `box` may score, over its twice world area;
     // `nearest_w` is the box's nearest clip w.
     float bound_per_area(const Aabb &box, float &nearest_w) const;
-    // Keeps triangle t, of `score` (twice its projected area, the header's
+    // Keeps triangle t (at `slot` in arrays_), of `score` (twice its projected area, the header's
     // formula; choice::score_lanes), if it is among the best so far.
-    void take(float score, std::uint32_t t, float nearest_w);
+    void take(float score, std::uint32_t t, std::uint32_t slot, float nearest_w);
     // The triangles of group g, largest first, while they may beat the
     // budget's smallest score; per_area and nearest_w are bound_per_area's
     // for the group's box.
     void scan(const Group &g, float per_area, float nearest_w, unsigned planes);
+    // Asks the cache for what opening the best candidate will read: the
+    // scan's first block of eight triangles, or the children's boxes.
+    void prefetch_best() const;
     // Offers the nodes first .. first + count - 1 (siblings) to open, those
     // in the frustum that may beat the budget's smallest score, bounded
     // and classified eight at a time (choice::bound_boxes); `planes`: the
@@ -117,8 +130,7 @@ private:
     choice::TriangleLanes lanes_;
     decltype(&choice::score_lanes_scalar) score_lanes_ = choice::score_lanes_scalar;   // AVX2 where the CPU has it
     std::vector<Group> groups_;
-    std::vector<std::uint32_t> leaf_group_;   // per hierarchy node: its group, or none (~0)
-    std::vector<float> node_largest_;         // per hierarchy node: its subtree's largest twice world area
+    std::vector<Opening> openings_;           // per hierarchy node
     std::vector<float> node_box_coordinates_;   // the nodes' boxes by coordinate (node_boxes_), 8 floats' padding each
     choice::BoxArrays node_boxes_{};
     decltype(&choice::bound_boxes_scalar) bound_boxes_ = choice::bound_boxes_scalar;   // AVX2 where the CPU has it
@@ -126,13 +138,17 @@ private:
     // Per frame: the best so far, a min-heap by score, then nearest first;
     // the nodes to open, a max-heap by bound; the corners' indices drawn
     // and the triangles across them. Between frames: the triangles chosen
-    // last, and a mark on each while it is being taken again.
+    // last, their arrays_ lanes copied in that order (scored again first
+    // thing next frame: eight at a time from consecutive memory rather
+    // than gathered from wherever they lie in arrays_, a cache miss a
+    // field), and a mark on each while it is being taken again.
     choice::ChoiceView view_;
     std::vector<Chosen> chosen_;
     std::vector<Candidate> candidates_;
     std::vector<std::uint32_t> drawn_indices_;
     std::vector<glm::vec3> drawn_across_;
-    std::vector<std::uint32_t> last_chosen_, seed_slots_;
+    std::vector<std::uint32_t> last_chosen_, last_slots_;
+    std::vector<float> last_chosen_blocks_;
     std::vector<std::uint8_t> taken_again_;
 };
 
