@@ -916,7 +916,26 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // across: set up only where a farther pixel holds a sample of its band
     // (most edges have none).
     const int rows_at_once = raster::rows_at_once(k);
+    // A few rows whose every tile the kernel would pass over as nearer
+    // than `behind` (its test, tile by tile: no pixel there takes
+    // anything) are passed over before their runs. Nothing written in
+    // them, so none of those tiles changes before the kernel would come
+    // to it.
+    const int tx0 = p.x0 / tile_size, tx1 = (p.x1 - 1) / tile_size;
+    const auto tiles_behind = [&](int y0, int y1) {
+        for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty) {
+            const std::size_t row = std::size_t(ty) * std::size_t(tiles_x_);
+            for (int tx = tx0; tx <= tx1; ++tx) {
+                const std::size_t t = row + std::size_t(tx);
+                if (!((!dirty_[t] && tile_max_[t] < behind) || farthest_bound_[t] < behind))
+                    return false;
+            }
+        }
+        return true;
+    };
     for (int y_first = p.y0; y_first < p.y1; y_first += rows_at_once) {
+        if (tiles_behind(y_first, std::min(y_first + rows_at_once, p.y1)))
+            continue;
         unsigned found = rows_runs(c, y_first, runs);
         while (found) {
             found = merge_rows(rows, runs, y_first, found, layer);
