@@ -916,31 +916,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // across: set up only where a farther pixel holds a sample of its band
     // (most edges have none).
     const int rows_at_once = raster::rows_at_once(k);
-    // A few rows whose every tile the kernel would pass over as nearer
-    // than `behind` (its test, tile by tile: no pixel there takes
-    // anything) are passed over before their runs. Nothing is written in
-    // them, so none of those tiles changes before the kernel would come
-    // to it; and a tile the test keeps stays kept (a write only marks it
-    // dirty), so each band of tiles is tested once.
-    const int tx0 = p.x0 / tile_size, tx1 = (p.x1 - 1) / tile_size;
-    int tested_band = -1;
-    bool band_behind = false;
-    const auto tiles_behind = [&](int ty) {
-        if (ty != tested_band) {
-            tested_band = ty;
-            band_behind = true;
-            const std::size_t row = std::size_t(ty) * std::size_t(tiles_x_);
-            for (int tx = tx0; tx <= tx1 && band_behind; ++tx) {
-                const std::size_t t = row + std::size_t(tx);
-                band_behind = (!dirty_[t] && tile_max_[t] < behind) || farthest_bound_[t] < behind;
-            }
-        }
-        return band_behind;
-    };
     for (int y_first = p.y0; y_first < p.y1; y_first += rows_at_once) {
-        const int y_last = std::min(y_first + rows_at_once, p.y1) - 1;
-        if (tiles_behind(y_first / tile_size) && tiles_behind(y_last / tile_size))
-            continue;
         unsigned found = rows_runs(c, y_first, runs);
         while (found) {
             found = merge_rows(rows, runs, y_first, found, layer);
