@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <utility>
+#include <new>
 
 #include <sys/mman.h>
 
@@ -33,43 +33,38 @@ void TriangleArrays::add(const glm::vec3 *corners, const glm::vec3 &normal, floa
     slot_of_.push_back(slots_++);
 }
 
-TriangleArrays::TriangleArrays(TriangleArrays &&other) noexcept
-    : slots_(other.slots_), blocks_(std::move(other.blocks_)), mapped_(std::exchange(other.mapped_, nullptr)),
-      mapping_(std::exchange(other.mapping_, nullptr)), mapping_bytes_(std::exchange(other.mapping_bytes_, 0)),
-      slot_of_(std::move(other.slot_of_))
-{
-}
-
-TriangleArrays::~TriangleArrays()
-{
-    if (mapping_)
-        munmap(mapping_, mapping_bytes_);
-}
-
 void TriangleArrays::finish()
 {
     blocks_.resize((slots_ + 7) / 8 * block_floats, 0.0f);
-    // Below one huge page the TLB reaches over the blocks anyway, and a
-    // huge page would hold mostly nothing.
-    constexpr std::size_t huge = std::size_t(2) << 20;
-    if (mapping_ || blocks_.size() * sizeof(float) < huge)
-        return;
-    // A fresh mapping, 2 MiB aligned inside, asked for huge pages before
-    // its first touch (a page touched before is not one); where refused,
-    // the blocks stay where they are.
-    const std::size_t bytes = (blocks_.size() * sizeof(float) + huge - 1) / huge * huge;
-    void *mapping = mmap(nullptr, bytes + huge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (mapping == MAP_FAILED)
-        return;
-    const std::uintptr_t aligned = (reinterpret_cast<std::uintptr_t>(mapping) + huge - 1) / huge * huge;
+    blocks_.shrink_to_fit();
+}
+
+namespace {
+
+constexpr std::size_t huge_page = std::size_t(2) << 20;
+
+std::size_t huge_bytes(std::size_t bytes) { return (bytes + huge_page - 1) / huge_page * huge_page; }
+
+}  // namespace
+
+void *allocate_blocks(std::size_t bytes)
+{
+    if (bytes < huge_page)
+        return ::operator new(bytes);
+    // Whole huge pages of our own, so that the advice covers nothing else.
+    void *storage = ::operator new(huge_bytes(bytes), std::align_val_t(huge_page));
 #ifdef MADV_HUGEPAGE
-    madvise(reinterpret_cast<void *>(aligned), bytes, MADV_HUGEPAGE);
+    madvise(storage, huge_bytes(bytes), MADV_HUGEPAGE);
 #endif
-    mapping_ = mapping;
-    mapping_bytes_ = bytes + huge;
-    mapped_ = reinterpret_cast<float *>(aligned);
-    std::copy(blocks_.begin(), blocks_.end(), mapped_);
-    blocks_ = {};
+    return storage;
+}
+
+void release_blocks(void *storage, std::size_t bytes)
+{
+    if (bytes < huge_page)
+        ::operator delete(storage);
+    else
+        ::operator delete(storage, std::align_val_t(huge_page));
 }
 
 namespace {
