@@ -15,6 +15,8 @@
 
 #include <glm/glm.hpp>
 
+#include "memory/large_buffers.h"
+
 namespace occu::choice {
 
 // The triangles in blocks of eight slots, each field's eight lanes side
@@ -40,29 +42,9 @@ inline void copy_slot(const TriangleLanes &t, std::uint32_t from, float *blocks,
         target[field * 8] = source[field * 8];
 }
 
-// Storage of `bytes` bytes for the blocks: at 2 MiB and above, 2 MiB
-// aligned and asked for 2 MiB pages (Linux's transparent huge pages)
-// before its first touch; below, as operator new gives it (the TLB reaches
-// over it anyway, and a huge page would hold mostly nothing).
-void *allocate_blocks(std::size_t bytes);
-void release_blocks(void *storage, std::size_t bytes);
-template <class T>
-struct BlockAllocator {
-    using value_type = T;
-    BlockAllocator() = default;
-    template <class U>
-    BlockAllocator(const BlockAllocator<U> &) {}
-    T *allocate(std::size_t n) { return static_cast<T *>(allocate_blocks(n * sizeof(T))); }
-    void deallocate(T *p, std::size_t n) { release_blocks(p, n * sizeof(T)); }
-    template <class U>
-    bool operator==(const BlockAllocator<U> &) const { return true; }
-    template <class U>
-    bool operator!=(const BlockAllocator<U> &) const { return false; }
-};
-
 // The same, owned: start_group(), its triangles' add() in order, ...,
 // then finish(). The blocks lie on 2 MiB pages where they fill one
-// (BlockAllocator): a frame's choice jumps from leaf to leaf across
+// (memory/large_buffers.h): a frame's choice jumps from leaf to leaf across
 // megabytes of blocks (the city's 270 000 triangles: 14 MB), which with
 // 4 KiB pages costs a TLB miss, a page walk, nearly every leaf.
 class TriangleArrays {
@@ -78,7 +60,7 @@ public:
 
 private:
     std::uint32_t slots_ = 0;
-    std::vector<float, BlockAllocator<float>> blocks_;
+    LargeBuffer<float> blocks_;
     std::vector<std::uint32_t> slot_of_;
 };
 

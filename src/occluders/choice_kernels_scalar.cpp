@@ -7,9 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <new>
-
-#include <sys/mman.h>
 
 namespace occu::choice {
 
@@ -37,34 +34,6 @@ void TriangleArrays::finish()
 {
     blocks_.resize((slots_ + 7) / 8 * block_floats, 0.0f);
     blocks_.shrink_to_fit();
-}
-
-namespace {
-
-constexpr std::size_t huge_page = std::size_t(2) << 20;
-
-std::size_t huge_bytes(std::size_t bytes) { return (bytes + huge_page - 1) / huge_page * huge_page; }
-
-}  // namespace
-
-void *allocate_blocks(std::size_t bytes)
-{
-    if (bytes < huge_page)
-        return ::operator new(bytes);
-    // Whole huge pages of our own, so that the advice covers nothing else.
-    void *storage = ::operator new(huge_bytes(bytes), std::align_val_t(huge_page));
-#ifdef MADV_HUGEPAGE
-    madvise(storage, huge_bytes(bytes), MADV_HUGEPAGE);
-#endif
-    return storage;
-}
-
-void release_blocks(void *storage, std::size_t bytes)
-{
-    if (bytes < huge_page)
-        ::operator delete(storage);
-    else
-        ::operator delete(storage, std::align_val_t(huge_page));
 }
 
 namespace {

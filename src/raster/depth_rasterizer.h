@@ -81,40 +81,15 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <new>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "geometry/aabb.h"
 #include "geometry/pixel_rect.h"
+#include "memory/large_buffers.h"
 
 namespace occu {
-
-namespace raster {
-
-// An allocator of cache-line-aligned storage, for the depth buffer and
-// the partial layer: their tile rows (8 floats, 32 bytes) are loaded and
-// stored whole, and with malloc's 16-byte alignment every other one would
-// straddle two cache lines.
-template <class T>
-struct CacheLineAllocator {
-    using value_type = T;
-    static constexpr std::size_t alignment = 64;
-    CacheLineAllocator() = default;
-    template <class U>
-    CacheLineAllocator(const CacheLineAllocator<U> &) {}
-    T *allocate(std::size_t n) { return static_cast<T *>(::operator new(n * sizeof(T), std::align_val_t(alignment))); }
-    void deallocate(T *p, std::size_t) { ::operator delete(p, std::align_val_t(alignment)); }
-    template <class U>
-    bool operator==(const CacheLineAllocator<U> &) const { return true; }
-    template <class U>
-    bool operator!=(const CacheLineAllocator<U> &) const { return false; }
-};
-template <class T>
-using CacheLineVector = std::vector<T, CacheLineAllocator<T>>;
-
-}  // namespace raster
 
 namespace raster {
 struct PolygonSetup;
@@ -277,7 +252,9 @@ private:
     int frame_width_ = 0, frame_height_ = 0;
     int width_ = 0, height_ = 0;    // depth pixels
     int tiles_x_ = 0, tiles_y_ = 0;  // 8 x 8 tiles
-    raster::CacheLineVector<float> tiles_;   // tile by tile, each 8 rows of 8
+    // The depth buffer and the partial layer: rows of 8 loaded and stored
+    // whole, in cache-line-aligned storage (memory/large_buffers.h).
+    LargeBuffer<float> tiles_;                   // tile by tile, each 8 rows of 8
     mutable std::vector<float> tile_max_;        // farthest depth per tile
     std::vector<float> farthest_bound_;          // per tile, no nearer than its farthest depth (raster::TileBuffer)
     mutable std::vector<std::uint8_t> dirty_;    // tile written since its maximum was taken
@@ -286,12 +263,12 @@ private:
     // samples held by polygons not covering it wholly, and their farthest
     // depth; empty otherwise.
     // The masks in two planes, bits 0-31 and 32-63 (raster::PartialLayer).
-    raster::CacheLineVector<std::uint32_t> partial_mask_lo_, partial_mask_hi_;
+    LargeBuffer<std::uint32_t> partial_mask_lo_, partial_mask_hi_;
     std::uint64_t partial_mask(std::size_t index) const
     {
         return std::uint64_t(partial_mask_hi_[index]) << 32 | partial_mask_lo_[index];
     }
-    raster::CacheLineVector<float> partial_depth_;
+    LargeBuffer<float> partial_depth_;
     std::vector<std::uint8_t> partial_written_;   // per tile: a mask set since begin
     std::uint64_t full_mask_ = 0;
     double lane_row_[8] = {}, lane_offset_[8] = {};   // raster::Crossings' for the divisor
