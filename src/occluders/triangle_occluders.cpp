@@ -244,9 +244,10 @@ void TriangleOccluders::offer(std::uint32_t first, std::uint32_t count, unsigned
 const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
 {
     chosen_.clear();
-    drawn_indices_.clear();
-    if (budget_ == 0 || groups_.empty())
+    if (budget_ == 0 || groups_.empty()) {
+        drawn_indices_.clear();
         return drawn_indices_;
+    }
     const glm::mat4 &vp = frame.view_projection;
     view_.eye = frame.camera.position;
     view_.w_row = glm::vec4(vp[0][3], vp[1][3], vp[2][3], vp[3][3]);
@@ -299,6 +300,9 @@ const std::vector<std::uint32_t> &TriangleOccluders::choose(const Frame &frame)
     last_chosen_.resize(chosen_.size());
     last_slots_.resize(chosen_.size());
     last_chosen_blocks_.resize((chosen_.size() + 7) / 8 * choice::block_floats, 0.0f);
+    // Every index is written below: resized from last frame's size, not
+    // from empty, the vector fills nothing first (a frame's choice is
+    // mostly as large as the last).
     drawn_indices_.resize(3 * chosen_.size());
     for (std::size_t i = 0; i < chosen_.size(); ++i) {
         const std::uint32_t t = chosen_[i].triangle;
