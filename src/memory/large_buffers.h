@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Storage for the buffers a frame reads all over: the depth buffer and
 // its partial layer (raster/depth_rasterizer.h), the triangle choice's
-// blocks (occluders/choice_kernels.h), the occluder triangles' corners.
+// blocks (occluders/choice_kernels.h).
 // Every buffer is cache-line aligned: their rows of eight floats (32
 // bytes) are loaded and stored whole, and with malloc's 16-byte alignment
 // every other one would straddle two cache lines. From 2 MiB up a buffer
