@@ -450,6 +450,8 @@ unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigne
     const __m256 lane_x = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
     const __m256 za = _mm256_set1_ps(r.za), zcap = _mm256_set1_ps(r.zcap);
     const __m256i full_lo = _mm256_set1_epi32(int(r.full_lo)), full_hi = _mm256_set1_epi32(int(r.full_hi));
+    const PartialDepthStep step = partial_depth_step(r.depth_error);
+    const __m256 step_add = _mm256_set1_ps(step.add), step_lo = _mm256_set1_ps(step.lo), step_hi = _mm256_set1_ps(step.hi);
     int resume = r.resume_x8;
     r.resume_x8 = 0;
     for (; found; found &= found - 1, resume = 0) {
@@ -477,7 +479,12 @@ unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigne
             // std::min(z, zcap) is min_ps(zcap, z); std::max(a, b) is
             // max_ps(b, a).
             const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(x8)), lane_x);
-            __m256 z = widened(_mm256_min_ps(zcap, _mm256_add_ps(_mm256_mul_ps(za, fx), depth_term)), r.depth_error);
+            // The depth bound: one float sum where every lane lies in the
+            // step's range (most tile rows), else through double.
+            const __m256 plane = _mm256_min_ps(zcap, _mm256_add_ps(_mm256_mul_ps(za, fx), depth_term));
+            const __m256 in_step =
+                _mm256_and_ps(_mm256_cmp_ps(plane, step_lo, _CMP_GE_OQ), _mm256_cmp_ps(plane, step_hi, _CMP_LE_OQ));
+            __m256 z = _mm256_movemask_ps(in_step) == 0xff ? _mm256_add_ps(plane, step_add) : widened(plane, r.depth_error);
             const __m256 depth = _mm256_loadu_ps(b.depth + index);
             const unsigned farther = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, depth, _CMP_LT_OQ)));
             if (!farther)
