@@ -440,7 +440,8 @@ inline void row_bounds(const RowsRuns &runs, RowBounds &out)
 
 // merge_partial_rows_avx2 for divisor K, its sample loops unrolled.
 template <int K>
-unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigned found, const PartialLayer &b)
+__attribute__((always_inline)) inline unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first,
+                                                          unsigned found, const PartialLayer &b)
 {
     constexpr int k = K;
     RowBounds bounds;
@@ -450,7 +451,7 @@ unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigne
     const __m256 lane_x = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
     const __m256 za = _mm256_set1_ps(r.za), zcap = _mm256_set1_ps(r.zcap);
     const __m256i full_lo = _mm256_set1_epi32(int(r.full_lo)), full_hi = _mm256_set1_epi32(int(r.full_hi));
-    const PartialDepthStep step = partial_depth_step(r.depth_error);
+    const PartialDepthStep step = r.depth_step;
     const __m256 step_add = _mm256_set1_ps(step.add), step_lo = _mm256_set1_ps(step.lo), step_hi = _mm256_set1_ps(step.hi);
     int resume = r.resume_x8;
     r.resume_x8 = 0;

@@ -1091,6 +1091,7 @@ TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
         rows.zc = unit(rng);
         rows.zcap = chance(0.5f) ? 1.0f : unit(rng);
         rows.depth_error = chance(0.5f) ? 0.0 : 1e-6 * unit(rng);
+        rows.depth_step = raster::partial_depth_step(rows.depth_error);
         rows.behind = chance(0.3f) ? unit(rng) : 0.0f;
         rows.reciprocal = (std::uint64_t(1) << 32) / std::uint64_t(k) + 1;
         raster::PartialAcross across[3];
