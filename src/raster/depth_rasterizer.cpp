@@ -898,6 +898,7 @@ void DepthRasterizer::merge_partial(const glm::vec2 *window, const float *depth,
     // those the polygon holds, widened by the transform's error and
     // rounded up.
     rows.depth_error = error.depth;
+    rows.depth_step = raster::partial_depth_step(error.depth);
     rows.behind = behind;
     // Sample column c's depth pixel, c / k, by a multiply rather than a
     // division's latency on every row: with reciprocal = 2^32 / k + d, 0 <

@@ -283,6 +283,40 @@ struct PartialLayer {
     int tiles_x;
 };
 
+// The depth bound partial_next_up(float(double(z) + error)) as one float
+// sum, z + add, for every float z in [lo, hi] (lo > hi: for none), so that
+// a loop can take it without the round trip through double (the AVX2
+// twin of merge_partial_rows, where the bound is most of a tile row's
+// latency). In [1/2, 1), where window depths mostly lie, the floats are
+// the multiples of u = 2^-24 and the doubles those of 2^-53, z an even one
+// of these; so while z + error stays below 1, double(z) + error rounds to
+// z + e1, e1 = error rounded to a multiple of 2^-53 as (1/2 + error) - 1/2
+// rounds it (ties to even alike). With e1 = (q + f) u, q an integer and 0
+// <= f < 1, the float nearest z + e1 is z + q u for f < 1/2 and z + (q +
+// 1) u for f > 1/2 (f = 1/2 is a tie, whose side depends on z: no range),
+// and the next float up adds u. So for add = (q + 1 + [f > 1/2]) u and z
+// in [1/2, 1 - add - u], every step stays in [1/2, 1 - u], the bound is
+// z + add, a float, and the float sum z + add is exact.
+struct PartialDepthStep {
+    float add, lo, hi;
+};
+inline PartialDepthStep partial_depth_step(double error)
+{
+    PartialDepthStep step{0.0f, 1.0f, 0.0f};
+    if (!(error >= 0.0 && error < 0x1p-8))
+        return step;
+    const double e1 = (0.5 + error) - 0.5;
+    const double units = e1 * 0x1p24;                    // exact: a power of two
+    const double q = std::floor(units), f = units - q;   // exact
+    if (f == 0.5)
+        return step;
+    const double add = (q + (f > 0.5 ? 2.0 : 1.0)) * 0x1p-24;   // below 2^-7: exact in float
+    step.add = float(add);
+    step.lo = 0.5f;
+    step.hi = float(1.0 - add - 0x1p-24);   // a multiple of u in [1/2, 1): exact
+    return step;
+}
+
 // A polygon's merged partial coverage, a row of depth pixels at a time,
 // as Masked Occlusion Culling updates a tile row (Hasselgren, Andersson and
 // Akenine-Moeller 2016, its triangle rasterization): each tile row the
@@ -312,6 +346,7 @@ struct PartialRows {
     std::uint32_t full_lo, full_hi;
     float za, zb, zc, zcap;
     double depth_error;
+    PartialDepthStep depth_step;   // partial_depth_step(depth_error), for the AVX2 twin
     float behind;
     // 2^32 / k + 1: sample column c >= 0's depth pixel c / k is c
     // reciprocal >> 32 (DepthRasterizer::merge_partial).

@@ -393,20 +393,66 @@ inline unsigned lanes_holding(__m256i lo, __m256i hi)
            0xffu;
 }
 
+// The depth pixel of sample column c, c / K, lane by lane, for 0 <= c <
+// 2^20 K: a shift for K a power of two; else the float quotient truncated.
+// c and K are exact floats, and c / K lies at least 1 / K >= 1 / 8 below
+// the next integer (or is one), farther than the quotient's rounding (half
+// an ulp, at most 2^-4 below 2^20), so it truncates to the integer below.
+template <int K>
+inline __m256i pixels_of(__m256i column)
+{
+    if constexpr ((K & (K - 1)) == 0)
+        return _mm256_srli_epi32(column, __builtin_ctz(unsigned(K)));
+    else
+        return _mm256_cvttps_epi32(_mm256_div_ps(_mm256_cvtepi32_ps(column), _mm256_set1_ps(float(K))));
+}
+
+// The bounds of each row's walk (the scalar loop's, per row), for all of
+// a call's rows at once in the lanes of its first sample row (lane r K of
+// the runs' row arrays, which hold columns in [-1, K (width + 1)]): the
+// first tile row, the last pixel, the whole pixels' tile rows passed over
+// (skip0 .. skip1), and bit e for each edge whose band holds a sample in
+// one of the row's K lanes. The other lanes hold nothing read.
+struct RowBounds {
+    alignas(32) std::int32_t start[8], last_pixel[8], skip0[8], skip1[8], band_edges[8];
+};
+
+template <int K>
+inline void row_bounds(const RowsRuns &runs, RowBounds &out)
+{
+    const auto load = [](const std::int32_t *v) { return _mm256_load_si256(reinterpret_cast<const __m256i *>(v)); };
+    const auto store = [](std::int32_t *v, __m256i x) { _mm256_store_si256(reinterpret_cast<__m256i *>(v), x); };
+    const __m256i one = _mm256_set1_epi32(1);
+    store(out.start, _mm256_andnot_si256(_mm256_set1_epi32(tile_size - 1), pixels_of<K>(load(runs.first))));
+    store(out.last_pixel, pixels_of<K>(load(runs.last)));
+    store(out.skip0, _mm256_add_epi32(pixels_of<K>(_mm256_add_epi32(load(runs.whole_first), _mm256_set1_epi32(K - 1))), one));
+    store(out.skip1, _mm256_sub_epi32(pixels_of<K>(_mm256_add_epi32(load(runs.whole_last), one)), _mm256_set1_epi32(2)));
+    // Lane l: bit e where band_lanes[e] >> l & (2^K - 1) is not 0.
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), row_lanes = _mm256_set1_epi32((1 << K) - 1);
+    __m256i edges = _mm256_setzero_si256();
+    for (int e = 0; e < 3; ++e) {
+        const __m256i in_row = _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(runs.band_lanes[e])), lane), row_lanes);
+        edges = _mm256_or_si256(edges, _mm256_andnot_si256(_mm256_cmpeq_epi32(in_row, _mm256_setzero_si256()),
+                                                           _mm256_set1_epi32(1 << e)));
+    }
+    store(out.band_edges, edges);
+}
+
 // merge_partial_rows_avx2 for divisor K, its sample loops unrolled.
 template <int K>
-unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigned found, const PartialLayer &b)
+__attribute__((always_inline)) inline unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first,
+                                                          unsigned found, const PartialLayer &b)
 {
     constexpr int k = K;
-    constexpr unsigned row_lanes = (1u << k) - 1;
-    // A sample column's depth pixel, the scalar loop's (columns are not
-    // negative: a shift, or a multiply by a constant).
-    const auto pixel_of = [](int column) { return int(unsigned(column) / unsigned(K)); };
+    RowBounds bounds;
+    row_bounds<K>(runs, bounds);
     const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi32(-1);
     const __m256i lane_columns = _mm256_setr_epi32(0, k, 2 * k, 3 * k, 4 * k, 5 * k, 6 * k, 7 * k);
     const __m256 lane_x = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
     const __m256 za = _mm256_set1_ps(r.za), zcap = _mm256_set1_ps(r.zcap);
     const __m256i full_lo = _mm256_set1_epi32(int(r.full_lo)), full_hi = _mm256_set1_epi32(int(r.full_hi));
+    const PartialDepthStep step = r.depth_step;
+    const __m256 step_add = _mm256_set1_ps(step.add), step_lo = _mm256_set1_ps(step.lo), step_hi = _mm256_set1_ps(step.hi);
     int resume = r.resume_x8;
     r.resume_x8 = 0;
     for (; found; found &= found - 1, resume = 0) {
@@ -416,16 +462,17 @@ unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigne
         // y >= 0: its tile row and row within the tile by shifts.
         const std::size_t row_tiles = std::size_t(unsigned(y) / tile_size) * std::size_t(b.tiles_x);
         const std::size_t row_offset = std::size_t(unsigned(y) % tile_size) * tile_size;
-        const int skip0 = pixel_of(runs.whole_first[l] + k - 1) + 1, skip1 = pixel_of(runs.whole_last[l] + 1) - 2;
-        const unsigned band_edges = unsigned((runs.band_lanes[0] >> l & row_lanes) != 0) |
-                                    unsigned((runs.band_lanes[1] >> l & row_lanes) != 0) << 1 |
-                                    unsigned((runs.band_lanes[2] >> l & row_lanes) != 0) << 2;
-        const int last_pixel = pixel_of(runs.last[l]);
-        const int start = int(unsigned(pixel_of(runs.first[l])) / tile_size * tile_size);
+        const int skip0 = bounds.skip0[l], skip1 = bounds.skip1[l], last_pixel = bounds.last_pixel[l];
+        const unsigned band_edges = unsigned(bounds.band_edges[l]);
+        const int start = bounds.start[l];
         for (int x8 = start > resume ? start : resume; x8 <= last_pixel; x8 += tile_size) {
-            if (x8 >= skip0 && x8 + tile_size - 1 <= skip1)
+            if (x8 >= skip0 && x8 + tile_size - 1 <= skip1) {
+                // On to the last tile row passed over.
+                x8 += int(unsigned(skip1 - (tile_size - 1) - x8) / tile_size * tile_size);
                 continue;
-            const std::size_t tile = row_tiles + std::size_t(x8 / tile_size);
+            }
+            // x8 >= 0: its tile by a shift.
+            const std::size_t tile = row_tiles + std::size_t(unsigned(x8) / tile_size);
             if ((!b.dirty[tile] && b.tile_max[tile] < r.behind) || b.farthest_bound[tile] < r.behind)
                 continue;
             const std::size_t index = tile * tile_pixels + row_offset;
@@ -433,7 +480,12 @@ unsigned merge_rows_k(PartialRows &r, const RowsRuns &runs, int y_first, unsigne
             // std::min(z, zcap) is min_ps(zcap, z); std::max(a, b) is
             // max_ps(b, a).
             const __m256 fx = _mm256_add_ps(_mm256_set1_ps(float(x8)), lane_x);
-            __m256 z = widened(_mm256_min_ps(zcap, _mm256_add_ps(_mm256_mul_ps(za, fx), depth_term)), r.depth_error);
+            // The depth bound: one float sum where every lane lies in the
+            // step's range (most tile rows), else through double.
+            const __m256 plane = _mm256_min_ps(zcap, _mm256_add_ps(_mm256_mul_ps(za, fx), depth_term));
+            const __m256 in_step =
+                _mm256_and_ps(_mm256_cmp_ps(plane, step_lo, _CMP_GE_OQ), _mm256_cmp_ps(plane, step_hi, _CMP_LE_OQ));
+            __m256 z = _mm256_movemask_ps(in_step) == 0xff ? _mm256_add_ps(plane, step_add) : widened(plane, r.depth_error);
             const __m256 depth = _mm256_loadu_ps(b.depth + index);
             const unsigned farther = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, depth, _CMP_LT_OQ)));
             if (!farther)

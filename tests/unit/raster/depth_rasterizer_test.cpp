@@ -1091,6 +1091,7 @@ TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
         rows.zc = unit(rng);
         rows.zcap = chance(0.5f) ? 1.0f : unit(rng);
         rows.depth_error = chance(0.5f) ? 0.0 : 1e-6 * unit(rng);
+        rows.depth_step = raster::partial_depth_step(rows.depth_error);
         rows.behind = chance(0.3f) ? unit(rng) : 0.0f;
         rows.reciprocal = (std::uint64_t(1) << 32) / std::uint64_t(k) + 1;
         raster::PartialAcross across[3];
@@ -1150,6 +1151,52 @@ TEST(DepthRasterizer, ScalarAndAvx2PartialRowsAgreeBitForBit)
     EXPECT_GT(taken, 10000);
     EXPECT_GT(filled, 100);
     EXPECT_GT(across_taken, 500);
+}
+
+// The partial layer's depth bound as one float sum (raster::
+// partial_depth_step, which the AVX2 rows' walk takes in its range) equals
+// partial_next_up(float(double(z) + error)) for every z of the range: all
+// the floats in [1/2, 1) for some errors (none, exact multiples of the
+// float spacing, just off a tie, and ties, which have no range), and
+// random ones for random errors.
+TEST(DepthRasterizer, PartialDepthStepEqualsTheBoundThroughDouble)
+{
+    const auto bound = [](float z, double error) { return raster::partial_next_up(float(double(z) + error)); };
+    const double u = 0x1p-24, tiny = 0x1p-53;
+    const double errors[] = {0.0,          tiny,          u / 2 - tiny, u / 2,         u / 2 + tiny, u,
+                             u + tiny,     2.5 * u,       3.5 * u - tiny, 3.5 * u + tiny, 1e-7,       3e-7,
+                             1.2345678e-6, 7 * u + u / 2, 1e-4,           0x1p-8};
+    for (const double error : errors) {
+        const raster::PartialDepthStep step = raster::partial_depth_step(error);
+        const double units = ((0.5 + error) - 0.5) / u;
+        const bool tie = units - std::floor(units) == 0.5;
+        if (tie || !(error < 0x1p-8)) {
+            EXPECT_GT(step.lo, step.hi) << "error " << error << ": no range";
+            continue;
+        }
+        ASSERT_EQ(step.lo, 0.5f);
+        EXPECT_GE(step.hi, 1.0f - float(error) - 3.0f * float(u)) << "error " << error;
+        long checked = 0;
+        for (float z = step.lo; z <= step.hi; z = std::nextafter(z, 2.0f), ++checked)
+            if (z + step.add != bound(z, error))
+                FAIL() << "error " << error << ", z " << z;
+        EXPECT_GT(checked, 1 << 22);
+    }
+    std::mt19937 rng(41);
+    std::uniform_real_distribution<double> error_of(0.0, 2e-6);
+    std::uniform_real_distribution<float> depth_of(0.5f, 1.0f);
+    for (int trial = 0; trial < 20000; ++trial) {
+        const double error = error_of(rng);
+        const raster::PartialDepthStep step = raster::partial_depth_step(error);
+        if (step.lo > step.hi)
+            continue;
+        for (int i = 0; i < 64; ++i) {
+            float z = i == 0 ? step.lo : i == 1 ? step.hi : depth_of(rng);
+            if (z > step.hi)
+                continue;
+            ASSERT_EQ(z + step.add, bound(z, error)) << "error " << error << ", z " << z;
+        }
+    }
 }
 
 // merge_partial walks the rows the crossing kernel reports: none from
