@@ -8,6 +8,14 @@ namespace occu {
 std::optional<Footprint> box_footprint(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box,
                                        int viewport_width, int viewport_height)
 {
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    return avx2 ? box_footprint_avx2(view_projection, eye, box, viewport_width, viewport_height)
+                : box_footprint_scalar(view_projection, eye, box, viewport_width, viewport_height);
+}
+
+std::optional<Footprint> box_footprint_scalar(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box,
+                                              int viewport_width, int viewport_height)
+{
     for (int a = 0; a < 3; ++a)
         if (!std::isfinite(box.min[a]) || !std::isfinite(box.max[a]))
             return std::nullopt;
