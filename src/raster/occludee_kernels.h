@@ -4,7 +4,8 @@
 // as Masked Occlusion Culling sets up its triangles in lanes before walking
 // them one by one: triangles' corners transformed with the bound of GL's
 // error; polygons' facing, reach, edge functions and depth plane; and one
-// polygon's pixels of a tile tested against their depths. The AVX2 kernels
+// polygon's tiles and pixels tested against their depths (whose scalar
+// twin is DepthRasterizer::polygon_behind's own walk). The AVX2 kernels
 // (occludee_kernels_avx2.cpp) take a double lane where the scalar twins
 // (occludee_kernels_scalar.cpp) loop over the lanes, with the same double
 // expressions in the same order and no fused multiply-add (both files build
