@@ -5,8 +5,24 @@
 
 namespace occu {
 
+namespace {
+
+// Whether the CPU has AVX2, set before main (with no guard to test on each
+// call); a call during another file's static initialization, before this
+// is set, takes the scalar kernel, whose answer is the same.
+const bool cpu_has_avx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
+
+}  // namespace
+
 std::optional<Footprint> box_footprint(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box,
                                        int viewport_width, int viewport_height)
+{
+    return cpu_has_avx2 ? box_footprint_avx2(view_projection, eye, box, viewport_width, viewport_height)
+                : box_footprint_scalar(view_projection, eye, box, viewport_width, viewport_height);
+}
+
+std::optional<Footprint> box_footprint_scalar(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box,
+                                              int viewport_width, int viewport_height)
 {
     for (int a = 0; a < 3; ++a)
         if (!std::isfinite(box.min[a]) || !std::isfinite(box.max[a]))

@@ -29,4 +29,15 @@ struct Footprint {
 std::optional<Footprint> box_footprint(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box,
                                        int viewport_width, int viewport_height);
 
+// box_footprint's two kernels, equal bit for bit (the footprints, and so
+// every strategy's answers, do not depend on the CPU): project_box's
+// corners and fold with std::floor and std::ceil, and the eight corners in
+// one set of AVX2 lanes, folded in a tree and rounded with SSE4.1's
+// roundps. box_footprint takes the AVX2 one where the CPU has it (it runs
+// for every node every occlusion test tests); the AVX2 kernel only there.
+std::optional<Footprint> box_footprint_scalar(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box,
+                                              int viewport_width, int viewport_height);
+std::optional<Footprint> box_footprint_avx2(const glm::mat4 &view_projection, const glm::vec3 &eye, const Aabb &box,
+                                            int viewport_width, int viewport_height);
+
 }  // namespace occu

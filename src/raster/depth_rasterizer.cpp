@@ -1190,6 +1190,8 @@ bool DepthRasterizer::polygon_behind(const raster::OccludeePolygons &p, int lane
     const int y1 = std::min(height_, int(p.y_hi[lane]) + 1);
     if (x0 >= x1 || y0 >= y1)
         return true;
+    if (isa_ == Isa::avx2)
+        return raster::polygon_behind_avx2(p, lane, tiles_.data(), tile_max_.data(), tiles_x_, x0, y0, x1, y1);
     const double za = p.za[lane], zb = p.zb[lane], zc = p.zc[lane], floor_z = p.floor_z[lane];
     // Tile by tile: a tile whose farthest depth is nearer than the
     // polygon's nearest over the tile settles all its pixels at once.
@@ -1203,12 +1205,6 @@ bool DepthRasterizer::polygon_behind(const raster::OccludeePolygons &p, int lane
             if (double(tile_max_[t]) < tile_nearest)
                 continue;
             const float *tile = tiles_.data() + t * tile_pixels;
-            if (isa_ == Isa::avx2) {
-                const int x8 = tx * tile_size, y8 = ty * tile_size;
-                if (!raster::tile_pixels_behind_avx2(p, lane, tile, x8, y8, tx0 - x8, tx1 - x8, ty0 - y8, ty1 - y8))
-                    return false;
-                continue;
-            }
             for (int y = ty0; y < ty1; ++y)
                 for (int x = tx0; x < tx1; ++x) {
                     bool inside = true;

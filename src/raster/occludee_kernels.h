@@ -4,7 +4,8 @@
 // as Masked Occlusion Culling sets up its triangles in lanes before walking
 // them one by one: triangles' corners transformed with the bound of GL's
 // error; polygons' facing, reach, edge functions and depth plane; and one
-// polygon's pixels of a tile tested against their depths. The AVX2 kernels
+// polygon's tiles and pixels tested against their depths (whose scalar
+// twin is DepthRasterizer::polygon_behind's own walk). The AVX2 kernels
 // (occludee_kernels_avx2.cpp) take a double lane where the scalar twins
 // (occludee_kernels_scalar.cpp) loop over the lanes, with the same double
 // expressions in the same order and no fused multiply-add (both files build
@@ -97,11 +98,16 @@ OccludeeVerdicts occludee_triangle_avx2(const double *m, const double *magnitude
 bool box_corners_window_avx2(const double *m, const float lo[3], const float hi[3], double sx, double sy,
                              double window_x[8], double window_y[8], double depth[8]);
 
-// Whether every depth pixel of rows [r0, r1) and columns [c0, c1) of `tile`
-// (tile-relative; the tile's lower left depth pixel is (x8, y8)) that lane
-// `lane` of `p` (set up) reaches is nearer than the polygon there; false at
-// the first that is not, or holds NaN.
-bool tile_pixels_behind_avx2(const OccludeePolygons &p, int lane, const float *tile, int x8, int y8, int c0, int c1,
-                             int r0, int r1);
+// DepthRasterizer::polygon_behind's walk for the depth pixels [x0, x1) x
+// [y0, y1) (inside the buffer, not empty) in AVX2: whether every one that
+// lane `lane` of `p` (set up, 3 or 4 corners) reaches is nearer than the
+// polygon there; false at the first that is not, or holds NaN. `tiles`
+// holds the buffer tile by tile (8 rows of 8 pixels each, tiles_x tiles a
+// row), `tile_max` each tile's farthest depth: a tile farther nowhere than
+// the polygon's nearest over it is settled at once, the scalar walk's
+// double expression. Its pixels four a step, in double lanes, with the
+// scalar walk's expressions.
+bool polygon_behind_avx2(const OccludeePolygons &p, int lane, const float *tiles, const float *tile_max, int tiles_x,
+                         int x0, int y0, int x1, int y1);
 
 }  // namespace occu::raster

@@ -271,42 +271,78 @@ bool box_corners_window_avx2(const double *m, const float lo[3], const float hi[
     return true;
 }
 
-bool tile_pixels_behind_avx2(const OccludeePolygons &p, int lane, const float *tile, int x8, int y8, int c0, int c1,
-                             int r0, int r1)
+namespace {
+
+// polygon_behind_avx2 for a polygon of `edges` corners: its coefficients
+// broadcast once for all its tiles.
+template <int edges>
+bool polygon_tiles_behind(const OccludeePolygons &p, int lane, const float *tiles, const float *tile_max, int tiles_x,
+                          int x0, int y0, int x1, int y1)
 {
-    const int edges = p.corners;
+    const double za = p.za[lane], zb = p.zb[lane], zc = p.zc[lane], floor_z = p.floor_z[lane];
     const __m256d zero = _mm256_setzero_pd();
-    const __m256d za = _mm256_set1_pd(p.za[lane]), zb = _mm256_set1_pd(p.zb[lane]), zc = _mm256_set1_pd(p.zc[lane]);
-    const __m256d floor_z = _mm256_set1_pd(p.floor_z[lane]);
-    const __m128i column_lane = _mm_setr_epi32(0, 1, 2, 3);
-    // The row's two halves of four columns, and which of their lanes lie in
-    // [c0, c1).
-    for (int half = c0 / 4 * 4; half < c1; half += 4) {
-        const __m128i column = _mm_add_epi32(column_lane, _mm_set1_epi32(half));
-        const __m256d chosen = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
-            _mm_and_si128(_mm_cmpgt_epi32(column, _mm_set1_epi32(c0 - 1)), _mm_cmpgt_epi32(_mm_set1_epi32(c1), column))));
-        const __m256d x = _mm256_cvtepi32_pd(_mm_add_epi32(column, _mm_set1_epi32(x8)));
-        __m256d ex[4];
-        for (int e = 0; e < edges; ++e)
-            ex[e] = _mm256_mul_pd(_mm256_set1_pd(p.ea[e][lane]), x);
-        const __m256d zx = _mm256_mul_pd(za, x);
-        for (int r = r0; r < r1; ++r) {
-            const __m256d y = _mm256_set1_pd(double(y8 + r));
-            __m256d reached = chosen;
-            for (int e = 0; e < edges; ++e) {
-                const __m256d value = _mm256_add_pd(_mm256_add_pd(ex[e], _mm256_mul_pd(_mm256_set1_pd(p.eb[e][lane]), y)),
-                                                    _mm256_set1_pd(p.ec[e][lane]));
-                reached = _mm256_and_pd(reached, _mm256_cmp_pd(value, zero, _CMP_GE_OQ));
-            }
-            // max_pd(plane, floor) is floor where the plane is not above it
-            // (NaN included), as std::max(floor, plane).
-            const __m256d nearest = _mm256_max_pd(_mm256_add_pd(_mm256_add_pd(zx, _mm256_mul_pd(zb, y)), zc), floor_z);
-            const __m256d depth = _mm256_cvtps_pd(_mm_loadu_ps(tile + r * tile_size + half));
-            if (_mm256_movemask_pd(_mm256_and_pd(reached, _mm256_cmp_pd(depth, nearest, _CMP_NLT_UQ))) != 0)
-                return false;
-        }
+    const __m256d plane_b = _mm256_set1_pd(zb), plane_c = _mm256_set1_pd(zc), floor = _mm256_set1_pd(floor_z);
+    __m256d edge_b[edges], edge_c[edges];
+    for (int e = 0; e < edges; ++e) {
+        edge_b[e] = _mm256_set1_pd(p.eb[e][lane]);
+        edge_c[e] = _mm256_set1_pd(p.ec[e][lane]);
     }
+    const __m128i column_lane = _mm_setr_epi32(0, 1, 2, 3);
+    for (int ty = y0 / tile_size; ty <= (y1 - 1) / tile_size; ++ty)
+        for (int tx = x0 / tile_size; tx <= (x1 - 1) / tile_size; ++tx) {
+            // DepthRasterizer::polygon_behind's tile: settled by its
+            // farthest depth where that is nearer than the polygon's
+            // nearest over it, the same double expression.
+            const int tx0 = std::max(x0, tx * tile_size), tx1 = std::min(x1, (tx + 1) * tile_size);
+            const int ty0 = std::max(y0, ty * tile_size), ty1 = std::min(y1, (ty + 1) * tile_size);
+            const double tile_nearest =
+                std::max(floor_z, za * (za < 0.0 ? tx1 - 1 : tx0) + zb * (zb < 0.0 ? ty1 - 1 : ty0) + zc);
+            const std::size_t t = std::size_t(ty) * std::size_t(tiles_x) + std::size_t(tx);
+            if (double(tile_max[t]) < tile_nearest)
+                continue;
+            const float *tile = tiles + t * tile_pixels;
+            const int x8 = tx * tile_size, y8 = ty * tile_size;
+            const int c0 = tx0 - x8, c1 = tx1 - x8;
+            // The row's halves of four columns, and which of their lanes
+            // lie in [c0, c1); the pixel's edges and plane as the scalar
+            // loop's, (a x + b y) + c.
+            for (int half = c0 / 4 * 4; half < c1; half += 4) {
+                const __m128i column = _mm_add_epi32(column_lane, _mm_set1_epi32(half));
+                const __m256d chosen = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_and_si128(
+                    _mm_cmpgt_epi32(column, _mm_set1_epi32(c0 - 1)), _mm_cmpgt_epi32(_mm_set1_epi32(c1), column))));
+                const __m256d x = _mm256_cvtepi32_pd(_mm_add_epi32(column, _mm_set1_epi32(x8)));
+                __m256d ex[edges];
+                for (int e = 0; e < edges; ++e)
+                    ex[e] = _mm256_mul_pd(_mm256_set1_pd(p.ea[e][lane]), x);
+                const __m256d zx = _mm256_mul_pd(_mm256_set1_pd(za), x);
+                for (int y = ty0; y < ty1; ++y) {
+                    const __m256d row = _mm256_set1_pd(double(y));
+                    __m256d reached = chosen;
+                    for (int e = 0; e < edges; ++e)
+                        reached = _mm256_and_pd(
+                            reached,
+                            _mm256_cmp_pd(_mm256_add_pd(_mm256_add_pd(ex[e], _mm256_mul_pd(edge_b[e], row)), edge_c[e]),
+                                          zero, _CMP_GE_OQ));
+                    // max_pd(plane, floor) is floor where the plane is not
+                    // above it (NaN included), as std::max(floor, plane).
+                    const __m256d nearest =
+                        _mm256_max_pd(_mm256_add_pd(_mm256_add_pd(zx, _mm256_mul_pd(plane_b, row)), plane_c), floor);
+                    const __m256d depth = _mm256_cvtps_pd(_mm_loadu_ps(tile + (y - y8) * tile_size + half));
+                    if (_mm256_movemask_pd(_mm256_and_pd(reached, _mm256_cmp_pd(depth, nearest, _CMP_NLT_UQ))) != 0)
+                        return false;
+                }
+            }
+        }
     return true;
+}
+
+}  // namespace
+
+bool polygon_behind_avx2(const OccludeePolygons &p, int lane, const float *tiles, const float *tile_max, int tiles_x,
+                         int x0, int y0, int x1, int y1)
+{
+    return p.corners == 3 ? polygon_tiles_behind<3>(p, lane, tiles, tile_max, tiles_x, x0, y0, x1, y1)
+                          : polygon_tiles_behind<4>(p, lane, tiles, tile_max, tiles_x, x0, y0, x1, y1);
 }
 
 }  // namespace occu::raster

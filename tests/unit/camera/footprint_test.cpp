@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <random>
 
 using namespace occu;
@@ -82,6 +85,80 @@ TEST(Footprint, NoneForTheEyeInsideTheNearPlaneCrossedOrNonFiniteBoxes)
     const auto aside = box_footprint(vp, camera.position, Aabb::of({1e6f, -1, -6}, {1e6f + 1, 1, -5}), 64, 64);
     ASSERT_TRUE(aside);
     EXPECT_TRUE(aside->rect.empty());
+}
+
+// box_footprint's kernels agree bit for bit: real cameras near and far from
+// the origin, and matrices and boxes with zeros of both signs, infinities,
+// NaN and huge entries (the corner-by-corner fold's ties, NaN corners and
+// overflowing windows), in viewports of many sizes.
+TEST(Footprint, Avx2KernelEqualsScalarBitForBit)
+{
+    if (!__builtin_cpu_supports("avx2"))
+        GTEST_SKIP() << "this CPU has no AVX2: only the scalar kernel runs here";
+    const auto bits = [](float f) {
+        std::uint32_t u;
+        std::memcpy(&u, &f, sizeof u);
+        return u;
+    };
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, inf, -inf, nan, 1e30f, -1e30f, 3e38f, 1e-40f};
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> unit(-1, 1), size(0.001f, 1), fov(20, 120);
+    std::uniform_int_distribution<int> pick(0, 31), viewport(1, 2048);
+    // A random entry, now and then a special one.
+    const auto entry = [&](float value) {
+        const int k = pick(rng);
+        return k < int(std::size(specials)) ? specials[k] : value;
+    };
+    int footprints = 0, none = 0, clipped = 0;
+    for (int i = 0; i < 200000; ++i) {
+        Camera c;
+        const float scale = std::pow(10.0f, float(i % 7));
+        c.position = glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
+        c.target = c.position + glm::vec3(unit(rng), unit(rng), unit(rng));
+        c.fovy_degrees = fov(rng);
+        c.aspect = 0.5f + size(rng);
+        glm::mat4 vp = c.view_projection();
+        const glm::vec3 lo = c.position + glm::vec3(unit(rng), unit(rng), unit(rng)) * 50.0f;
+        Aabb box = Aabb::of(lo, lo + glm::vec3(size(rng), size(rng), size(rng)) * 30.0f);
+        if (i % 4 == 1) {
+            // Special entries in the matrix and the box.
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b)
+                    vp[a][b] = entry(vp[a][b]);
+            for (int a = 0; a < 3; ++a) {
+                box.min[a] = entry(box.min[a]);
+                box.max[a] = entry(box.max[a]);
+            }
+        } else if (i % 4 == 2) {
+            // Corners on the axes: zeros of both signs in the products.
+            for (int a = 0; a < 3; ++a) {
+                if (pick(rng) < 8)
+                    box.min[a] = pick(rng) < 16 ? 0.0f : -0.0f;
+                if (pick(rng) < 8)
+                    box.max[a] = pick(rng) < 16 ? 0.0f : -0.0f;
+            }
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b)
+                    if (pick(rng) < 4)
+                        vp[a][b] = pick(rng) < 16 ? 0.0f : -0.0f;
+        }
+        const int w = i % 3 ? 512 : viewport(rng), h = i % 3 ? 512 : viewport(rng);
+        const auto expected = box_footprint_scalar(vp, c.position, box, w, h);
+        const auto got = box_footprint_avx2(vp, c.position, box, w, h);
+        ASSERT_EQ(bool(expected), bool(got)) << "box " << i;
+        if (!expected) {
+            ++none;
+            continue;
+        }
+        ++footprints;
+        clipped += expected->rect.empty() || expected->rect.x0 == 0 || expected->rect.x1 == w;
+        ASSERT_EQ(got->rect, expected->rect) << "box " << i;
+        ASSERT_EQ(bits(got->window_z_near), bits(expected->window_z_near)) << "box " << i;
+    }
+    EXPECT_GT(footprints, 50000);
+    EXPECT_GT(none, 20000);
+    EXPECT_GT(clipped, 5000);
 }
 
 TEST(PixelRect, ToMapCoversEveryPixel)
