@@ -7,6 +7,9 @@
 # `occu::render_hierarchy`, the frames' drawing, are the program's setup: the
 # scene, the hierarchy, the skins). Instruction counts (callgrind) say what
 # code runs; this says where the time goes, cache and TLB misses included.
+# libc's samples include GL's own (llvmpipe's draws and the frame's read-back
+# call malloc, free and memmove); `perf record --call-graph dwarf` tells them
+# apart from the strategy's.
 # Usage: bench/perf-frames.sh STRATEGY [WALKTHROUGH ARGS...]
 # Environment: OCCU_BUILD_DIR (default build/), FIRST, TOP (rows, 40),
 #   GALLIUM_DRIVER (llvmpipe), OUT (perf's data and the walkthrough's output,
