@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "occluders/triangle_occluders.h"
+
 namespace occu {
 
 SkinOptions skin_options(const Settings &settings)
@@ -114,9 +116,21 @@ const OccluderSource &skin_occluder_source()
     return source;
 }
 
+SettingSpec adapt_triangles_setting()
+{
+    return on_off_setting("adapt-triangles", false, SettingSpec::Role::cost,
+                          "each frame's triangle budget is five quarters of the last frame's triangles that "
+                          "reached past the buffer (not behind everything there), at most occluder-triangles and at "
+                          "least " + std::to_string(TriangleOccluders::adapted_least) +
+                              " (or scene-triangles' least, which holds a level at 1024); off: occluder-triangles "
+                              "every frame");
+}
+
 const OccluderSource &triangle_occluder_source()
 {
-    static const OccluderSource source{"the scene's own triangles", {occluder_triangles_setting(), coverage_setting(), scene_triangles_setting()},
+    static const OccluderSource source{"the scene's own triangles",
+                                       {occluder_triangles_setting(), coverage_setting(), scene_triangles_setting(),
+                                        adapt_triangles_setting()},
                                        {}};
     return source;
 }

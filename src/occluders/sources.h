@@ -75,6 +75,10 @@ SettingSpec coverage_setting();
 // skinned meshes hold most triangles the skins stand alone: the city's
 // ground, its one mesh without a skin, holds 12 of its 272,796.
 SettingSpec scene_triangles_setting();
+// adapt-triangles (off): each frame's triangle budget follows what the
+// last frame's triangles added to the buffer
+// (TriangleOccluders::adapted_budget), up to the budget above.
+SettingSpec adapt_triangles_setting();
 constexpr long scene_triangle_budget = 1024;
 constexpr double scene_triangle_share = 0.5;
 // Whether `settings` ask for merged coverage; throws std::invalid_argument

@@ -15,6 +15,12 @@ TriangleOccluders::TriangleOccluders(const Scene &scene, const Settings &setting
 {
     if (settings.knows("occluder-triangles"))
         budget_ = std::max(budget_, std::size_t(settings.integer("occluder-triangles")));
+    // The first frame takes the whole budget; with adapt-triangles the
+    // frames after take what the last one needed, down to the least
+    // budget asked for (scene-triangles' on a level) or adapted_least.
+    most_budget_ = least_budget_ = budget_;
+    if (settings.knows("adapt-triangles") && settings.on("adapt-triangles"))
+        least_budget_ = std::max(least_budget, std::min(budget_, adapted_least));
     if (budget_ == 0)
         return;
     // The groups: each leaf's occluder triangles (the hierarchy puts them
@@ -115,8 +121,17 @@ std::size_t TriangleOccluders::render(const Frame &frame, DepthRasterizer &raste
     if (!across_.empty())
         for (std::uint32_t i : indices)
             drawn_across_.push_back(across_[i]);
+    const std::uint64_t before = raster.stats().rasterized;
     raster.render_triangles(corners_.data(), indices.data(), count, across_.empty() ? nullptr : drawn_across_.data());
+    if (least_budget_ < most_budget_)
+        budget_ = adapted_budget(std::size_t(raster.stats().rasterized - before), least_budget_, most_budget_);
     return count;
+}
+
+std::size_t TriangleOccluders::adapted_budget(std::size_t reached, std::size_t least, std::size_t most)
+{
+    // Five quarters of them, rounded up.
+    return std::clamp(reached + (reached + 3) / 4, least, std::max(least, most));
 }
 
 float TriangleOccluders::bound_per_area(const Aabb &box, float &nearest_w) const

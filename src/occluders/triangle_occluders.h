@@ -65,13 +65,39 @@ public:
     // Renders into `raster` at most budget() of the scene's occluder
     // triangles that face the eye in `frame`'s frustum, the largest
     // projected area first, drawn nearest first. Returns how many it drew.
+    // With adapt-triangles, the budget of the frames after follows what
+    // this one's drawing showed (adapted_budget).
     std::size_t render(const Frame &frame, DepthRasterizer &raster);
     // What render() draws for `frame`: three indices into corners() a
     // triangle, nearest first. Valid until the next call.
     const std::vector<std::uint32_t> &choose(const Frame &frame);
     // The occluder triangles' corners, three a triangle.
     const std::vector<glm::vec3> &corners() const { return corners_; }
+    // The budget the next frame chooses up to.
     std::size_t budget() const { return budget_; }
+    // adapt-triangles: the next frame's budget when `reached` of the
+    // triangles drawn this frame reached past what the buffer held before
+    // them (DepthRasterizer::Stats::rasterized: with merged coverage,
+    // those not behind everything already there), within [least, most]:
+    // five quarters of `reached`, rounded up. Drawn nearest first, a
+    // triangle that does not reach past the buffer adds nothing to it.
+    // Where most of the chosen do (open ground, where the skins hide
+    // little) the budget grows, by a quarter a frame at most, and stays
+    // at `most`; where fewer than four in five do (the skins and the
+    // nearest triangles hide the rest: a city's streets) it shrinks to
+    // `least`. So it is Zhang et al.'s adaptive occluder count (more
+    // occluders while little is culled, fewer while much is), with the
+    // share of the chosen that add to the buffer in place of the share of
+    // the tested that is culled, a share the buffer knows before the
+    // tests; and it reads no clock, so a route's frames are the same
+    // every run. Which triangles are drawn decides only how much is
+    // culled: every one is a triangle GL draws.
+    static std::size_t adapted_budget(std::size_t reached, std::size_t least, std::size_t most);
+    // The least budget adapt-triangles shrinks to (the setting's, where
+    // smaller; scene-triangles' least, where larger): on the city's
+    // streets the largest 128 on screen cull within a tenth of a point
+    // of 1024 but on one route, which loses a sixth (the doc's figures).
+    static constexpr std::size_t adapted_least = 128;
 
 private:
     struct Group {
@@ -124,6 +150,8 @@ private:
 
     const Hierarchy *hierarchy_ = nullptr;
     std::size_t budget_ = 0;
+    // adapt-triangles: the bounds of budget_ (both budget_ without it).
+    std::size_t least_budget_ = 0, most_budget_ = 0;
     Aabb bounds_;                      // of every occluder triangle
     std::vector<glm::vec3> corners_;   // 3 per triangle, grouped
     choice::TriangleArrays arrays_;    // in blocks of eight: normals twice the world area long, corners, twice areas

@@ -462,3 +462,107 @@ TEST(TriangleOccluders, TheChosenAreTheLargestByScore)
         }
     EXPECT_EQ(views, 48);
 }
+
+// adapt-triangles' rule: five quarters of the triangles that reached past
+// the buffer, rounded up, never below the least budget nor above the
+// most; so it shrinks wherever fewer than four in five reach (but for the
+// rounding up), grows wherever more do, and by a quarter a frame at most.
+TEST(TriangleOccluders, AnAdaptedBudgetIsFiveQuartersOfThoseThatReachedWithinItsBounds)
+{
+    EXPECT_EQ(TriangleOccluders::adapted_budget(0, 128, 1024), 128u);
+    EXPECT_EQ(TriangleOccluders::adapted_budget(100, 128, 1024), 128u);
+    EXPECT_EQ(TriangleOccluders::adapted_budget(400, 128, 1024), 500u);
+    EXPECT_EQ(TriangleOccluders::adapted_budget(401, 128, 1024), 502u);
+    EXPECT_EQ(TriangleOccluders::adapted_budget(900, 128, 1024), 1024u);
+    EXPECT_EQ(TriangleOccluders::adapted_budget(1024, 128, 1024), 1024u);
+    EXPECT_EQ(TriangleOccluders::adapted_budget(1024, 1024, 1024), 1024u) << "a least budget as large as the most";
+    EXPECT_EQ(TriangleOccluders::adapted_budget(3, 1024, 512), 1024u) << "the least wins";
+    for (std::size_t budget = 128; budget <= 1024; budget += 7)
+        for (std::size_t reached = 0; reached <= budget; ++reached) {
+            const std::size_t next = TriangleOccluders::adapted_budget(reached, 128, 1024);
+            ASSERT_GE(next, 128u);
+            ASSERT_LE(next, 1024u);
+            ASSERT_LE(next, std::max<std::size_t>(128, budget + (budget + 3) / 4)) << budget << ", " << reached;
+            if (5 * reached + 4 <= 4 * budget && budget > 128)
+                ASSERT_LT(next, budget) << "shrinks where fewer than four in five reach, less one: " << budget << ", " << reached;
+            if (5 * reached > 4 * budget && budget < 1024)
+                ASSERT_GT(next, budget) << "grows where more than four in five reach: " << budget << ", " << reached;
+        }
+}
+
+// The budget a frame at a time: behind a near wall the triangles beyond it
+// add nothing to the buffer and the budget shrinks to its least; turned
+// to triangles nothing hides, it grows back to occluder-triangles.
+// adapt-triangles=off, or scene-triangles' least budget as large as
+// occluder-triangles, keeps the budget fixed.
+TEST(TriangleOccluders, AdaptTrianglesShrinksBehindAWallAndGrowsWhereAllReach)
+{
+    Mesh m;
+    // Looking down -z from the origin: a wall 2 m away across the whole
+    // view, and 600 small triangles 20 m away behind it.
+    add_quad(m, {-3, -3, -2}, {3, -3, -2}, {3, 3, -2}, {-3, 3, -2});
+    // Looking down +z: 600 small triangles 10 m away, apart, nothing
+    // before them. Facing the eye of their view each.
+    for (int i = 0; i < 30; ++i)
+        for (int j = 0; j < 20; ++j) {
+            const float x = -6.0f + 0.4f * float(i), y = -4.0f + 0.4f * float(j);
+            add_triangle(m, {x, y, -20}, {x + 0.25f, y, -20}, {x, y + 0.25f, -20});
+            add_triangle(m, {x, y, 10}, {x, y + 0.25f, 10}, {x + 0.25f, y, 10});
+        }
+    const Scene scene = one_mesh(m);
+    std::vector<SettingSpec> s = specs();
+    s.push_back(adapt_triangles_setting());
+    Camera behind_wall, open;
+    behind_wall.position = open.position = {0, 0, 0};
+    behind_wall.target = {0, 0, -1};
+    open.target = {0, 0, 1};
+    behind_wall.fovy_degrees = open.fovy_degrees = 90.0f;
+    behind_wall.near_plane = open.near_plane = 0.5f;
+    const Frame walled(behind_wall, 96, 96), opened(open, 96, 96);
+    const auto budgets = [&](bool adapt, std::size_t least, const std::vector<const Frame *> &frames) {
+        Settings settings("test", &s);
+        settings.set("occluder-triangles", "512");
+        settings.set("coverage", "merged");
+        settings.set("adapt-triangles", adapt ? "on" : "off");
+        TriangleOccluders occluders(scene, settings, least);
+        std::vector<std::size_t> out;
+        for (const Frame *frame : frames) {
+            DepthRasterizer raster;
+            raster.begin(frame->view_projection, 96, 96, {2, true, true});
+            const std::size_t drawn = occluders.render(*frame, raster);
+            EXPECT_LE(drawn, out.empty() ? 512u : out.back());
+            out.push_back(occluders.budget());
+        }
+        return out;
+    };
+    const std::vector<const Frame *> route = {&walled, &walled, &opened, &opened, &opened, &opened,
+                                              &opened, &opened, &opened, &opened, &opened, &walled};
+    const std::vector<std::size_t> adapted = budgets(true, 0, route);
+    // Behind the wall only the wall reaches past the buffer.
+    EXPECT_EQ(adapted[0], TriangleOccluders::adapted_least);
+    EXPECT_EQ(adapted[1], TriangleOccluders::adapted_least);
+    // In the open every one drawn reaches: a quarter more a frame.
+    EXPECT_EQ(adapted[2], 160u);
+    EXPECT_EQ(adapted[3], 200u);
+    EXPECT_EQ(adapted[4], 250u);
+    EXPECT_EQ(adapted[5], 313u);
+    EXPECT_EQ(adapted[6], 392u);
+    EXPECT_EQ(adapted[7], 490u);
+    EXPECT_EQ(adapted[8], 512u);
+    EXPECT_EQ(adapted[10], 512u);
+    EXPECT_EQ(adapted[11], TriangleOccluders::adapted_least);
+    for (std::size_t b : budgets(false, 0, route))
+        EXPECT_EQ(b, 512u) << "adapt-triangles=off: the budget every frame";
+    for (std::size_t b : budgets(true, 512, route))
+        EXPECT_EQ(b, 512u) << "a least budget of occluder-triangles: nothing to adapt";
+    // Off, the frames are today's: the same triangles as with no setting.
+    {
+        Settings fixed("test", &s), plain("test", &s);
+        fixed.set("occluder-triangles", "512");
+        fixed.set("adapt-triangles", "off");
+        plain.set("occluder-triangles", "512");
+        TriangleOccluders a(scene, fixed), b(scene, plain);
+        for (const Frame *frame : route)
+            EXPECT_EQ(a.choose(*frame), b.choose(*frame));
+    }
+}
