@@ -94,10 +94,10 @@ public:
     // culled: every one is a triangle GL draws.
     static std::size_t adapted_budget(std::size_t reached, std::size_t least, std::size_t most);
     // The least budget adapt-triangles shrinks to (the setting's, where
-    // smaller; scene-triangles' least, where larger): on the city's
-    // streets the largest 128 on screen cull within a tenth of a point
-    // of 1024 but on one route, which loses a sixth (the doc's figures).
-    static constexpr std::size_t adapted_least = 128;
+    // smaller; scene-triangles' least, where larger). On the city's
+    // streets the skins hide nearly all that the triangles would: 64
+    // triangles cull what 128 do there, to a thousandth of a point.
+    static constexpr std::size_t adapted_least = 64;
 
 private:
     struct Group {

@@ -469,6 +469,8 @@ TEST(TriangleOccluders, TheChosenAreTheLargestByScore)
 // rounding up), grows wherever more do, and by a quarter a frame at most.
 TEST(TriangleOccluders, AnAdaptedBudgetIsFiveQuartersOfThoseThatReachedWithinItsBounds)
 {
+    static_assert(TriangleOccluders::adapted_least == 64);
+    EXPECT_EQ(TriangleOccluders::adapted_budget(0, 64, 1024), 64u);
     EXPECT_EQ(TriangleOccluders::adapted_budget(0, 128, 1024), 128u);
     EXPECT_EQ(TriangleOccluders::adapted_budget(100, 128, 1024), 128u);
     EXPECT_EQ(TriangleOccluders::adapted_budget(400, 128, 1024), 500u);
@@ -535,22 +537,22 @@ TEST(TriangleOccluders, AdaptTrianglesShrinksBehindAWallAndGrowsWhereAllReach)
         }
         return out;
     };
-    const std::vector<const Frame *> route = {&walled, &walled, &opened, &opened, &opened, &opened,
-                                              &opened, &opened, &opened, &opened, &opened, &walled};
+    std::vector<const Frame *> route = {&walled, &walled};
+    route.insert(route.end(), 12, &opened);
+    route.push_back(&walled);
     const std::vector<std::size_t> adapted = budgets(true, 0, route);
     // Behind the wall only the wall reaches past the buffer.
     EXPECT_EQ(adapted[0], TriangleOccluders::adapted_least);
     EXPECT_EQ(adapted[1], TriangleOccluders::adapted_least);
-    // In the open every one drawn reaches: a quarter more a frame.
-    EXPECT_EQ(adapted[2], 160u);
-    EXPECT_EQ(adapted[3], 200u);
-    EXPECT_EQ(adapted[4], 250u);
-    EXPECT_EQ(adapted[5], 313u);
-    EXPECT_EQ(adapted[6], 392u);
-    EXPECT_EQ(adapted[7], 490u);
-    EXPECT_EQ(adapted[8], 512u);
-    EXPECT_EQ(adapted[10], 512u);
-    EXPECT_EQ(adapted[11], TriangleOccluders::adapted_least);
+    // In the open every one drawn reaches: a quarter more a frame, rounded
+    // up, up to occluder-triangles.
+    std::size_t expected = TriangleOccluders::adapted_least;
+    for (std::size_t frame = 2; frame < 14; ++frame) {
+        expected = std::min<std::size_t>(512, expected + (expected + 3) / 4);
+        EXPECT_EQ(adapted[frame], expected) << "frame " << frame;
+    }
+    EXPECT_EQ(adapted[13], 512u);
+    EXPECT_EQ(adapted[14], TriangleOccluders::adapted_least);
     for (std::size_t b : budgets(false, 0, route))
         EXPECT_EQ(b, 512u) << "adapt-triangles=off: the budget every frame";
     for (std::size_t b : budgets(true, 512, route))
