@@ -194,12 +194,15 @@ StrategyFamily occluder_skins_family()
         {"skins-both", "occluders=both"},
         // For scenes whose meshes have no volume for skins (levels, thin
         // walls): the scene's own largest triangles, fused as Masked
-        // Occlusion Culling fuses them, and leaves tested by what they draw.
-        {"skins-triangles", "occluder-triangles=1024:coverage=merged:occludee=triangles"},
+        // Occlusion Culling fuses them, and leaves tested by what they draw;
+        // the triangle budget as many as the last frame's added to the
+        // buffer (on the city's streets a few hundred cull what 1024 do).
+        {"skins-triangles", "occluder-triangles=1024:coverage=merged:occludee=triangles:adapt-triangles=on"},
     };
     // The scene's own triangles beside the skins, in whole depth pixels and
     // merged (each culls at least what the one before it does); occludees
-    // tested by their triangles where their box fails; the rectangle alone
+    // tested by their triangles where their box fails; their budget
+    // adapted, and fixed; the rectangle alone
     // (section 6); one farthest depth per polygon (section 5); the drawn
     // leaves' triangles with the switch-off's probes.
     f.test_variants = {
@@ -209,6 +212,9 @@ StrategyFamily occluder_skins_family()
             .drawing_at_most("skins:occluder-triangles=512:coverage=merged"),
         StrategyTestVariant("skins:occluder-triangles=1024"),
         StrategyTestVariant("skins:occluder-triangles=1024:coverage=merged"),
+        // The budget adapted frame by frame, and skins-triangles' fixed.
+        StrategyTestVariant("skins:occluder-triangles=512:coverage=merged:occludee=triangles:adapt-triangles=on"),
+        StrategyTestVariant("skins-triangles:adapt-triangles=off"),
         StrategyTestVariant("skins:occludee=triangles"),
         StrategyTestVariant("skins:occludee=rect"),
         StrategyTestVariant("skins:depth=polygon"),
