@@ -3,7 +3,8 @@
 // (raster/depth_rasterizer.h), for meshes with no volume for skins (thin
 // walls, open meshes; occluders/skin_occluders.h): those of occluder
 // meshes only, chosen per frame by projected area, the largest first up
-// to a budget (occluder-triangles), and rasterized by the same
+// to a budget (occluder-triangles; with adapt-triangles, as many as the
+// last frame's added to the buffer, adapted_budget), and rasterized by the same
 // conservative rasterizer as skins, as Intel's Masked Occlusion Culling
 // takes a game's own meshes. A front-facing triangle in the frustum is
 // drawn by GL wherever nothing nearer hides it, and what hides it hides
@@ -81,12 +82,13 @@ public:
     // those not behind everything already there), within [least, most]:
     // five quarters of `reached`, rounded up. Drawn nearest first, a
     // triangle that does not reach past the buffer adds nothing to it.
-    // Where most of the chosen do (open ground, where the skins hide
-    // little) the budget grows, by a quarter a frame at most, and stays
-    // at `most`; where fewer than four in five do (the skins and the
-    // nearest triangles hide the rest: a city's streets) it shrinks to
-    // `least`. So it is Zhang et al.'s adaptive occluder count (more
-    // occluders while little is culled, fewer while much is), with the
+    // Where more than four in five of the chosen do (open ground, where
+    // the skins hide little) the budget grows, by a quarter a frame at
+    // most, up to `most`; where fewer do (the skins and the nearest
+    // triangles hide the rest: a city's streets) it shrinks towards
+    // `least`. So it is Zhang et al. 1997's adaptive occluder count (the
+    // hom family's adapt-budget: more occluders while little is culled,
+    // fewer while much is), with the
     // share of the chosen that add to the buffer in place of the share of
     // the tested that is culled, a share the buffer knows before the
     // tests; and it reads no clock, so a route's frames are the same
