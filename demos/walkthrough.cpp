@@ -12,8 +12,9 @@
 // each frame in turn, in an order shuffled per frame
 // (evaluation/measurement_session.h says why). Setup and test ms: time in
 // the culler (traversal/traversal.h), on the wall clock or with --clock
-// thread the main thread's CPU time (traversal/clock.h); wrong px: the visible pixels an
-// approximate strategy's frame lost (evaluation/lost_pixels.h).
+// thread on the main thread's CPU time (traversal/clock.h); wrong px: the
+// visible pixels an approximate strategy's frame lost
+// (evaluation/lost_pixels.h).
 // tools/plot-walkthrough.sh DIR plots frames.csv.
 #include <algorithm>
 #include <cstdio>
