@@ -10,6 +10,9 @@
 # libc's samples include GL's own (llvmpipe's draws and the frame's read-back
 # call malloc, free and memmove); `perf record --call-graph dwarf` tells them
 # apart from the strategy's.
+# The strategy's line of the walkthrough's table is printed first; with
+# `--clock thread` among the walkthrough's arguments its setup and test ms
+# are the main thread's CPU time (less moved by other work on the machine).
 # Usage: bench/perf-frames.sh STRATEGY [WALKTHROUGH ARGS...]
 # Environment: OCCU_BUILD_DIR (default build/), FIRST, TOP (rows, 40),
 #   GALLIUM_DRIVER (llvmpipe), OUT (perf's data and the walkthrough's output,

@@ -24,16 +24,15 @@
 // the walkthrough's drawing does between two choices, so that the choice
 // finds its data out of the caches near the core as it does there
 // (0, the default: back to back, its data in them). --clock thread
-// times the choice by the thread's CPU time rather than the wall clock's:
-// on a machine shared with other work, the time it was not run is left out.
+// times the choice by the thread's CPU time rather than the wall clock's
+// (traversal/clock.h, as the walkthrough's --clock): on a machine shared
+// with other work, the time it was not run is left out.
 // Counting instructions: valgrind --tool=callgrind --rounds 1
 // --toggle-collect='occu::TriangleOccluders::choose*' (the choice), or
 // with --raster 'occu::TriangleOccluders::render*' (both).
 // Prints CSV:
 //   scene,route,frames,budget,raster,triangles_a_frame,us_a_frame,set_digest,order_digest,buffer_digest
 #include <algorithm>
-#include <chrono>
-#include <ctime>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -47,6 +46,7 @@
 #include "occluders/sources.h"
 #include "occluders/triangle_occluders.h"
 #include "raster/depth_rasterizer.h"
+#include "traversal/clock.h"
 
 using namespace occu;
 
@@ -63,7 +63,7 @@ struct Options {
     int divisor = 2;
     std::uint32_t leaf_triangles = HierarchyOptions{}.max_leaf_triangles;
     long evict_mb = 0;
-    bool thread_clock = false;
+    Clock clock = Clock::wall;
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -103,11 +103,7 @@ int main(int argc, char **argv)
         else if (a == "--leaf-triangles") o.leaf_triangles = leaf_triangles_option(a, v);
         else if (a == "--divisor") o.divisor = int(integer_option(a, v, 1, 8));
         else if (a == "--evict") o.evict_mb = integer_option(a, v, 0, 4096);
-        else if (a == "--clock") {
-            if (v != "wall" && v != "thread")
-                usage("--clock wants wall or thread, got '" + v + "'");
-            o.thread_clock = v == "thread";
-        }
+        else if (a == "--clock") o.clock = clock_option(a, v);
         else if (a == "--raster") {
             if (v != "none" && v != "whole" && v != "merged")
                 usage("--raster wants none, whole or merged, got '" + v + "'");
@@ -141,13 +137,7 @@ int main(int argc, char **argv)
         options.divisor = o.divisor;
         options.merge_partial_coverage = o.raster == "merged";
         std::vector<float> depth;
-        const auto now = [&]() {
-            if (!o.thread_clock)
-                return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-            timespec t;
-            clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-            return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-        };
+        const Stopwatch watch(o.clock);
         std::vector<std::uint64_t> evicted(std::size_t(o.evict_mb) << 17);
         const auto evict = [&]() {
             for (std::uint64_t &word : evicted)
@@ -159,7 +149,7 @@ int main(int argc, char **argv)
         Digest set, order;   // with --raster: the buffers, in `set`
         for (int round = 0; round < o.rounds; ++round) {
             TriangleOccluders occluders(setup.scene(), settings, 0, &setup.hierarchy());
-            double seconds = 0;
+            double ms = 0;
             std::size_t count = 0;
             Digest round_set, round_order;
             std::vector<std::uint32_t> sorted;
@@ -167,9 +157,7 @@ int main(int argc, char **argv)
                 evict();
                 if (rasterize) {
                     raster.begin(f.view_projection, f.width, f.height, options);
-                    const double start = now();
-                    count += occluders.render(f, raster);
-                    seconds += now() - start;
+                    watch.time(ms, [&] { count += occluders.render(f, raster); });
                     raster.read(depth);
                     for (float d : depth) {
                         std::uint32_t bits;
@@ -178,9 +166,9 @@ int main(int argc, char **argv)
                     }
                     continue;
                 }
-                const double start = now();
-                const std::vector<std::uint32_t> &indices = occluders.choose(f);
-                seconds += now() - start;
+                const std::vector<std::uint32_t> *chosen_now = nullptr;
+                watch.time(ms, [&] { chosen_now = &occluders.choose(f); });
+                const std::vector<std::uint32_t> &indices = *chosen_now;
                 count += indices.size() / 3;
                 sorted.assign(indices.begin(), indices.end());
                 for (std::uint32_t i : sorted)
@@ -198,7 +186,7 @@ int main(int argc, char **argv)
             set = round_set;
             order = round_order;
             chosen = count;
-            best = round == 0 ? seconds : std::min(best, seconds);
+            best = round == 0 ? ms : std::min(best, ms);
         }
         std::printf("scene,route,frames,budget,raster,triangles_a_frame,us_a_frame,set_digest,order_digest,buffer_digest\n");
         const auto hex = [](const Digest &d) {
@@ -207,7 +195,7 @@ int main(int argc, char **argv)
             return std::string(text);
         };
         std::printf("%s,%s,%zu,%ld,%s,%.1f,%.2f,%s,%s,%s\n", setup.name().c_str(), o.route.c_str(), frames.size(), o.budget,
-                    o.raster.c_str(), double(chosen) / double(frames.size()), 1e6 * best / double(frames.size()),
+                    o.raster.c_str(), double(chosen) / double(frames.size()), 1e3 * best / double(frames.size()),
                     rasterize ? "-" : hex(set).c_str(), rasterize ? "-" : hex(order).c_str(),
                     rasterize ? hex(set).c_str() : "-");
     } catch (const std::exception &e) {

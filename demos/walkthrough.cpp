@@ -11,8 +11,10 @@
 // prints the summary (evaluation/session_report.h). The strategies draw
 // each frame in turn, in an order shuffled per frame
 // (evaluation/measurement_session.h says why). Setup and test ms: time in
-// the culler (traversal/traversal.h); wrong px: the visible pixels an
-// approximate strategy's frame lost (evaluation/lost_pixels.h).
+// the culler (traversal/traversal.h), on the wall clock or with --clock
+// thread on the main thread's CPU time (traversal/clock.h); wrong px: the
+// visible pixels an approximate strategy's frame lost
+// (evaluation/lost_pixels.h).
 // tools/plot-walkthrough.sh DIR plots frames.csv.
 #include <algorithm>
 #include <cstdio>
@@ -53,6 +55,7 @@ struct Options {
     std::string out = "walkthrough-out";
     bool report = true;                 // plots and index.html in `out` at the end
     std::vector<std::string> video;     // strategies of route.mp4; empty: none
+    Clock clock = Clock::wall;          // what times the culling's setup and test ms
 };
 
 [[noreturn]] void usage(const std::string &error)
@@ -70,7 +73,7 @@ struct Options {
                  "                   [--switch-off F] [--allocator keep|system]\n"
                  "                   [--png-every N] [--oracle on|off] [--out DIR] [--report on|off]\n"
                  "                   [--video STRATEGY,...] [--databases DIR] [--make-databases required|all]\n"
-                 "                   [--look flat|scene]\n"
+                 "                   [--look flat|scene] [--clock wall|thread]\n"
                  "       walkthrough --list-strategies [--markdown]\n"
                  "--report (on) ends the run with the plots of frames.csv (tools/plot-walkthrough.sh, gnuplot)\n"
                  "and DIR/index.html, a page of the summary, the plots and the frames beside their top views\n"
@@ -90,6 +93,12 @@ struct Options {
                  "A database a strategy reads and was not given is made in --databases DIR (%s), named by\n"
                  "everything it depends on, and found there by later runs: those a strategy requires, and with\n"
                  "--make-databases all also those it would otherwise make during the run (inside its frame times).\n"
+                 "--clock (wall) times the culling's setup ms and test ms; thread: the main thread's CPU time, which\n"
+                 "leaves out the time other work on the machine took the core from it. A frame's ms (mean, median,\n"
+                 "frames.csv's ms) stays on the wall clock: llvmpipe draws on threads of its own (LP_NUM_THREADS). The\n"
+                 "thread clock suits strategies whose culling runs on the CPU in the calling thread (skins-triangles);\n"
+                 "for those that draw or query through the GL it leaves out llvmpipe's work and the waits for it.\n"
+                 "summary.csv's and frames.csv's column culling_clock says which timed them.\n"
                  "\nstrategies:\n%s",
                  default_database_directory().c_str(),
                  strategies_help().c_str());
@@ -121,6 +130,7 @@ Options parse(int argc, char **argv)
         else if (a == "--out") o.out = v;
         else if (a == "--oracle") o.oracle = switch_option(a, v);
         else if (a == "--report") o.report = switch_option(a, v);
+        else if (a == "--clock") o.clock = clock_option(a, v);
         else if (a == "--video") {
             o.video = list_items(v, ',');
             if (o.video.empty())
@@ -255,11 +265,12 @@ int main(int argc, char **argv)
         SessionOptions so = o.session.session_options(databases);
         so.oracle = o.oracle;
         so.look = look;
+        so.culling_clock = o.clock;
         MeasurementSession session(setup, ctx, so);
         for (const std::string &spec : o.session.strategies)
             session.add(spec, o.session.common);
         std::filesystem::create_directories(o.out);
-        FramesCsv csv(o.out + "/frames.csv", o.route, setup.scene().triangle_count());
+        FramesCsv csv(o.out + "/frames.csv", o.route, setup.scene().triangle_count(), o.clock);
         std::printf("scene: %zu triangles, %zu leaves of at most %u; route %s, %zu frames, %dx%d, %s; allocator %s\n",
                     setup.scene().triangle_count(), setup.hierarchy().leaf_count(),
                     unsigned(setup.hierarchy().max_leaf_triangles()), o.route.c_str(), route.size(),

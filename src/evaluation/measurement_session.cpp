@@ -201,7 +201,8 @@ void MeasurementSession::measure(std::size_t index, const Camera &camera, const 
     for (std::size_t k : shuffled_order()) {
         SessionStrategy &s = strategies_[k];
         set_frame_state();
-        const TraversalOptions traversal = s.policies.options(s.batch);
+        TraversalOptions traversal = s.policies.options(s.batch);
+        traversal.clock = options_.culling_clock;
         StrategyFrame out;
         out.index = index;
         out.frame = &frame;

@@ -78,6 +78,10 @@ struct SessionOptions {
     // How frames look (render/scene_renderer.h): the colour pass alone
     // textures; what a strategy draws to cull never does.
     Look look = Look::flat;
+    // What times each strategy's setup and test ms (TraversalOptions::clock,
+    // traversal/clock.h); a frame's ms is on the wall clock whatever this
+    // says, since llvmpipe draws it on threads of its own.
+    Clock culling_clock = Clock::wall;
     // Makes or finds the databases the strategies read and were not given
     // (culling/databases.h); none: a strategy that requires one and was
     // not given it refuses to be made.
@@ -89,7 +93,7 @@ struct Measured {
     std::vector<double> ms;                   // per frame, clear to finish
     std::vector<std::uint32_t> nodes_tested;  // per frame
     // Sums over the frames.
-    double triangles = 0, passes = 0, setup_ms = 0, test_ms = 0;
+    double triangles = 0, passes = 0, setup_ms = 0, test_ms = 0;   // setup, test: SessionOptions::culling_clock
     std::uint64_t occluded = 0, occluded_culled = 0, visible_culled = 0;   // leaves, against the oracle
     std::uint64_t lost_pixels = 0, tied_pixels = 0;   // evaluation/lost_pixels.h, where checked
     std::uint64_t page_faults = 0;
@@ -175,6 +179,7 @@ public:
     const SceneRenderer &renderer() const { return renderer_; }
     StrategyContext context() const { return {scene_.scene(), scene_.hierarchy(), renderer_}; }
     bool has_oracle() const { return oracle_.has_value(); }
+    Clock culling_clock() const { return options_.culling_clock; }
     int width() const { return width_; }
     int height() const { return height_; }
 

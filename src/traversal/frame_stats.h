@@ -26,10 +26,13 @@ struct FrameStats {
     // (TraversalPolicy::reads_triangles_occluded); 0 elsewhere.
     std::uint64_t triangles_occluded = 0;
     bool occlusion_tested = true;           // false while switched off
-    // Wall time in the culler, apart from what it saves: begin_frame
-    // (occluders, maps: setup_ms) and the tests (test_ms), including waits
-    // for the rasterizer they cause (an occlusion pass waits for the leaves
-    // drawn before it); the rest of the frame is drawing.
+    // Time in the culler, apart from what it saves: begin_frame
+    // (occluders, maps: setup_ms) and the tests (test_ms); the rest of the
+    // frame is drawing. On the wall clock (TraversalOptions::clock) this
+    // includes the waits for the rasterizer they cause (an occlusion pass
+    // waits for the leaves drawn before it); on the thread clock it is the
+    // calling thread's CPU time alone, without those waits nor llvmpipe's
+    // own threads' work (traversal/clock.h).
     double setup_ms = 0.0, test_ms = 0.0;
     std::vector<std::uint32_t> drawn;   // leaf node indices, in drawing order
 };

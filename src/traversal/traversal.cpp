@@ -2,7 +2,6 @@
 #include "traversal/traversal.h"
 
 #include <algorithm>
-#include <chrono>
 #include <queue>
 #include <stdexcept>
 #include <string>
@@ -17,16 +16,6 @@ float distance_to(const Aabb &box, const glm::vec3 &p)
     return glm::length(d);
 }
 
-class Stopwatch {
-public:
-    template <typename Work> void time(double &ms, Work &&work)
-    {
-        const auto start = std::chrono::steady_clock::now();
-        work();
-        ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    }
-};
-
 // One frame's traversal: the front of nodes ordered by distance, what each
 // answer leads to, and the nodes drawn without a test.
 class FrameTraversal {
@@ -34,7 +23,7 @@ public:
     FrameTraversal(const SceneRenderer &renderer, const Hierarchy &hierarchy, Culler &culler, const Frame &frame,
                    const TraversalOptions &options)
         : renderer_(renderer), nodes_(hierarchy.nodes()), culler_(culler), frame_(frame), options_(options),
-          count_occluded_(std::any_of(options.policies.begin(), options.policies.end(),
+          watch_(options.clock), count_occluded_(std::any_of(options.policies.begin(), options.policies.end(),
                                       [](const TraversalPolicy *p) { return p->reads_triangles_occluded(); }))
     {
     }
@@ -99,9 +88,8 @@ private:
         {
             if (!t_.nodes_.at(node).leaf())
                 throw std::logic_error("a strategy drew inner node " + std::to_string(node) + " as a leaf");
-            const auto start = std::chrono::steady_clock::now();
-            t_.settle(node, Visibility::visible, true);
-            draw_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            // On the traversal's clock, whose time less this is the test's.
+            t_.watch_.time(draw_ms, [&] { t_.settle(node, Visibility::visible, true); });
         }
         void draw_leaf_conditionally(std::uint32_t node) override
         {
@@ -262,9 +250,9 @@ private:
     bool testing_ = true;    // the frame tests occlusion (until a policy stops it)
     FrameTesting frame_testing_ = FrameTesting::full;
     bool ordered_ = false;   // the culler orders the frame (run_ordered)
+    Stopwatch watch_;   // on options_.clock
     // FrameStats::triangles_occluded is counted: a policy judges by it.
     bool count_occluded_;
-    Stopwatch watch_;
     FrameStats stats_;
 };
 

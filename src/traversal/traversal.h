@@ -17,6 +17,7 @@
 #include "culling/culler.h"
 #include "render/scene_renderer.h"
 #include "spatial/hierarchy.h"
+#include "traversal/clock.h"
 #include "traversal/frame_stats.h"
 #include "traversal/policies.h"
 
@@ -29,6 +30,9 @@ struct TraversalOptions {
     // Called in this order; they outlive the frame and keep their state
     // across frames.
     std::vector<TraversalPolicy *> policies;
+    // What times FrameStats::setup_ms and test_ms (traversal/clock.h): the
+    // wall clock, or the calling thread's CPU time.
+    Clock clock = Clock::wall;
 };
 
 

@@ -35,6 +35,7 @@ expect_error "zbuffer-magic" "$walkthrough" --strategies vfc,zbuffer-magic
 expect_error "--frames" "$walkthrough" --frames -3
 expect_error "--size wants PIXELS or WIDTHxHEIGHT" "$walkthrough" --size 1280x
 expect_error "--look wants flat or scene" "$walkthrough" --look pretty
+expect_error "--clock wants wall or thread, got 'foo'" "$walkthrough" --clock foo
 expect_error "--size wants PIXELS or WIDTHxHEIGHT" "$walkthrough" --size 1280x8
 expect_error "--size wants PIXELS or WIDTHxHEIGHT" "$walkthrough" --size 64x64x64
 expect_error "--leaf-triangles wants auto or an integer" "$walkthrough" --leaf-triangles automatic

@@ -105,9 +105,16 @@ for strategy in vfc ideal om-ps; do
     check_png "$dir/run/$strategy-top-0005.png" 256 256 4 title || fail "top view of $strategy"
 done
 
-# Without the oracle: no efficiency to plot.
-"$walkthrough" --frames 3 --size 64 --png-every 0 --strategies vfc,om-ps --oracle off --out "$dir/no-oracle" \
-    >/dev/null 2>&1 || fail "the walkthrough failed with --oracle off"
+# Without the oracle: no efficiency to plot. On the thread clock (--clock),
+# which the CSVs' last column names and the plots read past.
+"$walkthrough" --frames 3 --size 64 --png-every 0 --strategies vfc,om-ps --oracle off --clock thread \
+    --out "$dir/no-oracle" >/dev/null 2>&1 || fail "the walkthrough failed with --oracle off --clock thread"
+# The values of FILE's column culling_clock, one of each.
+clocks() { awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "culling_clock") c = i; next } c { print $c }' "$1" | sort -u; }
+for csv in summary frames; do
+    [ "$(clocks "$dir/run/$csv.csv")" = wall ] || fail "$csv.csv's culling_clock is not wall by default"
+    [ "$(clocks "$dir/no-oracle/$csv.csv")" = thread ] || fail "$csv.csv's culling_clock is not thread with --clock thread"
+done
 if "$plot" "$dir/no-oracle" >"$dir/plots.txt" 2>"$dir/plots.err"; then
     [ -f "$dir/no-oracle/frame-times.png" ] || fail "no frame-times.png with --oracle off"
     [ ! -f "$dir/no-oracle/efficiency.png" ] || fail "an efficiency.png with --oracle off"
