@@ -1281,6 +1281,43 @@ TEST(DepthRasterizer, MergedCoverageJoinsAcrossBuffers)
     EXPECT_THROW(first.merge_nearest(whole), std::invalid_argument) << "another coverage rule";
 }
 
+// A wall across the whole view, two triangles sharing a diagonal, its
+// corners from 1.7 to 12 half-viewports out (NDC), inside the guard band
+// and past the one it had (2): merged coverage
+// holds the diagonal's depth pixels, which neither triangle covers
+// wholly, only with the triangle across each (render_triangles'
+// `across`). A wall near the eye reaches far past the frame; were it
+// clipped there, the clipped polygons would know no triangle across, and
+// everything behind the diagonal's column of empty depth pixels would
+// show through the wall.
+TEST(DepthRasterizer, AWallReachingPastTheFrameLeavesNoSeamAlongItsDiagonal)
+{
+    gl::OffscreenContext ctx(frame_size, frame_size);
+    const Camera camera = test_camera();
+    const glm::mat4 vp = camera.view_projection();
+    for (const float half : {3.0f, 5.0f, 10.0f, 15.0f})
+        for (int turn = 0; turn < 6; ++turn) {
+            // The wall 3 m away, turned about the view axis by 15 degree steps.
+            const float angle = glm::radians(15.0f * float(turn));
+            const glm::vec3 u(std::cos(angle), std::sin(angle), 0.0f), v(-u.y, u.x, 0.0f);
+            Polygons wall;
+            wall.positions = {glm::vec3(0, 0, -3) - half * u - half * v, glm::vec3(0, 0, -3) + half * u - half * v,
+                              glm::vec3(0, 0, -3) + half * u + half * v, glm::vec3(0, 0, -3) - half * u + half * v};
+            wall.triangles = {0, 1, 2, 0, 2, 3};
+            const std::vector<glm::vec3> opposites = shared_edge_opposites(triangle_corners(wall));
+            const std::vector<float> gl = gl_depth(wall, camera);
+            for (int divisor = 1; divisor <= 4; ++divisor) {
+                DepthRasterizer r;
+                r.begin(vp, frame_size, frame_size, {divisor, true, true});
+                r.render_triangles(wall.positions.data(), wall.triangles.data(), 2, opposites.data());
+                const Comparison c = compare(r, gl);
+                EXPECT_EQ(c.violations, 0) << c.first;
+                EXPECT_EQ(c.covered, long(r.width()) * r.height())
+                    << "the wall " << 2.0f * half << " m wide, turned " << 15 * turn << " degrees, divisor " << divisor;
+            }
+        }
+}
+
 // A triangle nearly edge-on to the eye: which way it faces is decided by
 // rounding, GL's (its own float transform, vertices snapped to 1/256
 // pixel) and the test's (double, from the float matrix), which need not
