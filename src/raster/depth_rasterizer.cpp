@@ -22,10 +22,7 @@ using raster::max_edges;
 using raster::tile_pixels;
 using raster::tile_size;
 
-// The guard band, in viewports: polygons reaching past twice the viewport
-// on either side are clipped there, so window coordinates stay within a
-// few thousand pixels, where float edge functions are exact enough.
-constexpr double guard = 2.0;
+constexpr double guard = raster::guard_band;
 
 // How far GL may place an edge from where we compute it, in frame pixels:
 // llvmpipe snaps vertices to 1/256 pixel and transforms in its own float

@@ -26,8 +26,8 @@
 //
 // Clipping (section 5): polygons are clipped against the near plane only
 // where they cross it, so that no vertex has w <= 0; those reaching far
-// outside the viewport are also clipped to a guard band (twice the
-// viewport each way) to keep edge functions in float's exact range. Both
+// outside the viewport are also clipped to a guard band (raster::guard_band
+// viewports each way) to keep edge functions in float's exact range. Both
 // clips keep the polygon convex and inside the original.
 //
 // Two depth rules (section 5): per-pixel depth (the plane of the polygon),

@@ -15,6 +15,16 @@ namespace occu::raster {
 // planes has at most 4 + 5 edges; a box's silhouette (six corners) clipped
 // by the guard band, 6 + 4.
 constexpr int max_edges = 10;
+// The guard band, in the viewport's half-widths each way from its centre
+// (NDC): polygons reaching past it are clipped there. A clipped polygon
+// knows no triangle across its edges, so merged coverage leaves its shared
+// edges' depth pixels empty: a wall near the eye reaches far past the
+// frame, and at 2 most of a level's walls within a few metres were
+// clipped and kept a seam along their diagonals. At 16 window coordinates
+// stay within 11,000 pixels (1280 wide at divisor 1), where float's
+// rounding stays near a thousandth of a pixel; the margins (float_error
+// times this extent) take it in.
+constexpr double guard_band = 16.0;
 constexpr int tile_size = 8;   // tiles of 8 x 8 depth pixels, 8 lanes per row
 constexpr int tile_pixels = tile_size * tile_size;
 

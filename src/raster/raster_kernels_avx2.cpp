@@ -877,7 +877,7 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
 {
     const float *m = screen.view_projection;
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
-    const __m256 two = _mm256_set1_ps(2.0f);   // the guard band, as polygon's float(guard)
+    const __m256 guard = _mm256_set1_ps(float(guard_band));   // as polygon's float(guard)
     const __m256 sign = _mm256_set1_ps(-0.0f);
     const __m256 scale_x = _mm256_set1_ps(screen.scale_x), scale_y = _mm256_set1_ps(screen.scale_y);
     std::size_t kept = 0;
@@ -908,7 +908,7 @@ std::size_t screen_triangles_avx2(const TriangleScreen &screen, const float *pos
             const __m256 before_near = _mm256_cmp_ps(c.z, minus_w, _CMP_LT_OQ);
             out_near = _mm256_and_ps(out_near, before_near);
             // x > g || x < -g is |x| > g, NaN included (false either way).
-            const __m256 g = _mm256_mul_ps(two, c.w);
+            const __m256 g = _mm256_mul_ps(guard, c.w);
             needs_clip = _mm256_or_ps(needs_clip, before_near);
             needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(_mm256_andnot_ps(sign, c.x), g, _CMP_GT_OQ));
             needs_clip = _mm256_or_ps(needs_clip, _mm256_cmp_ps(_mm256_andnot_ps(sign, c.y), g, _CMP_GT_OQ));
