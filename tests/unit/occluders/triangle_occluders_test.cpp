@@ -485,10 +485,12 @@ TEST(TriangleOccluders, AnAdaptedBudgetIsFiveQuartersOfThoseThatReachedWithinIts
             ASSERT_GE(next, 128u);
             ASSERT_LE(next, 1024u);
             ASSERT_LE(next, std::max<std::size_t>(128, budget + (budget + 3) / 4)) << budget << ", " << reached;
-            if (5 * reached + 4 <= 4 * budget && budget > 128)
+            if (5 * reached + 4 <= 4 * budget && budget > 128) {
                 ASSERT_LT(next, budget) << "shrinks where fewer than four in five reach, less one: " << budget << ", " << reached;
-            if (5 * reached > 4 * budget && budget < 1024)
+            }
+            if (5 * reached > 4 * budget && budget < 1024) {
                 ASSERT_GT(next, budget) << "grows where more than four in five reach: " << budget << ", " << reached;
+            }
         }
 }
 

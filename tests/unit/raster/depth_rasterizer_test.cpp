@@ -1233,9 +1233,10 @@ TEST(DepthRasterizer, CrossingKernelsReportEveryRowBelowTheLastAndNoneFromIt)
             const unsigned expected = (1u << left) - 1;
             raster::RowsRuns runs;
             EXPECT_EQ(raster::partial_rows_runs_scalar(c, y, runs), expected) << "k " << k << ", rows left " << left;
-            if (DepthRasterizer::avx2_supported())
+            if (DepthRasterizer::avx2_supported()) {
                 EXPECT_EQ(raster::partial_rows_runs_avx2(c, y, runs), expected)
                     << "k " << k << ", rows left " << left;
+            }
         }
     }
 }
