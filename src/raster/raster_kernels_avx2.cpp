@@ -15,26 +15,32 @@ namespace occu::raster {
 namespace {
 
 // A partly covered tile's rows band.row0 .. band.row1 - 1 (r from y8),
-// tested against the N edges of `edge` (ea[edge[j]] and the row terms
-// edge_rows[edge[j]]), their depth written where inside and nearer.
-// Returns the lanes written, or'd over the rows.
+// tested against the N edges (N = 0: n edges) listed in `edge` (ea[edge[j]]
+// and the row terms edge_rows[edge[j]]), their depth written where inside
+// and nearer. Returns the lanes written, or'd over the rows.
 template <int N>
 inline __m256 fill_part_tile(float *tile, int row0, int row1, int y8, __m256 fx, __m256 z_column, __m256 zcap,
                              const __m256 *ea, const float (*edge_rows)[tile_size], const float *depth_rows,
-                             const int *edge)
+                             const int *edge, int n)
 {
+    const int count = N > 0 ? N : n;
     const __m256 zero = _mm256_setzero_ps();
-    __m256 a[N];
-    const float *rows[N];
-    for (int j = 0; j < N; ++j) {
+    __m256 a[N > 0 ? N : max_edges];
+    const float *rows[N > 0 ? N : max_edges];
+    for (int j = 0; j < count; ++j) {
         a[j] = _mm256_mul_ps(ea[edge[j]], fx);
         rows[j] = edge_rows[edge[j]];
     }
     __m256 wrote = zero;
     for (int y = row0; y < row1; ++y) {
         const int r = y - y8;
-        __m256 inside = _mm256_cmp_ps(_mm256_add_ps(a[0], _mm256_broadcast_ss(rows[0] + r)), zero, _CMP_GE_OQ);
-        for (int j = 1; j < N; ++j)
+        __m256 inside;
+        int j = 0;
+        if constexpr (N > 0)
+            inside = _mm256_cmp_ps(_mm256_add_ps(a[j++], _mm256_broadcast_ss(rows[0] + r)), zero, _CMP_GE_OQ);
+        else
+            inside = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+        for (; j < count; ++j)
             inside = _mm256_and_ps(inside,
                                    _mm256_cmp_ps(_mm256_add_ps(a[j], _mm256_broadcast_ss(rows[j] + r)), zero, _CMP_GE_OQ));
         if (_mm256_movemask_ps(inside) == 0)
@@ -86,9 +92,9 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
             const __m256 left = _mm256_add_ps(_mm256_set1_ps(float(x_first)), eights);
             const __m256 right = _mm256_add_ps(left, last_column);
             __m256 none = zero, whole = _mm256_cmp_ps(zero, zero, _CMP_EQ_OQ);
-            // Triangles: per edge, the tiles wholly inside it (bit i for
-            // tile i), whose pixels need no test against it.
-            int edge_inside[Edges > 0 ? Edges : 1];
+            // Per edge, the tiles wholly inside it (bit i for tile i), whose
+            // pixels need no test against it.
+            int edge_inside[Edges > 0 ? Edges : max_edges];
             for (int e = 0; e < edges; ++e) {
                 const __m256 largest = _mm256_add_ps(_mm256_mul_ps(ea[e], rising[e] ? right : left),
                                                      _mm256_set1_ps(band.largest_edge_term[e]));
@@ -97,8 +103,7 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
                                                    _mm256_set1_ps(band.least_edge_term[e]));
                 const __m256 inside = _mm256_cmp_ps(least, zero, _CMP_GE_OQ);
                 whole = _mm256_and_ps(whole, inside);
-                if constexpr (Edges > 0)
-                    edge_inside[e] = _mm256_movemask_ps(inside);
+                edge_inside[e] = _mm256_movemask_ps(inside);
             }
             const int in_band = (1 << tiles) - 1;
             int fill = ~_mm256_movemask_ps(none) & in_band;
@@ -149,44 +154,26 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
                     continue;
                 }
                 __m256 wrote = zero;
-                if constexpr (Edges > 0) {
-                    // Only the edges the tile is not wholly inside: an edge's
-                    // value at a pixel is no less than its least over the tile
-                    // (the corner test above), so where that is >= 0 the
-                    // pixel's own test passes too.
-                    int edge[Edges], crossing = 0;
-                    for (int e = 0; e < Edges; ++e)
-                        if (!(edge_inside[e] >> i & 1))
-                            edge[crossing++] = e;
-                    if (crossing == 1)
-                        wrote = fill_part_tile<1>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
-                                                  depth_rows, edge);
-                    else if (crossing == 2)
-                        wrote = fill_part_tile<2>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
-                                                  depth_rows, edge);
-                    else
-                        wrote = fill_part_tile<Edges>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea,
-                                                      edge_rows, depth_rows, edge);
-                } else {
-                    for (int y = band.row0; y < band.row1; ++y) {
-                        const int r = y - y8;
-                        __m256 inside = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-                        for (int e = 0; e < edges; ++e) {
-                            const __m256 edge =
-                                _mm256_add_ps(_mm256_mul_ps(ea[e], fx), _mm256_broadcast_ss(edge_rows[e] + r));
-                            inside = _mm256_and_ps(inside, _mm256_cmp_ps(edge, zero, _CMP_GE_OQ));
-                        }
-                        if (_mm256_movemask_ps(inside) == 0)
-                            continue;
-                        const __m256 z =
-                            _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_broadcast_ss(depth_rows + r)));
-                        float *row = tile + r * tile_size;
-                        const __m256 old = _mm256_loadu_ps(row);
-                        const __m256 write = _mm256_and_ps(inside, _mm256_cmp_ps(z, old, _CMP_LT_OQ));
-                        _mm256_storeu_ps(row, _mm256_blendv_ps(old, z, write));
-                        wrote = _mm256_or_ps(wrote, write);
-                    }
-                }
+                // Only the edges the tile is not wholly inside: an edge's
+                // value at a pixel is no less than its least over the tile
+                // (the corner test above), so where that is >= 0 the pixel's
+                // own test passes too.
+                int edge[Edges > 0 ? Edges : max_edges], crossing = 0;
+                for (int e = 0; e < edges; ++e)
+                    if (!(edge_inside[e] >> i & 1))
+                        edge[crossing++] = e;
+                if (crossing == 1)
+                    wrote = fill_part_tile<1>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
+                                              depth_rows, edge, 1);
+                else if (crossing == 2)
+                    wrote = fill_part_tile<2>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
+                                              depth_rows, edge, 2);
+                else if (Edges > 0)
+                    wrote = fill_part_tile<Edges>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
+                                                  depth_rows, edge, crossing);
+                else
+                    wrote = fill_part_tile<0>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
+                                              depth_rows, edge, crossing);
                 if (_mm256_movemask_ps(wrote) != 0)
                     buffer.dirty[t] = 1;
             }
