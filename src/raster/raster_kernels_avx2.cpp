@@ -55,6 +55,30 @@ inline __m256 fill_part_tile(float *tile, int row0, int row1, int y8, __m256 fx,
     return wrote;
 }
 
+// band_terms for a triangle, its three edges and the depth in the four
+// lanes of one vector: the same products and sums, each lane's row chosen
+// by the same comparison (false for NaN: the last row).
+inline void band_terms_triangle(const PolygonSetup &s, int row0, int row1, Band *band)
+{
+    band->y8 = row0 / tile_size * tile_size;
+    band->row0 = row0;
+    band->row1 = row1;
+    const __m128 first = _mm_set1_ps(float(row0)), last = _mm_set1_ps(float(row1 - 1));
+    const __m128 b = _mm_setr_ps(s.eb[0], s.eb[1], s.eb[2], s.zb), c = _mm_setr_ps(s.ec[0], s.ec[1], s.ec[2], s.zc);
+    const __m128 rising = _mm_cmpgt_ps(b, _mm_setzero_ps());
+    const __m128 least = _mm_add_ps(_mm_mul_ps(b, _mm_blendv_ps(last, first, rising)), c);
+    const __m128 largest = _mm_add_ps(_mm_mul_ps(b, _mm_blendv_ps(first, last, rising)), c);
+    alignas(16) float out[8];
+    _mm_store_ps(out, least);
+    _mm_store_ps(out + 4, largest);
+    for (int e = 0; e < 3; ++e) {
+        band->least_edge_term[e] = out[e];
+        band->largest_edge_term[e] = out[4 + e];
+    }
+    band->nearest_depth_term = out[3];
+    band->farthest_depth_term = out[7];
+}
+
 // fill_avx2 for polygons of `Edges` edges, or of s.edges for 0: triangles,
 // most of the polygons, get their edge loops unrolled.
 template <int Edges>
@@ -78,7 +102,10 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
     Band band;
     alignas(32) float edge_rows[max_edges][tile_size], depth_rows[tile_size];
     for (int y8 = s.y0 / tile_size * tile_size; y8 < s.y1; y8 += tile_size) {
-        band_terms(s, edges, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
+        if constexpr (Edges == 3)
+            band_terms_triangle(s, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
+        else
+            band_terms(s, edges, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
         const bool all_rows = band.row0 == y8 && band.row1 == y8 + tile_size;
         // The row terms of the band's eight rows, eb Y + ec lane by lane,
         // once the band has a tile to fill.
