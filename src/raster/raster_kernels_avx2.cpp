@@ -14,6 +14,71 @@ namespace occu::raster {
 
 namespace {
 
+// A partly covered tile's rows band.row0 .. band.row1 - 1 (r from y8),
+// tested against the N edges (N = 0: n edges) listed in `edge` (ea[edge[j]]
+// and the row terms edge_rows[edge[j]]), their depth written where inside
+// and nearer. Returns the lanes written, or'd over the rows.
+template <int N>
+inline __m256 fill_part_tile(float *tile, int row0, int row1, int y8, __m256 fx, __m256 z_column, __m256 zcap,
+                             const __m256 *ea, const float (*edge_rows)[tile_size], const float *depth_rows,
+                             const int *edge, int n)
+{
+    const int count = N > 0 ? N : n;
+    const __m256 zero = _mm256_setzero_ps();
+    __m256 a[N > 0 ? N : max_edges];
+    const float *rows[N > 0 ? N : max_edges];
+    for (int j = 0; j < count; ++j) {
+        a[j] = _mm256_mul_ps(ea[edge[j]], fx);
+        rows[j] = edge_rows[edge[j]];
+    }
+    __m256 wrote = zero;
+    for (int y = row0; y < row1; ++y) {
+        const int r = y - y8;
+        __m256 inside;
+        int j = 0;
+        if constexpr (N > 0)
+            inside = _mm256_cmp_ps(_mm256_add_ps(a[j++], _mm256_broadcast_ss(rows[0] + r)), zero, _CMP_GE_OQ);
+        else
+            inside = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+        for (; j < count; ++j)
+            inside = _mm256_and_ps(inside,
+                                   _mm256_cmp_ps(_mm256_add_ps(a[j], _mm256_broadcast_ss(rows[j] + r)), zero, _CMP_GE_OQ));
+        if (_mm256_movemask_ps(inside) == 0)
+            continue;
+        const __m256 z = _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_broadcast_ss(depth_rows + r)));
+        float *row = tile + r * tile_size;
+        const __m256 old = _mm256_loadu_ps(row);
+        const __m256 write = _mm256_and_ps(inside, _mm256_cmp_ps(z, old, _CMP_LT_OQ));
+        _mm256_storeu_ps(row, _mm256_blendv_ps(old, z, write));
+        wrote = _mm256_or_ps(wrote, write);
+    }
+    return wrote;
+}
+
+// band_terms for a triangle, its three edges and the depth in the four
+// lanes of one vector: the same products and sums, each lane's row chosen
+// by the same comparison (false for NaN: the last row).
+inline void band_terms_triangle(const PolygonSetup &s, int row0, int row1, Band *band)
+{
+    band->y8 = row0 / tile_size * tile_size;
+    band->row0 = row0;
+    band->row1 = row1;
+    const __m128 first = _mm_set1_ps(float(row0)), last = _mm_set1_ps(float(row1 - 1));
+    const __m128 b = _mm_setr_ps(s.eb[0], s.eb[1], s.eb[2], s.zb), c = _mm_setr_ps(s.ec[0], s.ec[1], s.ec[2], s.zc);
+    const __m128 rising = _mm_cmpgt_ps(b, _mm_setzero_ps());
+    const __m128 least = _mm_add_ps(_mm_mul_ps(b, _mm_blendv_ps(last, first, rising)), c);
+    const __m128 largest = _mm_add_ps(_mm_mul_ps(b, _mm_blendv_ps(first, last, rising)), c);
+    alignas(16) float out[8];
+    _mm_store_ps(out, least);
+    _mm_store_ps(out + 4, largest);
+    for (int e = 0; e < 3; ++e) {
+        band->least_edge_term[e] = out[e];
+        band->largest_edge_term[e] = out[4 + e];
+    }
+    band->nearest_depth_term = out[3];
+    band->farthest_depth_term = out[7];
+}
+
 // fill_avx2 for polygons of `Edges` edges, or of s.edges for 0: triangles,
 // most of the polygons, get their edge loops unrolled.
 template <int Edges>
@@ -37,7 +102,10 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
     Band band;
     alignas(32) float edge_rows[max_edges][tile_size], depth_rows[tile_size];
     for (int y8 = s.y0 / tile_size * tile_size; y8 < s.y1; y8 += tile_size) {
-        band_terms(s, edges, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
+        if constexpr (Edges == 3)
+            band_terms_triangle(s, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
+        else
+            band_terms(s, edges, y8 > s.y0 ? y8 : s.y0, y8 + tile_size < s.y1 ? y8 + tile_size : s.y1, &band);
         const bool all_rows = band.row0 == y8 && band.row1 == y8 + tile_size;
         // The row terms of the band's eight rows, eb Y + ec lane by lane,
         // once the band has a tile to fill.
@@ -51,13 +119,18 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
             const __m256 left = _mm256_add_ps(_mm256_set1_ps(float(x_first)), eights);
             const __m256 right = _mm256_add_ps(left, last_column);
             __m256 none = zero, whole = _mm256_cmp_ps(zero, zero, _CMP_EQ_OQ);
+            // Per edge, the tiles wholly inside it (bit i for tile i), whose
+            // pixels need no test against it.
+            int edge_inside[Edges > 0 ? Edges : max_edges];
             for (int e = 0; e < edges; ++e) {
                 const __m256 largest = _mm256_add_ps(_mm256_mul_ps(ea[e], rising[e] ? right : left),
                                                      _mm256_set1_ps(band.largest_edge_term[e]));
                 none = _mm256_or_ps(none, _mm256_cmp_ps(largest, zero, _CMP_LT_OQ));
                 const __m256 least = _mm256_add_ps(_mm256_mul_ps(ea[e], rising[e] ? left : right),
                                                    _mm256_set1_ps(band.least_edge_term[e]));
-                whole = _mm256_and_ps(whole, _mm256_cmp_ps(least, zero, _CMP_GE_OQ));
+                const __m256 inside = _mm256_cmp_ps(least, zero, _CMP_GE_OQ);
+                whole = _mm256_and_ps(whole, inside);
+                edge_inside[e] = _mm256_movemask_ps(inside);
             }
             const int in_band = (1 << tiles) - 1;
             int fill = ~_mm256_movemask_ps(none) & in_band;
@@ -108,24 +181,26 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
                     continue;
                 }
                 __m256 wrote = zero;
-                for (int y = band.row0; y < band.row1; ++y) {
-                    const int r = y - y8;
-                    __m256 inside = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-                    for (int e = 0; e < edges; ++e) {
-                        const __m256 edge =
-                            _mm256_add_ps(_mm256_mul_ps(ea[e], fx), _mm256_broadcast_ss(edge_rows[e] + r));
-                        inside = _mm256_and_ps(inside, _mm256_cmp_ps(edge, zero, _CMP_GE_OQ));
-                    }
-                    if (_mm256_movemask_ps(inside) == 0)
-                        continue;
-                    const __m256 z =
-                        _mm256_min_ps(zcap, _mm256_add_ps(z_column, _mm256_broadcast_ss(depth_rows + r)));
-                    float *row = tile + r * tile_size;
-                    const __m256 old = _mm256_loadu_ps(row);
-                    const __m256 write = _mm256_and_ps(inside, _mm256_cmp_ps(z, old, _CMP_LT_OQ));
-                    _mm256_storeu_ps(row, _mm256_blendv_ps(old, z, write));
-                    wrote = _mm256_or_ps(wrote, write);
-                }
+                // Only the edges the tile is not wholly inside: an edge's
+                // value at a pixel is no less than its least over the tile
+                // (the corner test above), so where that is >= 0 the pixel's
+                // own test passes too.
+                int edge[Edges > 0 ? Edges : max_edges], crossing = 0;
+                for (int e = 0; e < edges; ++e)
+                    if (!(edge_inside[e] >> i & 1))
+                        edge[crossing++] = e;
+                if (crossing == 1)
+                    wrote = fill_part_tile<1>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
+                                              depth_rows, edge, 1);
+                else if (crossing == 2)
+                    wrote = fill_part_tile<2>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
+                                              depth_rows, edge, 2);
+                else if (Edges > 0)
+                    wrote = fill_part_tile<Edges>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
+                                                  depth_rows, edge, crossing);
+                else
+                    wrote = fill_part_tile<0>(tile, band.row0, band.row1, y8, fx, z_column, zcap, ea, edge_rows,
+                                              depth_rows, edge, crossing);
                 if (_mm256_movemask_ps(wrote) != 0)
                     buffer.dirty[t] = 1;
             }

@@ -414,6 +414,103 @@ TEST_P(DepthRasterizerAgainstGl, TriangleTestHidesOnlyTrianglesGlHides)
 INSTANTIATE_TEST_SUITE_P(Divisors, DepthRasterizerAgainstGl, ::testing::Values(1, 2, 3, 4),
                          [](const auto &info) { return "divisor_" + std::to_string(info.param); });
 
+// The fill's kernels alone on random convex polygons (mostly triangles;
+// edges through pixel centres, slivers, depth planes either way) over a
+// buffer of random depths and bounds: the AVX2 fill tests a partly covered
+// tile's pixels only against the edges the tile is not wholly inside, and
+// must write the same depths, tiles and bounds as the scalar fill's every
+// edge.
+TEST(DepthRasterizer, ScalarAndAvx2FillsAgreeBitForBit)
+{
+    if (!DepthRasterizer::avx2_supported())
+        GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
+    constexpr int tiles_x = 6, tiles_y = 5, width = tiles_x * raster::tile_size, height = tiles_y * raster::tile_size;
+    constexpr std::size_t tiles = std::size_t(tiles_x) * tiles_y;
+    std::mt19937 rng(4141);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<float> depth[2], bound[2], original;
+    std::vector<std::uint8_t> dirty[2];
+    long written = 0, partly = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        for (int i = 0; i < 2; ++i) {
+            depth[i].assign(tiles * raster::tile_pixels, 1.0f);
+            bound[i].assign(tiles, 1.0f);
+            dirty[i].assign(tiles, 0);
+        }
+        std::mt19937 fill_rng{unsigned(trial)};
+        for (float &d : depth[0])
+            d = 0.5f + 0.5f * unit(fill_rng);
+        for (float &b : bound[0])
+            b = unit(fill_rng) < 0.2f ? 0.6f : 1.0f;
+        depth[1] = depth[0];
+        bound[1] = bound[0];
+        original = depth[0];
+        // A convex counter-clockwise polygon (mostly triangles; else up to
+        // seven corners, as clipping makes), corners on a sixteenth grid
+        // (edges exactly through pixels) or anywhere, some far larger than
+        // the buffer.
+        const int n = trial % 4 == 3 ? 4 + trial / 4 % 4 : 3;
+        const double reach = trial % 5 == 0 ? 3.0 * width : 0.6 * width;
+        const glm::dvec2 centre{unit(rng) * width, unit(rng) * height};
+        double angle[8];
+        for (int i = 0; i < n; ++i)
+            angle[i] = unit(rng) * 6.283185307179586;
+        std::sort(angle, angle + n);
+        const double radius = 0.5 * reach * (0.3 + unit(rng));
+        glm::dvec2 v[8];
+        for (int i = 0; i < n; ++i) {
+            v[i] = centre + glm::dvec2{std::cos(angle[i]), std::sin(angle[i])} * radius;
+            if (trial % 3 == 0)
+                v[i] = glm::floor(v[i] * 16.0) / 16.0;
+        }
+        raster::PolygonSetup s{};
+        s.edges = n;
+        double lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
+        for (int e = 0; e < n; ++e) {
+            const glm::dvec2 p = v[e], q = v[(e + 1) % n];
+            const double a = p.y - q.y, b = q.x - p.x, c = -(a * p.x + b * p.y);
+            s.ea[e] = float(a);
+            s.eb[e] = float(b);
+            s.ec[e] = float(c - (trial % 2 ? 0.0 : 0.25 * (std::abs(a) + std::abs(b))));
+            lo_x = std::min(lo_x, p.x);
+            hi_x = std::max(hi_x, p.x);
+            lo_y = std::min(lo_y, p.y);
+            hi_y = std::max(hi_y, p.y);
+        }
+        s.za = (unit(rng) - 0.5f) * 0.01f;
+        s.zb = (unit(rng) - 0.5f) * 0.01f;
+        s.zc = 0.4f + 0.5f * unit(rng);
+        s.zcap = 0.95f;
+        s.x0 = std::max(0, int(std::floor(lo_x)));
+        s.y0 = std::max(0, int(std::floor(lo_y)));
+        s.x1 = std::min(width, int(std::ceil(hi_x)) + 1);
+        s.y1 = std::min(height, int(std::ceil(hi_y)) + 1);
+        if (s.x0 >= s.x1 || s.y0 >= s.y1)
+            continue;
+        for (int i = 0; i < 2; ++i) {
+            const raster::TileBuffer buffer{depth[i].data(), dirty[i].data(), bound[i].data(), tiles_x};
+            (i == 0 ? raster::fill_scalar : raster::fill_avx2)(s, buffer);
+        }
+        ASSERT_EQ(std::memcmp(depth[0].data(), depth[1].data(), depth[0].size() * sizeof(float)), 0) << "trial " << trial;
+        ASSERT_EQ(std::memcmp(bound[0].data(), bound[1].data(), bound[0].size() * sizeof(float)), 0) << "trial " << trial;
+        // Tiles marked: every tile the scalar fill marks (those it wrote);
+        // the AVX2 fill also marks each wholly covered tile it fills.
+        for (std::size_t t = 0; t < tiles; ++t)
+            ASSERT_TRUE(!dirty[0][t] || dirty[1][t]) << "trial " << trial << " tile " << t;
+        // Tiles written in some pixels and not others: partly covered.
+        for (std::size_t t = 0; t < tiles; ++t) {
+            int changed = 0;
+            for (int i = 0; i < raster::tile_pixels; ++i)
+                changed += depth[0][t * raster::tile_pixels + std::size_t(i)] != original[t * raster::tile_pixels + std::size_t(i)];
+            ASSERT_TRUE(changed == 0 || dirty[0][t]) << "trial " << trial << " tile " << t;
+            written += changed > 0;
+            partly += changed > 0 && changed < raster::tile_pixels;
+        }
+    }
+    EXPECT_GT(written, 5000) << "the comparison saw tiles written";
+    EXPECT_GT(partly, 1000) << "and tiles whose depths differ pixel to pixel";
+}
+
 TEST(DepthRasterizer, ScalarAndAvx2BuffersAreEqualBitForBit)
 {
     if (!DepthRasterizer::avx2_supported())
