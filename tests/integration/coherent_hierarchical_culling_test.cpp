@@ -315,8 +315,9 @@ TEST(CoherentHierarchicalCulling, ConditionalDrawsOfPreviouslyHiddenLeavesAreDec
         }
         // waits: only where the result is not ready when the traversal
         // runs out of work (llvmpipe; softpipe's passes are done at their end).
-        if (always)
+        if (always) {
             EXPECT_GT(issued, 0u) << "no leaf of the hidden cluster was drawn conditionally: the test shows nothing";
+        }
     }
     const MarkedFrame seen = draw_marked(s, *chc.culler, beside);
     EXPECT_EQ(lost_pixels_of(s, seen, beside.camera), 0u);
@@ -327,8 +328,9 @@ TEST(CoherentHierarchicalCulling, ConditionalDrawsOfPreviouslyHiddenLeavesAreDec
         ++issued;
         EXPECT_TRUE(seen.marked(leaf)) << "leaf " << leaf << ", hidden last frame and in view now: its conditional draw was not executed";
     }
-    if (always)
+    if (always) {
         EXPECT_GT(issued, 0u) << "no leaf of the cluster was drawn conditionally in the frame that sees it";
+    }
     }
 }
 
@@ -367,12 +369,14 @@ TEST(CoherentHierarchicalCulling, VisibleLeavesAreRetestedOncePerPeriod)
             }
             tested += f.stats.nodes_tested;
             passes_after_first += f.stats.passes;
-            if (period > 1)
+            if (period > 1) {
                 EXPECT_LT(f.stats.nodes_tested, leaves) << "frame " << f.index << " re-tested every leaf";
+            }
         });
         EXPECT_EQ(tested, 2u * leaves) << "each visible leaf re-tested once per period, nothing else tested";
-        if (shared)
+        if (shared) {
             EXPECT_LE(passes_after_first, 2u * period) << "at most one pass a frame: the re-tests share passes";
+        }
     }
 }
 
