@@ -183,8 +183,9 @@ void fill_polygon(const PolygonSetup &s, const TileBuffer &buffer)
                 __m256 wrote = zero;
                 // Only the edges the tile is not wholly inside: an edge's
                 // value at a pixel is no less than its least over the tile
-                // (the corner test above), so where that is >= 0 the pixel's
-                // own test passes too.
+                // (the corner test above: the same products and sum at the
+                // tile's corner, and float rounding is monotone), so where
+                // that is >= 0 the pixel's own test passes too.
                 int edge[Edges > 0 ? Edges : max_edges], crossing = 0;
                 for (int e = 0; e < edges; ++e)
                     if (!(edge_inside[e] >> i & 1))
